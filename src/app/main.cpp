@@ -1,0 +1,2 @@
+// Entry point of the `glint` command line program.
+int main() { return 0; }
