@@ -10,10 +10,12 @@ namespace glint {
 
 // y = (x (6.2 x + 0.5) / (x (6.2 x + 1.7) + 0.06))^1.3 for x >= 0: a Hejl-Burgess-Dawson
 // style filmic curve raised to 1.3 (the paper's published data uses it for 8-bit images).
+// Evaluated in double: in float, rounding noise near y = 1 exceeds the curve's slope and the
+// result stops being monotonic (x around 10 and above).
 inline float tonemapFilmic(float x) {
-  x = std::max(0.0f, x);
-  float y = (x * (6.2f * x + 0.5f)) / (x * (6.2f * x + 1.7f) + 0.06f);
-  return std::pow(y, 1.3f);
+  double d = std::max(0.0, double(x));
+  double y = (d * (6.2 * d + 0.5)) / (d * (6.2 * d + 1.7) + 0.06);
+  return static_cast<float>(std::pow(y, 1.3));
 }
 
 // Inverse of tonemapFilmic for y in [0, 1): solve the quadratic of the rational part for x

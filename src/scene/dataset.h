@@ -85,7 +85,11 @@ void writeTransforms(const std::filesystem::path& root, const DatasetSplit& spli
 void writeViewBuffers(const std::filesystem::path& root, const DatasetView& view, const ViewBuffers& buffers,
                       ImageFormat format);
 
+// True when a frame's file_path names a render image the way DATA-FORMAT.md lays them out
+// (".../render/render<suffix>"), so that the other buffers can be found by name.
+bool isRenderFilePath(const std::string& filePath);
 // Relative path of a buffer for a view: "train/render/render_0007" -> "train/depth/depth_0007".
+// Throws Error naming the path when !isRenderFilePath(renderFilePath).
 std::string bufferFilePath(const std::string& renderFilePath, Buffer buffer);
 
 }  // namespace glint

@@ -1,0 +1,19 @@
+// Parsers for flag values that CLI11 cannot check alone (resolutions, colours, lists).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "math/vec.h"
+
+namespace glint {
+
+// "256x192" -> (256, 192). Throws Error naming the flag for anything else or sizes
+// outside [1, 16384].
+Vec2i parseResolution(const std::string& text, const std::string& flag);
+// "0.5" -> (0.5, 0.5, 0.5); "1,0.8,0.6" -> RGB. Throws Error naming the flag.
+Rgb parseColor(const std::string& text, const std::string& flag);
+// "0,5,9" -> {0, 5, 9}. Throws Error naming the flag.
+std::vector<size_t> parseIndexList(const std::string& text, const std::string& flag);
+
+}  // namespace glint

@@ -1,0 +1,12 @@
+// The `glint` subcommands. Each registers its flags on the CLI11 app and runs when chosen.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace glint {
+
+void addSynthCommand(CLI::App& app);
+void addInfoCommand(CLI::App& app);
+void addSheetCommand(CLI::App& app);
+
+}  // namespace glint

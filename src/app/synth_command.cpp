@@ -1,0 +1,165 @@
+// `glint synth SCENE -o OUT`: turns a built-in or glTF scene into a dataset with exact buffers.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+
+#include "app/cli_parsing.h"
+#include "app/commands.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "io/image.h"
+#include "synth/builtin_scenes.h"
+#include "synth/dataset_generator.h"
+#include "synth/gltf_import.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct SynthOptions {
+  std::string scene;
+  std::string output;
+  int train = 100;
+  int test = 20;
+  std::string resolution = "256x192";
+  int spp = 256;
+  int bounces = 6;
+  uint64_t seed = 0;
+  std::string format = "exr";
+  float exposure = 1.0f;
+  std::string environment;
+  float environmentIntensity = 1.0f;
+  int threads = 0;
+  bool force = false;
+};
+
+MeshScene loadScene(const std::string& spec) {
+  const std::string prefix = "builtin:";
+  if (spec.rfind(prefix, 0) == 0) return makeBuiltinScene(spec.substr(prefix.size()));
+  fs::path path(spec);
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  if (ext != ".gltf" && ext != ".glb")
+    throw Error(spec, "a scene is builtin:NAME or a .gltf/.glb file (unknown extension '" + ext + "')");
+  return loadGltfScene(path);
+}
+
+bool hasAnyLight(const MeshScene& scene) {
+  if (!scene.lights.empty() || !scene.environment.isBlack()) return true;
+  for (const Material& m : scene.materials)
+    if (maxComponent(m.emission) > 0) return true;
+  return false;
+}
+
+void applyEnvironment(MeshScene& scene, const SynthOptions& o) {
+  if (!o.environment.empty()) {
+    fs::path path(o.environment);
+    std::string ext = path.extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".exr" || ext == ".tif" || ext == ".tiff") {
+      scene.environment.map = readImage(path);
+      if (scene.environment.map.channels < 3) throw Error(o.environment, "an environment map needs 3 channels (RGB)");
+      for (float v : scene.environment.map.pixels)
+        if (!std::isfinite(v) || v < 0) throw Error(o.environment, "the environment map has negative or non-finite values");
+    } else {
+      scene.environment.constant = parseColor(o.environment, "--env");
+      scene.environment.map = Image();
+    }
+  }
+  scene.environment.intensity = o.environmentIntensity;
+  if (!hasAnyLight(scene)) {
+    std::fprintf(stderr, "glint synth: the scene has no lights; using a uniform white environment (set one with --env)\n");
+    scene.environment.constant = Rgb(1.0f);
+  }
+}
+
+// Refuses to write into a folder with unrelated content, so nothing a user made is lost.
+void checkOutputFolder(const fs::path& out, bool force) {
+  if (!fs::exists(out)) return;
+  if (!fs::is_directory(out)) throw Error(out.string(), "exists and is not a folder");
+  bool empty = fs::is_empty(out);
+  bool isDataset = fs::exists(out / "transforms_train.json");
+  if (!empty && !isDataset)
+    throw Error(out.string(), "folder is not empty and is not a Glint dataset; choose another -o folder");
+  if (isDataset && !force)
+    throw Error(out.string(), "already holds a dataset; pass --force to overwrite it");
+}
+
+void runSynth(const SynthOptions& o) {
+  SynthSettings settings;
+  Vec2i res = parseResolution(o.resolution, "--res");
+  settings.width = res.x;
+  settings.height = res.y;
+  settings.trainViews = o.train;
+  settings.testViews = o.test;
+  settings.spp = o.spp;
+  settings.bounces = o.bounces;
+  settings.seed = o.seed;
+  settings.format = o.format == "png" ? ImageFormat::Png : (o.format == "tiff" ? ImageFormat::Tiff : ImageFormat::Exr);
+  settings.exposure = o.exposure;
+
+  MeshScene scene = loadScene(o.scene);
+  applyEnvironment(scene, o);
+  checkOutputFolder(o.output, o.force);
+
+  ThreadLimit limit(o.threads);
+  std::fprintf(stderr, "glint synth: %s -> %s: %d train + %d test views at %dx%d, %d spp, %d bounces, %d threads\n",
+               o.scene.c_str(), o.output.c_str(), o.train, o.test, res.x, res.y, o.spp, o.bounces, maxThreads());
+  auto start = std::chrono::steady_clock::now();
+  generateDataset(scene, settings, o.output);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::fprintf(stderr, "glint synth: wrote %s in %s\n", o.output.c_str(), formatDuration(seconds).c_str());
+}
+
+}  // namespace
+
+void addSynthCommand(CLI::App& app) {
+  auto options = std::make_shared<SynthOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "synth",
+      "Render a scene with the reference path tracer into a dataset with exact buffers: render, diffuse, specular, "
+      "depth, normal, roughness, F0 for every view, cameras in transforms_{train,test}.json, and "
+      "point_cloud_dense.ply from the training depth buffers.");
+  cmd->add_option("scene", options->scene, "builtin:spheres, builtin:room, or a .gltf/.glb file")->required();
+  cmd->add_option("-o,--output", options->output, "Output dataset folder (created if needed)")->required();
+  cmd->add_option("--train", options->train, "Number of training views (on the training camera path)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--test", options->test, "Number of test views (on a different camera path)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--res", options->resolution, "Image size WIDTHxHEIGHT")->capture_default_str();
+  cmd->add_option("--spp", options->spp, "Path samples per pixel for render/diffuse/specular")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
+  cmd->add_option("--bounces", options->bounces,
+                  "Maximum surface interactions per path (1 = direct light only); Russian roulette after 3")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  cmd->add_option("--seed", options->seed, "Random seed; the same seed gives the same dataset")->capture_default_str();
+  cmd->add_option("--format", options->format,
+                  "Buffer encoding: exr (float32), tiff (16-bit float) or png (8-bit, radiance tonemapped; depth "
+                  "stays EXR)")
+      ->check(CLI::IsMember({"exr", "tiff", "png"}))
+      ->capture_default_str();
+  cmd->add_option("--exposure", options->exposure, "Multiplies render, diffuse and specular (the paper's data uses 3.5)")
+      ->check(CLI::Range(1e-6, 1e6))
+      ->capture_default_str();
+  cmd->add_option("--env", options->environment,
+                  "Environment light: a radiance value ('1' or '1,0.9,0.8') or an equirectangular .exr/.tiff map "
+                  "(Y up). Scenes without any light get a white environment of 1");
+  cmd->add_option("--env-intensity", options->environmentIntensity, "Multiplies the environment")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_flag("--force", options->force, "Overwrite an existing dataset in the output folder");
+  cmd->callback([options]() { runSynth(*options); });
+}
+
+}  // namespace glint

@@ -1,0 +1,91 @@
+// Image format detection and the checks shared by every format before dispatching to its codec.
+#include "io/image.h"
+
+#include <algorithm>
+#include <cctype>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "io/image_codecs.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+ImageFormat imageFormatFromPath(const fs::path& path) {
+  std::string ext = path.extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  if (ext == ".exr") return ImageFormat::Exr;
+  if (ext == ".tif" || ext == ".tiff") return ImageFormat::Tiff;
+  if (ext == ".png") return ImageFormat::Png;
+  throw Error(path.string(), "unknown image extension '" + ext + "' (expected .exr, .tif, .tiff or .png)");
+}
+
+const char* imageFormatExtension(ImageFormat format) {
+  switch (format) {
+    case ImageFormat::Exr: return ".exr";
+    case ImageFormat::Tiff: return ".tiff";
+    case ImageFormat::Png: return ".png";
+  }
+  return "";
+}
+
+Image readImage(const fs::path& path) {
+  ImageFormat format = imageFormatFromPath(path);
+  std::string name = path.string();
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw Error(name, "file not found");
+  if (!fs::is_regular_file(path, ec)) throw Error(name, "not a regular file");
+
+  Image image;
+  switch (format) {
+    case ImageFormat::Exr: image = detail::readExr(name); break;
+    case ImageFormat::Tiff: image = detail::readTiff(name); break;
+    case ImageFormat::Png: image = detail::readPng(name); break;
+  }
+  // The codecs check this already; kept as the one place the Image invariant is stated.
+  GLINT_CHECK(image.width > 0 && image.height > 0 && (image.channels == 1 || image.channels == 3) &&
+                  image.pixels.size() == size_t(image.width) * image.height * image.channels,
+              name);
+  return image;
+}
+
+void writeImage(const fs::path& path, const Image& image) {
+  ImageFormat format = imageFormatFromPath(path);
+  std::string name = path.string();
+  GLINT_CHECK(image.pixels.size() == size_t(std::max(image.width, 0)) * std::max(image.height, 0) *
+                                         std::max(image.channels, 0),
+              "image pixel count does not match its size, writing " + name);
+  if (image.width <= 0 || image.height <= 0) {
+    throw Error(name, "cannot write an empty image (" + std::to_string(image.width) + "x" +
+                          std::to_string(image.height) + " pixels)");
+  }
+  bool pngAlpha = format == ImageFormat::Png && image.channels == 4;
+  if (image.channels != 1 && image.channels != 3 && !pngAlpha) {
+    throw Error(name, "cannot write an image with " + std::to_string(image.channels) + " channels (" +
+                          std::string(format == ImageFormat::Png ? "PNG takes 1, 3 or 4" : "expected 1 or 3") + ")");
+  }
+  writeAtomically(path, [&](const std::string& temp) {
+    switch (format) {
+      case ImageFormat::Exr: detail::writeExr(temp, name, image); break;
+      case ImageFormat::Tiff: detail::writeTiff(temp, name, image); break;
+      case ImageFormat::Png: detail::writePng(temp, name, image); break;
+    }
+  });
+}
+
+namespace detail {
+
+void checkImageSize(const std::string& path, size_t width, size_t height, size_t channels) {
+  if (width == 0 || height == 0) {
+    throw Error(path, "image has no pixels (" + std::to_string(width) + "x" + std::to_string(height) + ")");
+  }
+  if (width > kMaxImagePixels / height || width * height > kMaxImagePixels / std::max<size_t>(channels, 1)) {
+    throw Error(path, "image size " + std::to_string(width) + "x" + std::to_string(height) +
+                          " is implausibly large (corrupt header?)");
+  }
+}
+
+}  // namespace detail
+
+}  // namespace glint

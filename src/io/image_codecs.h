@@ -1,0 +1,30 @@
+// Internal to src/io: the per-format image readers and writers that image.cpp dispatches to.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+#include "io/image.h"
+
+namespace glint::detail {
+
+// Largest image a reader will allocate, so a corrupt header cannot ask for terabytes
+// (4 gigapixels; Glint's own images are a few megapixels).
+constexpr size_t kMaxImagePixels = size_t(1) << 32;
+
+// Readers take the path for error messages and open it themselves; they return an image
+// with 1 or 3 channels and throw Error naming the file.
+Image readExr(const std::string& path);
+Image readTiff(const std::string& path);
+Image readPng(const std::string& path);
+
+// Writers write to filePath (a temporary file) but name displayPath in errors. The image
+// has already been checked to be non-empty with a channel count the format supports.
+void writeExr(const std::string& filePath, const std::string& displayPath, const Image& image);
+void writeTiff(const std::string& filePath, const std::string& displayPath, const Image& image);
+void writePng(const std::string& filePath, const std::string& displayPath, const Image& image);
+
+// Throws Error naming path unless width x height x channels is a size a reader may allocate.
+void checkImageSize(const std::string& path, size_t width, size_t height, size_t channels);
+
+}  // namespace glint::detail

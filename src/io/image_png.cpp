@@ -1,0 +1,176 @@
+// PNG reading (8/16-bit grey, RGB, palette; alpha dropped) and 8-bit writing through libpng.
+#include <png.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <csetjmp>
+#include <cstdio>
+#include <cstring>
+#include <new>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "io/image_codecs.h"
+
+namespace glint::detail {
+
+namespace {
+
+// libpng reports errors by calling onPngError, which must not return: it longjmps back to
+// the setjmp in decodePng/encodePng. Those two functions therefore hold only trivially
+// destructible locals; everything with a destructor lives in this job, owned by the caller.
+struct PngJob {
+  std::FILE* file = nullptr;
+  std::string error;
+  // Read: filled by decodePng. Write: filled by the caller.
+  png_uint_32 width = 0, height = 0;
+  int channels = 0;  // after transforms: 1 grey, 3 RGB (write: also 4 RGBA)
+  int bitDepth = 8;  // 8 or 16 after transforms
+  std::vector<png_byte> data;
+  std::vector<png_bytep> rows;
+};
+
+void onPngError(png_structp png, png_const_charp message) {
+  auto* job = static_cast<PngJob*>(png_get_error_ptr(png));
+  job->error = message;
+  png_longjmp(png, 1);
+}
+
+void onPngWarning(png_structp, png_const_charp) {}  // e.g. unknown or slightly malformed ancillary chunks
+
+// Sizes job.data and points job.rows into it; false if memory runs out. Kept apart from
+// decodePng so no exception ever has to pass through libpng's frames.
+bool allocateRows(PngJob& job, size_t rowBytes) {
+  try {
+    job.data.resize(rowBytes * job.height);
+    job.rows.resize(job.height);
+  } catch (const std::bad_alloc&) {
+    return false;
+  }
+  for (png_uint_32 y = 0; y < job.height; ++y) job.rows[y] = job.data.data() + rowBytes * y;
+  return true;
+}
+
+// Decodes job.file into job.data. Returns false (job.error set) on any libpng error.
+bool decodePng(PngJob& job) {
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &job, onPngError, onPngWarning);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info) {
+    png_destroy_read_struct(&png, nullptr, nullptr);
+    job.error = "out of memory";
+    return false;
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    return false;
+  }
+  png_init_io(png, job.file);
+  png_read_info(png, info);
+
+  // Normalise every layout to 8- or 16-bit grey or RGB without alpha.
+  png_set_expand(png);  // palette -> RGB, grey < 8 bits -> 8 bits, tRNS -> alpha
+  png_set_strip_alpha(png);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+
+  job.width = png_get_image_width(png, info);
+  job.height = png_get_image_height(png, info);
+  job.channels = png_get_channels(png, info);
+  job.bitDepth = png_get_bit_depth(png, info);
+  if ((job.channels != 1 && job.channels != 3) || (job.bitDepth != 8 && job.bitDepth != 16)) {
+    png_error(png, "unexpected layout after conversion");
+  }
+  if (job.width == 0 || job.height == 0 ||
+      size_t(job.width) * job.height > kMaxImagePixels / size_t(job.channels)) {
+    png_error(png, "implausible image size");
+  }
+  if (!allocateRows(job, png_get_rowbytes(png, info))) png_error(png, "out of memory");
+  png_read_image(png, job.rows.data());
+  png_read_end(png, nullptr);  // checks the trailing chunks, so a cut-off file is noticed
+  png_destroy_read_struct(&png, &info, nullptr);
+  return true;
+}
+
+// Encodes job.rows (8-bit, job.channels) into job.file. Returns false (job.error set) on failure.
+bool encodePng(PngJob& job) {
+  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, onPngError, onPngWarning);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!info) {
+    png_destroy_write_struct(&png, nullptr);
+    job.error = "out of memory";
+    return false;
+  }
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_write_struct(&png, &info);
+    return false;
+  }
+  png_init_io(png, job.file);
+  int colorType = job.channels == 1 ? PNG_COLOR_TYPE_GRAY
+                  : job.channels == 3 ? PNG_COLOR_TYPE_RGB
+                                      : PNG_COLOR_TYPE_RGB_ALPHA;
+  png_set_IHDR(png, info, job.width, job.height, 8, colorType, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+               PNG_FILTER_TYPE_DEFAULT);
+  png_write_info(png, info);
+  png_write_image(png, job.rows.data());
+  png_write_end(png, nullptr);
+  png_destroy_write_struct(&png, &info);
+  return true;
+}
+
+// [0, 1] -> 0..255, rounding to nearest; NaN and negatives -> 0.
+png_byte quantize8(float v) {
+  if (!(v > 0.0f)) return 0;
+  return png_byte(std::lround(std::min(v, 1.0f) * 255.0f));
+}
+
+}  // namespace
+
+Image readPng(const std::string& path) {
+  PngJob job;
+  job.file = std::fopen(path.c_str(), "rb");
+  if (!job.file) throw Error(path, std::string("cannot open for reading: ") + std::strerror(errno));
+  png_byte signature[8] = {};
+  size_t got = std::fread(signature, 1, sizeof(signature), job.file);
+  if (got != sizeof(signature) || png_sig_cmp(signature, 0, sizeof(signature)) != 0) {
+    std::fclose(job.file);
+    throw Error(path, "not a PNG file (bad signature)");
+  }
+  std::rewind(job.file);
+  bool ok = decodePng(job);
+  bool endedEarly = std::feof(job.file);
+  std::fclose(job.file);
+  if (!ok && endedEarly) throw Error(path, "truncated PNG: the file ends before the image data does");
+  if (!ok) throw Error(path, "cannot read PNG: " + job.error);
+
+  Image image(int(job.width), int(job.height), job.channels);
+  size_t count = image.pixels.size();
+  if (job.bitDepth == 8) {
+    for (size_t i = 0; i < count; ++i) image.pixels[i] = job.data[i] / 255.0f;
+  } else {  // 16-bit samples are big-endian in PNG
+    for (size_t i = 0; i < count; ++i) image.pixels[i] = ((job.data[2 * i] << 8) | job.data[2 * i + 1]) / 65535.0f;
+  }
+  return image;
+}
+
+void writePng(const std::string& filePath, const std::string& displayPath, const Image& image) {
+  PngJob job;
+  job.width = png_uint_32(image.width);
+  job.height = png_uint_32(image.height);
+  job.channels = image.channels;
+  job.data.resize(image.pixels.size());
+  std::transform(image.pixels.begin(), image.pixels.end(), job.data.begin(), quantize8);
+  job.rows.resize(job.height);
+  for (png_uint_32 y = 0; y < job.height; ++y) job.rows[y] = job.data.data() + size_t(image.width) * image.channels * y;
+
+  job.file = std::fopen(filePath.c_str(), "wb");
+  if (!job.file) throw Error(displayPath, std::string("cannot open for writing: ") + std::strerror(errno));
+  bool ok = encodePng(job);
+  bool flushed = std::fflush(job.file) == 0 && !std::ferror(job.file);
+  bool closed = std::fclose(job.file) == 0;
+  if (!ok) throw Error(displayPath, "cannot write PNG: " + job.error);
+  if (!flushed || !closed) throw Error(displayPath, "write failed (disk full?)");
+}
+
+}  // namespace glint::detail

@@ -1,0 +1,156 @@
+// Opening a dataset folder, loading its buffers on demand, and writing cameras and buffers.
+#include "scene/dataset.h"
+
+#include <system_error>
+
+#include "core/error.h"
+#include "io/transforms_json.h"
+#include "scene/buffer_codec.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+fs::path transformsPath(const fs::path& root, const std::string& split) {
+  return root / ("transforms_" + split + ".json");
+}
+
+DatasetSplit openSplit(const fs::path& root, const std::string& name, bool requireBuffers) {
+  fs::path path = transformsPath(root, name);
+  if (!fs::exists(path))
+    throw Error(path.string(), "file not found (a dataset needs transforms_train.json and transforms_test.json)");
+  TransformsFile transforms = readTransformsJson(path);
+  if (transforms.frames.empty()) throw Error(path.string(), "frames is empty: a split needs at least one view");
+
+  DatasetSplit split;
+  split.name = name;
+  split.cameraAngleX = transforms.cameraAngleX;
+  for (TransformsFrame& frame : transforms.frames) {
+    if (requireBuffers && !isRenderFilePath(frame.filePath))
+      throw Error(path.string(), "file_path \"" + frame.filePath +
+                                     "\" does not name a render image (expected SPLIT/render/render_NAME)");
+    split.views.push_back({std::move(frame.filePath), frame.transformMatrix});
+  }
+  return split;
+}
+
+}  // namespace
+
+Camera DatasetSplit::camera(size_t index) const {
+  GLINT_CHECK(index < views.size(), "view index out of range");
+  Camera camera;
+  camera.cameraToWorld = views[index].cameraToWorld;
+  camera.fovX = cameraAngleX;
+  camera.width = width;
+  camera.height = height;
+  return camera;
+}
+
+Dataset Dataset::open(const fs::path& root, bool requireBuffers) {
+  Dataset dataset;
+  dataset.root_ = root;
+  dataset.train_ = openSplit(root, "train", requireBuffers);
+  dataset.test_ = openSplit(root, "test", requireBuffers);
+  if (requireBuffers) {
+    // The first view's render image sets the split's size; loadBuffer holds every other
+    // buffer to it.
+    for (DatasetSplit* split : {&dataset.train_, &dataset.test_}) {
+      Image first = dataset.loadBuffer(*split, 0, Buffer::Render);
+      split->width = first.width;
+      split->height = first.height;
+    }
+  }
+  return dataset;
+}
+
+const DatasetSplit& Dataset::split(const std::string& name) const {
+  if (name == "train") return train_;
+  if (name == "test") return test_;
+  throw Error(root_.string(), "unknown split \"" + name + "\" (expected train or test)");
+}
+
+std::optional<fs::path> Dataset::findBufferFile(const DatasetView& view, Buffer buffer) const {
+  return findBufferFileAt(root_ / bufferFilePath(view.filePath, buffer));
+}
+
+Image Dataset::loadBuffer(const DatasetSplit& split, size_t index, Buffer buffer) const {
+  GLINT_CHECK(index < split.views.size(), "view index out of range");
+  const DatasetView& view = split.views[index];
+  std::optional<fs::path> path = findBufferFile(view, buffer);
+  if (!path) {
+    fs::path base = root_ / bufferFilePath(view.filePath, buffer);
+    throw Error(base.string(), missingBufferMessage(base, buffer));
+  }
+  Image image = readBufferFile(*path, buffer);
+  // A split opened without buffers has no size yet: the first image read sets none either.
+  if (split.width > 0 && (image.width != split.width || image.height != split.height))
+    throw Error(path->string(), "image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                    " pixels, but the " + split.name + " split's images are " +
+                                    std::to_string(split.width) + "x" + std::to_string(split.height));
+  if (std::optional<std::string> problem = findInvalidValue(image, buffer)) throw Error(path->string(), *problem);
+  return image;
+}
+
+ViewBuffers Dataset::loadView(const DatasetSplit& split, size_t index) const {
+  ViewBuffers buffers;
+  for (Buffer b : kAllBuffers) buffers[b] = loadBuffer(split, index, b);
+  return buffers;
+}
+
+std::optional<fs::path> Dataset::pointCloudPath() const {
+  fs::path path = root_ / "point_cloud_dense.ply";
+  if (fs::is_regular_file(path)) return path;
+  return std::nullopt;
+}
+
+void writeTransforms(const fs::path& root, const DatasetSplit& split) {
+  GLINT_CHECK(!split.name.empty(), "a split needs a name to be written");
+  TransformsFile transforms;
+  transforms.cameraAngleX = split.cameraAngleX;
+  for (const DatasetView& view : split.views) transforms.frames.push_back({view.filePath, view.cameraToWorld});
+  writeTransformsJson(transformsPath(root, split.name), transforms);
+}
+
+void writeViewBuffers(const fs::path& root, const DatasetView& view, const ViewBuffers& buffers, ImageFormat format) {
+  const Image& render = buffers[Buffer::Render];
+  for (Buffer b : kAllBuffers) {
+    const Image& image = buffers[b];
+    GLINT_CHECK(image.width == render.width && image.height == render.height, "a view's buffers differ in size");
+    GLINT_CHECK(image.channels == bufferChannels(b), "buffer has the wrong channel count");
+
+    ImageFormat stored = bufferStorageFormat(b, format);
+    fs::path base = root / bufferFilePath(view.filePath, b);
+    fs::path path = base;
+    path += imageFormatExtension(stored);
+    writeImage(path, encodeBuffer(image, b, stored));
+    // The loader prefers .exr over .tiff over .png: a stale file of another format from an
+    // earlier run would shadow the one just written.
+    for (ImageFormat other : {ImageFormat::Exr, ImageFormat::Tiff, ImageFormat::Png}) {
+      if (other == stored) continue;
+      fs::path stale = base;
+      stale += imageFormatExtension(other);
+      std::error_code ignored;
+      fs::remove(stale, ignored);
+    }
+  }
+}
+
+bool isRenderFilePath(const std::string& filePath) {
+  fs::path path(filePath);
+  return path.parent_path().filename() == "render" && path.filename().string().rfind("render", 0) == 0;
+}
+
+std::string bufferFilePath(const std::string& renderFilePath, Buffer buffer) {
+  if (!isRenderFilePath(renderFilePath))
+    throw Error(renderFilePath, "does not name a render image (expected SPLIT/render/render_NAME), so its " +
+                                    std::string(bufferName(buffer)) + " buffer cannot be found");
+  if (buffer == Buffer::Render) return renderFilePath;
+  fs::path path(renderFilePath);
+  std::string name = bufferName(buffer);
+  std::string suffix = path.filename().string().substr(std::string("render").size());
+  return (path.parent_path().parent_path() / name / (name + suffix)).generic_string();
+}
+
+}  // namespace glint

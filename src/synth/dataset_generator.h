@@ -1,0 +1,51 @@
+// `glint synth`: renders every camera of a scene's two paths with the reference path tracer
+// and writes a complete dataset (DATA-FORMAT.md), then a point cloud from the depth buffers.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "io/image.h"
+#include "io/point_cloud.h"
+#include "scene/buffers.h"
+#include "scene/camera.h"
+#include "synth/mesh_scene.h"
+#include "synth/path_tracer.h"
+
+namespace glint {
+
+struct SynthSettings {
+  int trainViews = 100;
+  int testViews = 20;
+  int width = 256;
+  int height = 192;
+  int spp = 256;
+  int bounces = 6;
+  uint64_t seed = 0;
+  ImageFormat format = ImageFormat::Exr;
+  float exposure = 1.0f;  // multiplies render, diffuse and specular
+  int pointCloudMaxPoints = 300000;
+};
+
+// Renders one view: radiance buffers average spp jittered samples per pixel (box filter);
+// the G-buffers (depth, normal, roughness, F0) come from the ray through the pixel centre,
+// so they are exact values of one surface point, never blends across an edge. viewKey
+// selects the random streams (one per pixel, derived from seed, viewKey and pixel).
+ViewBuffers renderView(const PathTracer& tracer, const Camera& camera, const SynthSettings& settings,
+                       uint64_t viewKey, class ProgressBar* progress = nullptr);
+
+// Unprojects the depth buffers of views into points coloured by their diffuse buffer
+// (sRGB-encoded), keeping every k-th pixel so that at most maxPoints remain.
+struct DepthView {
+  Image depth;
+  Image diffuse;
+  Camera camera;
+};
+PointCloud pointCloudFromDepth(const std::vector<DepthView>& views, int maxPoints);
+
+// Generates the whole dataset into outDir (created if needed). Files are written
+// atomically; existing datasets are overwritten only file by file.
+void generateDataset(const MeshScene& scene, const SynthSettings& settings, const std::filesystem::path& outDir);
+
+}  // namespace glint
