@@ -2,6 +2,7 @@
 // errors into one clear message and a non-zero exit.
 #include <cstdio>
 #include <exception>
+#include <string>
 
 #include <CLI/CLI.hpp>
 
@@ -11,12 +12,28 @@
 int main(int argc, char** argv) {
   CLI::App app{
       "Glint: editable physically-based reflections in ray-traced Gaussian radiance fields.\n"
-      "Run `glint COMMAND --help` for the flags of each command."};
+      "Run `glint COMMAND --help` for the flags of each command.",
+      "glint"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "glint 0.1.0");
   glint::addSynthCommand(app);
   glint::addInfoCommand(app);
   glint::addSheetCommand(app);
+  if (argc == 1) {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  }
+  // Name an unknown command outright; CLI11 alone would only say that one is required.
+  std::string names;
+  bool known = false;
+  for (const CLI::App* sub : app.get_subcommands({})) {
+    names += (names.empty() ? "" : ", ") + sub->get_name();
+    known = known || sub->get_name() == argv[1];
+  }
+  if (argv[1][0] != '-' && !known) {
+    std::fprintf(stderr, "glint: error: unknown command '%s' (commands: %s; see glint --help)\n", argv[1], names.c_str());
+    return 1;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

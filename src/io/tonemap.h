@@ -20,8 +20,10 @@ inline float tonemapFilmic(float x) {
 
 // Inverse of tonemapFilmic for y in [0, 1): solve the quadratic of the rational part for x
 // after undoing the power (constants from DATA-FORMAT.md). y >= 1 maps to +infinity, so
-// the result is capped at kMaxUntonemapped (the curve reaches 8-bit white near there).
-constexpr float kMaxUntonemapped = 1.0e4f;
+// the result is capped at kMaxUntonemapped: tonemapFilmic(128) = 254.5 / 255, so every
+// radiance above it is stored as 8-bit white, and a saturated pixel decodes to this
+// smallest value consistent with it rather than to an arbitrarily huge target.
+constexpr float kMaxUntonemapped = 128.0f;
 inline float untonemapFilmic(float y) {
   if (y <= 0.0f) return 0.0f;
   // Work in double: near y' = 1 the denominator cancels.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "math/sampling.h"
 
 namespace glint {
@@ -21,6 +22,11 @@ struct RayCaster::Impl {
   RTCScene rtcScene = nullptr;
   // Geometry id -> mesh index, or -1 for the sphere geometry.
   std::vector<int> geometryToMesh;
+  // Per-thread ray counters, each on its own cache line so counting costs no sharing.
+  struct alignas(64) Counter {
+    uint64_t rays = 0;
+  };
+  mutable std::vector<Counter> counters;
 
   explicit Impl(const MeshScene& s) : scene(s) {}
 };
@@ -35,6 +41,7 @@ void embreeErrorCallback(void*, RTCError code, const char* message) {
 }  // namespace
 
 RayCaster::RayCaster(const MeshScene& scene) : impl_(std::make_unique<Impl>(scene)) {
+  impl_->counters.resize(size_t(maxThreads()) + 1);
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw Error("cannot create an Embree device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
   rtcSetDeviceErrorFunction(impl_->device, embreeErrorCallback, nullptr);
@@ -99,6 +106,7 @@ bool RayCaster::intersect(const Vec3f& origin, const Vec3f& dir, float tMin, flo
   rh.ray.time = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  impl_->counters[std::min<size_t>(threadIndex(), impl_->counters.size() - 1)].rays++;
   rtcIntersect1(impl_->rtcScene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
@@ -157,8 +165,19 @@ bool RayCaster::occluded(const Vec3f& origin, const Vec3f& dir, float tMin, floa
   ray.mask = 0xFFFFFFFFu;
   ray.flags = 0;
   ray.time = 0;
+  impl_->counters[std::min<size_t>(threadIndex(), impl_->counters.size() - 1)].rays++;
   rtcOccluded1(impl_->rtcScene, &context, &ray);
   return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
+}
+
+uint64_t RayCaster::rayCount() const {
+  uint64_t total = 0;
+  for (const auto& c : impl_->counters) total += c.rays;
+  return total;
+}
+
+void RayCaster::resetRayCount() {
+  for (auto& c : impl_->counters) c.rays = 0;
 }
 
 }  // namespace glint

@@ -34,6 +34,10 @@ class RayCaster {
   // True if anything blocks the segment (tMin, tMax).
   bool occluded(const Vec3f& origin, const Vec3f& dir, float tMin, float tMax) const;
 
+  // Rays traced so far (closest-hit and occlusion), summed over threads; for benchmarks.
+  uint64_t rayCount() const;
+  void resetRayCount();
+
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;

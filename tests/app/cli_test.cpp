@@ -1,0 +1,124 @@
+// End-to-end tests of the `glint` program: the synth/info scenario, and clear
+// errors with non-zero exits for bad input.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Outcome {
+  int status = -1;
+  std::string output;  // stdout and stderr together
+};
+
+Outcome runGlint(const std::string& args) {
+  std::string command = std::string(GLINT_BINARY) + " " + args + " 2>&1";
+  Outcome run;
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return run;
+  std::array<char, 4096> buffer;
+  size_t n;
+  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
+  int raw = pclose(pipe);
+  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  return run;
+}
+
+class CliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("glint_cli_test_" + std::to_string(getpid()) + "_" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+  }
+  void TearDown() override { fs::remove_all(root_); }
+  std::string path(const std::string& name) const { return (root_ / name).string(); }
+  fs::path root_;
+};
+
+TEST_F(CliTest, SynthOfTheSmallSpheresDatasetIsFastAndReportedClean) {
+  auto start = std::chrono::steady_clock::now();
+  Outcome synth = runGlint("synth builtin:spheres -o " + path("D") + " --train 4 --test 2 --res 64x48 --spp 64");
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ASSERT_EQ(synth.status, 0) << synth.output;
+  EXPECT_LT(seconds, 60.0);
+  Outcome info = runGlint("info " + path("D"));
+  EXPECT_EQ(info.status, 0) << info.output;
+  EXPECT_NE(info.output.find("problems: none"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("64x48"), std::string::npos) << info.output;
+
+  Outcome sheet = runGlint("sheet " + path("D") + " -o " + path("sheet.png") + " --rows 2");
+  EXPECT_EQ(sheet.status, 0) << sheet.output;
+  EXPECT_TRUE(fs::exists(path("sheet.png")));
+
+  // A second synth into the same folder refuses without --force: nothing is overwritten.
+  Outcome again = runGlint("synth builtin:spheres -o " + path("D") + " --train 1 --test 1 --res 8x8 --spp 1");
+  EXPECT_NE(again.status, 0);
+  EXPECT_NE(again.output.find("--force"), std::string::npos) << again.output;
+
+  // Damage one buffer: info reports it and exits non-zero.
+  fs::remove(root_ / "D" / "train" / "roughness" / "roughness_0002.exr");
+  Outcome damaged = runGlint("info " + path("D"));
+  EXPECT_NE(damaged.status, 0);
+  EXPECT_NE(damaged.output.find("roughness_0002"), std::string::npos) << damaged.output;
+}
+
+struct BadInvocation {
+  std::string args;
+  std::string expected;  // a fragment the error message must contain
+};
+
+TEST_F(CliTest, BadInputGetsOneClearErrorAndANonZeroExit) {
+  std::ofstream(path("not_a_scene.obj")) << "v 0 0 0\n";
+  fs::create_directories(root_ / "precious");
+  std::ofstream(root_ / "precious" / "notes.txt") << "mine\n";
+  std::ofstream(path("broken.gltf")) << "{ this is not json";
+  const BadInvocation cases[] = {
+      {"synth builtin:nope -o " + path("x"), "builtin:spheres"},
+      {"synth " + path("missing.gltf") + " -o " + path("x"), "missing.gltf"},
+      {"synth " + path("not_a_scene.obj") + " -o " + path("x"), "not_a_scene.obj"},
+      {"synth " + path("broken.gltf") + " -o " + path("x"), "broken.gltf"},
+      {"synth builtin:spheres -o " + path("x") + " --res 0x10", "--res"},
+      {"synth builtin:spheres -o " + path("x") + " --res 64by48", "--res"},
+      {"synth builtin:spheres -o " + path("x") + " --spp 0", "--spp"},
+      {"synth builtin:spheres -o " + path("x") + " --bounces 1000", "--bounces"},
+      {"synth builtin:spheres -o " + path("x") + " --format jpg", "--format"},
+      {"synth builtin:spheres -o " + path("x") + " --exposure -1", "--exposure"},
+      {"synth builtin:spheres -o " + path("x") + " --env 1,2", "--env"},
+      {"synth builtin:spheres -o " + path("precious"), "not empty"},
+      {"info " + path("nowhere"), "nowhere"},
+      {"sheet " + path("nowhere") + " -o " + path("s.png"), "nowhere"},
+      {"frobnicate", "frobnicate"},
+  };
+  for (const BadInvocation& c : cases) {
+    Outcome run = runGlint(c.args);
+    EXPECT_NE(run.status, 0) << c.args;
+    EXPECT_NE(run.output.find(c.expected), std::string::npos) << c.args << "\n" << run.output;
+  }
+  // The user's folder is untouched.
+  EXPECT_TRUE(fs::exists(root_ / "precious" / "notes.txt"));
+  EXPECT_FALSE(fs::exists(root_ / "precious" / "transforms_train.json"));
+}
+
+TEST_F(CliTest, HelpExplainsEveryCommand) {
+  Outcome help = runGlint("--help");
+  EXPECT_EQ(help.status, 0);
+  for (const char* command : {"synth", "info", "sheet"}) EXPECT_NE(help.output.find(command), std::string::npos);
+  Outcome synthHelp = runGlint("synth --help");
+  for (const char* flag : {"--train", "--test", "--res", "--spp", "--bounces", "--seed", "--format", "--exposure", "--env"})
+    EXPECT_NE(synthHelp.output.find(flag), std::string::npos) << flag;
+}
+
+}  // namespace

@@ -1,0 +1,139 @@
+// Tests of atomic file writes: folders created, contents replaced, no temporary files left
+// behind, the original kept when the writer fails, and clear errors for missing files.
+#include "core/atomic_file.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh folder per test, removed afterwards, so tests never see each other's files.
+class AtomicFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    root_ = fs::temp_directory_path() /
+            ("glint_atomic_file_" + std::to_string(getpid()) + "_" + std::string(info->name()));
+    fs::remove_all(root_);
+    fs::create_directories(root_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(root_, ignored);
+  }
+
+  // Every regular file under the root, so stray temporaries are noticed wherever they are.
+  std::vector<fs::path> allFiles() const {
+    std::vector<fs::path> files;
+    for (const auto& entry : fs::recursive_directory_iterator(root_))
+      if (entry.is_regular_file()) files.push_back(entry.path());
+    return files;
+  }
+
+  fs::path root_;
+};
+
+TEST_F(AtomicFileTest, CreatesParentFolders) {
+  fs::path path = root_ / "a" / "b" / "c" / "file.txt";
+  writeTextAtomically(path, "hello");
+  ASSERT_TRUE(fs::exists(path));
+  EXPECT_EQ(readTextFile(path), "hello");
+  EXPECT_EQ(allFiles(), std::vector<fs::path>{path});
+}
+
+TEST_F(AtomicFileTest, ReplacesExistingContents) {
+  fs::path path = root_ / "file.json";
+  writeTextAtomically(path, "a much longer first version of the file");
+  writeTextAtomically(path, "short");
+  EXPECT_EQ(readTextFile(path), "short");
+  EXPECT_EQ(allFiles(), std::vector<fs::path>{path});
+}
+
+TEST_F(AtomicFileTest, KeepsBinaryBytesExactly) {
+  fs::path path = root_ / "bytes.bin";
+  std::string bytes;
+  for (int i = 0; i < 256; ++i) bytes.push_back(char(i));
+  bytes.append("\r\n\n\0end", 7);  // embedded NUL and line endings survive
+  writeTextAtomically(path, bytes);
+  EXPECT_EQ(readTextFile(path), bytes);
+}
+
+TEST_F(AtomicFileTest, EmptyContentsMakeAnEmptyFile) {
+  fs::path path = root_ / "empty.txt";
+  writeTextAtomically(path, "");
+  ASSERT_TRUE(fs::exists(path));
+  EXPECT_EQ(fs::file_size(path), 0u);
+  EXPECT_EQ(readTextFile(path), "");
+}
+
+TEST_F(AtomicFileTest, WriterReceivesATemporaryPathInTheSameFolderWithTheSameExtension) {
+  fs::path path = root_ / "sub" / "image.exr";
+  std::string seenTemp;
+  writeAtomically(path, [&](const std::string& temp) {
+    seenTemp = temp;
+    std::ofstream(temp) << "data";
+  });
+  EXPECT_NE(fs::path(seenTemp), path);
+  EXPECT_EQ(fs::path(seenTemp).parent_path(), path.parent_path());  // same folder: rename cannot cross devices
+  EXPECT_EQ(fs::path(seenTemp).extension(), ".exr");                // writers pick the format from it
+  EXPECT_FALSE(fs::exists(seenTemp));
+  EXPECT_EQ(readTextFile(path), "data");
+}
+
+TEST_F(AtomicFileTest, ThrowingWriterLeavesOriginalUntouchedAndNoTemporary) {
+  fs::path path = root_ / "keep.txt";
+  writeTextAtomically(path, "original");
+  std::string seenTemp;
+  EXPECT_THROW(writeAtomically(path,
+                               [&](const std::string& temp) {
+                                 seenTemp = temp;
+                                 std::ofstream(temp) << "half-written";  // the failure comes after some output
+                                 throw std::runtime_error("writer failed");
+                               }),
+               std::runtime_error);
+  EXPECT_FALSE(seenTemp.empty());
+  EXPECT_FALSE(fs::exists(seenTemp));
+  EXPECT_EQ(readTextFile(path), "original");
+  EXPECT_EQ(allFiles(), std::vector<fs::path>{path});
+}
+
+TEST_F(AtomicFileTest, ThrowingWriterDoesNotCreateTheTarget) {
+  fs::path path = root_ / "never.txt";
+  EXPECT_THROW(writeAtomically(path, [](const std::string&) { throw Error("x", "no"); }), Error);
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_TRUE(allFiles().empty());
+}
+
+TEST_F(AtomicFileTest, ReadingAMissingFileThrowsErrorNamingIt) {
+  fs::path path = root_ / "does_not_exist.txt";
+  try {
+    readTextFile(path);
+    FAIL() << "expected glint::Error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.file(), path.string());
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("not found"), std::string::npos) << e.what();
+  }
+}
+
+TEST_F(AtomicFileTest, WritingWhereAFileBlocksTheFolderThrowsError) {
+  // A regular file where a parent folder should be: the folder cannot be created.
+  writeTextAtomically(root_ / "blocker", "x");
+  fs::path path = root_ / "blocker" / "child.txt";
+  EXPECT_THROW(writeTextAtomically(path, "y"), Error);
+  EXPECT_EQ(readTextFile(root_ / "blocker"), "x");
+}
+
+}  // namespace
+}  // namespace glint
