@@ -12,6 +12,8 @@
 #include <fstream>
 #include <string>
 
+#include "synth/gltf_test_files.h"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -110,6 +112,28 @@ TEST_F(CliTest, BadInputGetsOneClearErrorAndANonZeroExit) {
   // The user's folder is untouched.
   EXPECT_TRUE(fs::exists(root_ / "precious" / "notes.txt"));
   EXPECT_FALSE(fs::exists(root_ / "precious" / "transforms_train.json"));
+}
+
+TEST_F(CliTest, SynthTurnsAGltfFileIntoAValidDataset) {
+  // A unit quad seen from the front, lit by a point light (glTF's lights shine along -Z).
+  glint::test::GltfBuilder b;
+  int material = b.add("materials", {{"pbrMetallicRoughness", {{"baseColorFactor", {0.8, 0.4, 0.2, 1.0}},
+                                                              {"metallicFactor", 0.0},
+                                                              {"roughnessFactor", 0.4}}}});
+  int mesh = glint::test::addQuadMesh(b, material);
+  b.doc["extensionsUsed"] = {"KHR_lights_punctual"};
+  b.doc["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 5.0}}};
+  int quad = b.add("nodes", {{"mesh", mesh}});
+  int light = b.add("nodes", {{"translation", {0.5, 0.5, 1.5}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+  b.doc["scenes"] = {{{"nodes", {quad, light}}}};
+  b.doc["scene"] = 0;
+  b.writeGlb(root_ / "quad.glb");
+
+  Outcome synth = runGlint("synth " + path("quad.glb") + " -o " + path("D") + " --train 3 --test 2 --res 24x18 --spp 4");
+  ASSERT_EQ(synth.status, 0) << synth.output;
+  Outcome info = runGlint("info " + path("D"));
+  EXPECT_EQ(info.status, 0) << info.output;
+  EXPECT_NE(info.output.find("problems: none"), std::string::npos) << info.output;
 }
 
 TEST_F(CliTest, HelpExplainsEveryCommand) {

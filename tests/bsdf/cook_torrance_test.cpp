@@ -10,23 +10,19 @@
 
 #include "bsdf/microfacet.h"
 #include "common/chi_square.h"
+#include "common/directions.h"
 #include "math/rng.h"
 #include "math/sampling.h"
 
 namespace glint {
 namespace {
 
-constexpr double kPiD = std::numbers::pi;
+using test::direction;
+using test::kPiD;
+using test::randomUpperDirection;
 
-Vec3f direction(double cosTheta, double phi) {
-  double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
-  return Vec3f(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)), float(cosTheta));
-}
 
-Vec3f randomUpperDirection(Rng& rng) {
-  Vec3f w = sampleUniformSphere(rng.uniform2());
-  return Vec3f(w.x, w.y, std::max(std::abs(w.z), 1e-3f));
-}
+
 
 Vec3f mirror(const Vec3f& wo) { return Vec3f(-wo.x, -wo.y, wo.z); }
 
@@ -69,7 +65,7 @@ TEST(CookTorrance, SampleWeightIsEvalOverPdf) {
   for (int k = 0; k < 20000; ++k) {
     float alpha = kMinGgxAlpha + rng.uniform() * (1 - kMinGgxAlpha);
     CookTorranceLobe lobe(Rgb(rng.uniform(), rng.uniform(), rng.uniform()), alpha);
-    Vec3f wo = randomUpperDirection(rng);
+    Vec3f wo = randomUpperDirection(rng, 1e-3f);
     BsdfSample s = lobe.sample(wo, rng.uniform2());
     if (!s.valid) continue;
     ++valid;
@@ -133,7 +129,7 @@ TEST(CookTorrance, HelmholtzReciprocity) {
   Rng rng(24);
   for (int k = 0; k < 10000; ++k) {
     CookTorranceLobe lobe(Rgb(rng.uniform(), rng.uniform(), rng.uniform()), 0.01f + rng.uniform());
-    Vec3f wo = randomUpperDirection(rng), wi = randomUpperDirection(rng);
+    Vec3f wo = randomUpperDirection(rng, 1e-3f), wi = randomUpperDirection(rng, 1e-3f);
     // eval returns f cos(theta_i); f itself must be symmetric.
     Rgb forward = lobe.eval(wo, wi) / wi.z, backward = lobe.eval(wi, wo) / wo.z;
     ASSERT_TRUE(relativelyEqual(forward, backward, 1e-4f)) << forward[0] << " vs " << backward[0];

@@ -7,16 +7,17 @@
 #include <optional>
 
 #include "common/chi_square.h"
+#include "common/directions.h"
 #include "math/rng.h"
 #include "math/sampling.h"
 
 namespace glint {
 namespace {
 
-Vec3f direction(double cosTheta, double phi) {
-  double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
-  return Vec3f(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)), float(cosTheta));
-}
+using test::direction;
+using test::kPiD;
+using test::randomUpperDirection;
+
 
 const LambertLobe kLobe{Rgb(0.8f, 0.5f, 0.2f)};
 const Vec3f kViews[] = {Vec3f(0, 0, 1), direction(0.05, 1.0)};

@@ -9,6 +9,7 @@
 #include <optional>
 
 #include "common/chi_square.h"
+#include "common/directions.h"
 #include "common/quadrature.h"
 #include "math/rng.h"
 #include "math/sampling.h"
@@ -16,19 +17,12 @@
 namespace glint {
 namespace {
 
-constexpr double kPiD = std::numbers::pi;
+using test::direction;
+using test::kPiD;
+using test::randomUpperDirection;
 
-// A unit direction at polar angle acos(cosTheta) and azimuth phi.
-Vec3f direction(double cosTheta, double phi) {
-  double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
-  return Vec3f(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)), float(cosTheta));
-}
 
-// A uniform direction strictly above the horizon.
-Vec3f randomUpperDirection(Rng& rng) {
-  Vec3f w = sampleUniformSphere(rng.uniform2());
-  return Vec3f(w.x, w.y, std::max(std::abs(w.z), 1e-4f));
-}
+
 
 const float kAlphas[] = {0.05f, 0.2f, 0.5f, 1.0f};
 // Normal, oblique, steep and grazing (87 degrees) views; azimuths avoid the grid's axes.

@@ -10,16 +10,17 @@
 
 #include "bsdf/microfacet.h"
 #include "common/chi_square.h"
+#include "common/directions.h"
 #include "math/rng.h"
 #include "math/sampling.h"
 
 namespace glint {
 namespace {
 
-Vec3f direction(double cosTheta, double phi) {
-  double sinTheta = std::sqrt(std::max(0.0, 1 - cosTheta * cosTheta));
-  return Vec3f(float(sinTheta * std::cos(phi)), float(sinTheta * std::sin(phi)), float(cosTheta));
-}
+using test::direction;
+using test::kPiD;
+using test::randomUpperDirection;
+
 
 struct Case {
   const char* name;

@@ -162,4 +162,27 @@ struct GltfBuilder {
   }
 };
 
+constexpr int kUnsignedByte = 5121, kUnsignedShort = 5123, kFloat = 5126;  // glTF componentType
+
+// A unit quad in the z = 0 plane facing +Z: two counter-clockwise triangles whose
+// positions, normals and UVs are interleaved in one buffer view (32-byte stride).
+inline int addQuadMesh(GltfBuilder& b, int material = -1) {
+  struct Vertex {
+    float p[3], n[3], uv[2];
+  };
+  std::vector<Vertex> v = {{{0, 0, 0}, {0, 0, 1}, {0, 1}},
+                           {{1, 0, 0}, {0, 0, 1}, {1, 1}},
+                           {{1, 1, 0}, {0, 0, 1}, {1, 0}},
+                           {{0, 1, 0}, {0, 0, 1}, {0, 0}}};
+  int view = b.addView(v, sizeof(Vertex));
+  nlohmann::json attributes = {{"POSITION", b.addAccessor(view, kFloat, 4, "VEC3", 0)},
+                     {"NORMAL", b.addAccessor(view, kFloat, 4, "VEC3", 12)},
+                     {"TEXCOORD_0", b.addAccessor(view, kFloat, 4, "VEC2", 24)}};
+  std::vector<uint16_t> indices = {0, 1, 2, 0, 2, 3};
+  nlohmann::json primitive = {{"attributes", attributes},
+                    {"indices", b.addAccessor(b.addView(indices), kUnsignedShort, 6, "SCALAR")}};
+  if (material >= 0) primitive["material"] = material;
+  return b.add("meshes", {{"name", "Quad"}, {"primitives", {primitive}}});
+}
+
 }  // namespace glint::test
