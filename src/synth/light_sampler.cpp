@@ -20,9 +20,11 @@ float smoothStep(float a, float b, float x) {
 Vec2f directionToEquirect(const Vec3f& dir, float rotationY) {
   float phi = std::atan2(dir.z, dir.x) - rotationY;
   float u = phi / (2 * kPi);
-  u -= std::floor(u);
-  float v = std::acos(std::clamp(dir.y, -1.0f, 1.0f)) / kPi;
-  return {u, std::min(v, 0x1.fffffep-1f)};
+  u -= std::floor(u);  // may round up to 1 for azimuths a hair below the seam: clamped below
+  // atan2 rather than acos(dir.y): acos loses most of its digits near the poles, where the
+  // solid-angle density divides by sin(theta).
+  float v = std::atan2(std::sqrt(dir.x * dir.x + dir.z * dir.z), dir.y) / kPi;
+  return {std::min(u, 0x1.fffffep-1f), std::min(v, 0x1.fffffep-1f)};
 }
 
 Vec3f equirectToDirection(Vec2f uv, float rotationY) {
@@ -164,7 +166,7 @@ LightSample LightSampler::sample(const Vec3f& p, float u1, Vec2f u2) const {
       if (cosLight <= 1e-6f) return s;
       Vec2f uv = mesh.uvs.empty() ? Vec2f(b.y, 1 - b.x - b.y)
                                   : mesh.uvs[i0] * b.x + mesh.uvs[i1] * b.y + mesh.uvs[i2] * (1 - b.x - b.y);
-      s.radiance = scene_.surfaceMaterial(mesh.material, uv).emission;
+      s.radiance = scene_.emission(mesh.material, uv);
       s.pdf = choiceProbability * triangleProbability / e.area * dist2 / cosLight;
       return s;
     }

@@ -48,9 +48,14 @@ SurfaceMaterial MeshScene::surfaceMaterial(int index, Vec2f uv) const {
   s.F0 = dielectricF0 * (1.0f - s.metallic) + s.baseColor * s.metallic;
   s.F0 = min(max(s.F0, Rgb(0.0f)), Rgb(1.0f));
   s.diffuse = s.baseColor * (1.0f - s.metallic);
-  s.emission = m.emission;
-  if (m.emissionTexture >= 0) s.emission *= textures[m.emissionTexture].sampleRgb(uv);
+  s.emission = emission(index, uv);
   return s;
+}
+
+Rgb MeshScene::emission(int index, Vec2f uv) const {
+  const Material& m = materials[index];
+  if (m.emissionTexture < 0) return m.emission;
+  return m.emission * textures[m.emissionTexture].sampleRgb(uv);
 }
 
 void MeshScene::bounds(Vec3f* lower, Vec3f* upper) const {

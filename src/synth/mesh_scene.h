@@ -120,6 +120,8 @@ struct MeshScene {
 
   // Evaluates textures and the F0 mapping at a surface point.
   SurfaceMaterial surfaceMaterial(int material, Vec2f uv) const;
+  // Only the emitted radiance at a surface point (light sampling needs nothing else).
+  Rgb emission(int material, Vec2f uv) const;
   // World-space bounds of all geometry.
   void bounds(Vec3f* lower, Vec3f* upper) const;
   // Throws Error (naming `source`) for out-of-range material/texture indices, NaN
