@@ -78,6 +78,29 @@ TEST(PathTracerFurnace, WhiteDiffuseSphereReflectsExactlyTheEnvironment) {
   for (float v : r.buffers[Buffer::Specular].pixels) ASSERT_EQ(v, 0.0f);
 }
 
+TEST(PathTracerFurnace, AnEnvironmentMapOfOnesIsAFurnaceToo) {
+  // The same furnace through the importance-sampled equirectangular path: a map whose
+  // every texel is 1 must light a white diffuse sphere to exactly 1.
+  Material white;
+  white.baseColor = Rgb(1.0f);
+  white.specularLevel = 0.0f;
+  MeshScene scene = furnaceScene(white);
+  scene.environment.map = Image(16, 8, 3, 1.0f);
+  scene.environment.rotationY = 0.7f;
+  RayCaster caster(scene);
+  LightSampler lights(scene);
+  PathTracer tracer(scene, caster, lights, PathTracerSettings{8, 3});
+  Rng rng(3);
+  double sum = 0;
+  const int n = 4000;
+  for (int i = 0; i < n; ++i) {
+    Vec3f target = sampleUniformSphere(rng.uniform2()) * 0.9f;
+    Vec3f origin(0, 0, 4);
+    sum += tracer.trace(origin, normalize(target - origin), rng).render().y;
+  }
+  EXPECT_NEAR(sum / n, 1.0, 0.01);
+}
+
 TEST(PathTracerFurnace, SmoothMetalSphereWithUnitF0ReflectsTheEnvironment) {
   Material chrome;
   chrome.baseColor = Rgb(1.0f);
