@@ -39,6 +39,8 @@ void parallelForChunks(int64_t count, int64_t grain, const std::function<void(in
                     [&](const tbb::blocked_range<int64_t>& r) { body(r.begin(), r.end()); });
 }
 
+int threadSlotCount() { return std::max(1, tbb::this_task_arena::max_concurrency()); }
+
 int threadIndex() {
   int index = tbb::this_task_arena::current_thread_index();
   return index < 0 ? 0 : index;

@@ -36,7 +36,10 @@ void parallelFor(int64_t count, int64_t grain, Body&& body) {
   });
 }
 
-// Index of the calling worker thread in [0, maxThreads()), for per-thread scratch space.
+// Index of the calling worker thread in [0, threadSlotCount()), for per-thread scratch
+// space. (Under a ThreadLimit below the core count, oneTBB may still hand out slot
+// numbers up to the machine's concurrency, so size scratch arrays by threadSlotCount().)
 int threadIndex();
+int threadSlotCount();
 
 }  // namespace glint

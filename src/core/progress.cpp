@@ -56,11 +56,11 @@ void ProgressBar::advance(int64_t n) {
   done_.fetch_add(n, std::memory_order_relaxed);
   if (quiet_) return;
   auto now = std::chrono::steady_clock::now();
-  double sinceDraw = std::chrono::duration<double>(now - lastDraw_).count();
+  double sinceDraw = std::chrono::duration<double>(now - lastDraw_.load(std::memory_order_relaxed)).count();
   if (sinceDraw < (interactive_ ? kRedrawSeconds : kLogSeconds)) return;
   std::unique_lock<std::mutex> lock(mutex_, std::try_to_lock);
   if (!lock.owns_lock() || finished_) return;
-  lastDraw_ = now;
+  lastDraw_.store(now, std::memory_order_relaxed);
   draw(false);
 }
 

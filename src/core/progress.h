@@ -37,7 +37,8 @@ class ProgressBar {
   int64_t total_;
   std::atomic<int64_t> done_{0};
   std::chrono::steady_clock::time_point start_;
-  std::chrono::steady_clock::time_point lastDraw_;
+  // Atomic: advance() reads it without the lock while the thread that draws updates it.
+  std::atomic<std::chrono::steady_clock::time_point> lastDraw_;
   std::mutex mutex_;
   bool finished_ = false;
   bool interactive_;

@@ -10,10 +10,12 @@ namespace glint {
 namespace {
 constexpr float kInfinity = std::numeric_limits<float>::infinity();
 
-float smoothStep(float a, float b, float x) {
-  if (a >= b) return x >= b ? 1.0f : 0.0f;
-  float t = std::clamp((x - a) / (b - a), 0.0f, 1.0f);
-  return t * t * (3 - 2 * t);
+// KHR_lights_punctual's recommended spot attenuation: a linear ramp in cos(angle) between
+// the outer and inner cone, clamped to [0, 1], then squared.
+float spotAttenuation(float cosAngle, float cosOuter, float cosInner) {
+  float scale = 1.0f / std::max(0.001f, cosInner - cosOuter);
+  float t = std::clamp((cosAngle - cosOuter) * scale, 0.0f, 1.0f);
+  return t * t;
 }
 }  // namespace
 
@@ -187,9 +189,8 @@ LightSample LightSampler::sample(const Vec3f& p, float u1, Vec2f u2) const {
       s.wi = d / s.distance;
       Rgb intensity = light.intensity;
       if (light.type == PunctualLight::Type::Spot) {
-        // glTF's recommended smooth falloff between the outer and inner cone.
         float cosAngle = dot(-s.wi, normalize(light.direction));
-        intensity *= smoothStep(std::cos(light.outerConeAngle), std::cos(light.innerConeAngle), cosAngle);
+        intensity *= spotAttenuation(cosAngle, std::cos(light.outerConeAngle), std::cos(light.innerConeAngle));
       }
       s.radiance = intensity / dist2;  // irradiance at normal incidence
       return s;

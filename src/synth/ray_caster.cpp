@@ -41,7 +41,7 @@ void embreeErrorCallback(void*, RTCError code, const char* message) {
 }  // namespace
 
 RayCaster::RayCaster(const MeshScene& scene) : impl_(std::make_unique<Impl>(scene)) {
-  impl_->counters.resize(size_t(maxThreads()) + 1);
+  impl_->counters.resize(size_t(threadSlotCount()));
   impl_->device = rtcNewDevice(nullptr);
   if (!impl_->device) throw Error("cannot create an Embree device (error " + std::to_string(rtcGetDeviceError(nullptr)) + ")");
   rtcSetDeviceErrorFunction(impl_->device, embreeErrorCallback, nullptr);
@@ -106,7 +106,7 @@ bool RayCaster::intersect(const Vec3f& origin, const Vec3f& dir, float tMin, flo
   rh.ray.time = 0;
   rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
   rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-  impl_->counters[std::min<size_t>(threadIndex(), impl_->counters.size() - 1)].rays++;
+  impl_->counters[threadIndex()].rays++;
   rtcIntersect1(impl_->rtcScene, &context, &rh);
   if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
 
@@ -165,7 +165,7 @@ bool RayCaster::occluded(const Vec3f& origin, const Vec3f& dir, float tMin, floa
   ray.mask = 0xFFFFFFFFu;
   ray.flags = 0;
   ray.time = 0;
-  impl_->counters[std::min<size_t>(threadIndex(), impl_->counters.size() - 1)].rays++;
+  impl_->counters[threadIndex()].rays++;
   rtcOccluded1(impl_->rtcScene, &context, &ray);
   return ray.tfar < 0;  // Embree sets tfar to -inf on a hit
 }
