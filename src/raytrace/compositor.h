@@ -1,0 +1,84 @@
+// Front-to-back alpha compositing of a ray's Gaussian hits, shared by every tracer so they
+// agree to rounding: w_i = T_i alpha_i, T_{i+1} = T_i (1 - alpha_i), stop below
+// minTransmittance, and the truncation tail of appendix A.2.
+#pragma once
+
+#include "raytrace/gaussian_kernel.h"
+#include "raytrace/ray_result.h"
+#include "scene/gaussians.h"
+
+namespace glint {
+
+template <typename T>
+class Compositor {
+ public:
+  Compositor(const GaussianScene& scene, const TraceSettings& settings, HitList* hits)
+      : scene_(scene), settings_(settings), hits_(hits) {
+    if (hits_) hits_->clear();
+  }
+
+  // Adds the next hit in front-to-back order. Returns false once the ray has terminated
+  // (transmittance below the threshold): later hits only count towards the exact tail.
+  bool add(uint32_t id, const KernelHit<T>& h) {
+    if (terminated_) {
+      tailTransmittance_ *= T(1) - h.alpha;
+      return false;
+    }
+    T w = transmittance_ * h.alpha;
+    diffuse_ += Vec3<T>(scene_.diffuse[id]) * w;
+    depth_ += h.key * w;
+    normal_ += Vec3<T>(scene_.normal[id]) * w;
+    roughness_ += T(scene_.roughness[id]) * w;
+    f0_ += Vec3<T>(scene_.f0[id]) * w;
+    transmittance_ *= T(1) - h.alpha;
+    ++count_;
+    if (hits_) {
+      if (hits_->hits.size() < hits_->capacity)
+        hits_->hits.push_back({id, float(h.key), float(h.alpha), float(h.response), Vec3f(h.localPoint)});
+      else
+        hits_->overflowed = true;
+    }
+    if (transmittance_ < T(settings_.minTransmittance)) {
+      terminated_ = true;
+      tailTransmittance_ = transmittance_;
+    }
+    return !terminated_;
+  }
+
+  bool terminated() const { return terminated_; }
+  T transmittance() const { return transmittance_; }
+
+  // The ray's result. With exactTail, the light of the truncated hits is estimated as the
+  // mean of the composited part, (T_i - T_f) * c_front / (1 - T_i) (appendix A.2; the
+  // estimate is detached in the backward pass), and the reported transmittance is T_f.
+  RayResult finish() const {
+    RayResult r;
+    T tailWeight = 0;
+    if (settings_.exactTail && terminated_ && transmittance_ < T(1))
+      tailWeight = (transmittance_ - tailTransmittance_) / (T(1) - transmittance_);
+    T scale = T(1) + tailWeight;
+    r.diffuse = Rgb(diffuse_ * scale);
+    r.depth = float(depth_ * scale);
+    r.normal = Vec3f(normal_ * scale);
+    r.normalLength = length(r.normal);
+    r.roughness = float(roughness_ * scale);
+    r.f0 = Rgb(f0_ * scale);
+    r.transmittance = float(settings_.exactTail && terminated_ ? tailTransmittance_ : transmittance_);
+    r.hitCount = count_;
+    r.truncated = terminated_;
+    return r;
+  }
+
+ private:
+  const GaussianScene& scene_;
+  const TraceSettings& settings_;
+  HitList* hits_;
+  Vec3<T> diffuse_{0}, normal_{0}, f0_{0};
+  T depth_ = 0, roughness_ = 0;
+  T transmittance_ = 1;
+  T tailTransmittance_ = 1;
+  int count_ = 0;
+  bool terminated_ = false;
+};
+
+}  // namespace glint

@@ -1,0 +1,47 @@
+// The one small interface every Gaussian tracer implements (the fast CPU BVH, the Embree
+// k-buffer baseline, the double-precision reference; later a GPU backend). Training,
+// rendering and editing code talk only to this.
+#pragma once
+
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "math/vec.h"
+#include "raytrace/ray_result.h"
+#include "raytrace/trace_settings.h"
+#include "scene/gaussians.h"
+
+namespace glint {
+
+struct TraceRay {
+  Vec3f origin;
+  Vec3f direction;  // unit length
+  float tMin = 0;   // hits whose proxy ends before tMin are ignored
+};
+
+class GaussianTracer {
+ public:
+  virtual ~GaussianTracer() = default;
+  virtual const char* name() const = 0;
+
+  // Builds the acceleration structure. The scene is referenced, not copied: it must stay
+  // alive and unchanged in size until the next build.
+  virtual void build(const GaussianScene& scene, const TraceSettings& settings) = 0;
+  // Updates the structure after parameters (not the count) changed.
+  virtual void refit() = 0;
+  // Traces one ray; thread-safe. hits, if given, receives the composited hits in order.
+  virtual RayResult trace(const TraceRay& ray, HitList* hits = nullptr) const = 0;
+  // Traces many rays in parallel (the default splits them over parallelFor).
+  virtual void traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results) const;
+  // Bytes held by the acceleration structure (for benchmarks).
+  virtual size_t memoryBytes() const = 0;
+};
+
+// "fast" (our wide BVH), "embree-k16" (3DGRT-style baseline) or "reference" (every ray
+// against every Gaussian, in double precision). Throws Error for another name.
+std::unique_ptr<GaussianTracer> makeGaussianTracer(const std::string& kind);
+std::vector<std::string> gaussianTracerNames();
+
+}  // namespace glint

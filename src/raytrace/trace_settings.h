@@ -1,0 +1,24 @@
+// Settings of Gaussian ray tracing shared by every tracer (fast, Embree baseline, reference).
+#pragma once
+
+namespace glint {
+
+struct TraceSettings {
+  // Generalised Gaussian exponent p of the response G = exp(-(r^2)^p / (2p)); 1 is the
+  // ordinary Gaussian, 3 the paper's code default.
+  float kernelPower = 3.0f;
+  // Hits whose alpha = kMaxAlpha * opacity * G is below this are ignored; it also sets
+  // the proxy: the ellipsoid where alpha reaches alphaMin bounds every hit that counts.
+  float alphaMin = 0.005f;
+  // Compositing stops once the transmittance falls below this.
+  float minTransmittance = 0.01f;
+  // After termination, keep traversing to get the exact final transmittance of all hits
+  // (needed by the truncation tail estimate of appendix A.2 during training); when false,
+  // traversal stops at termination (fastest, for rendering).
+  bool exactTail = false;
+};
+
+// Alpha never reaches 1, so transmittance never becomes exactly 0 (3DGS convention).
+constexpr float kMaxAlpha = 0.9999f;
+
+}  // namespace glint
