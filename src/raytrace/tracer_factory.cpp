@@ -1,0 +1,17 @@
+// Creates a Gaussian tracer by name: the one place that knows every implementation.
+#include "core/error.h"
+#include "raytrace/gaussian_tracer.h"
+#include "raytrace/reference/reference_tracer.h"
+
+namespace glint {
+
+std::vector<std::string> gaussianTracerNames() { return {"reference"}; }
+
+std::unique_ptr<GaussianTracer> makeGaussianTracer(const std::string& kind) {
+  if (kind == "reference") return std::make_unique<ReferenceTracer>();
+  std::string names;
+  for (const std::string& n : gaussianTracerNames()) names += (names.empty() ? "" : ", ") + n;
+  throw Error("unknown tracer '" + kind + "' (available: " + names + ")");
+}
+
+}  // namespace glint

@@ -1,0 +1,41 @@
+// Pixel loop of Gaussian rendering: rays per pixel, traced in parallel rows.
+#include "render/gaussian_renderer.h"
+
+#include "core/parallel.h"
+#include "math/rng.h"
+
+namespace glint {
+
+ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
+                               uint64_t viewKey) {
+  ViewBuffers out = ViewBuffers::allocate(camera.width, camera.height);
+  const float invSpp = 1.0f / float(settings.spp);
+  parallelForChunks(camera.height, 1, [&](int64_t rowBegin, int64_t rowEnd) {
+    for (int64_t y = rowBegin; y < rowEnd; ++y)
+      for (int x = 0; x < camera.width; ++x) {
+        Rng rng = Rng::forKeys({settings.seed, viewKey, uint64_t(y) * camera.width + x});
+        Rgb diffuse(0.0f), normal(0.0f), f0(0.0f);
+        float depth = 0, roughness = 0;
+        for (int s = 0; s < settings.spp; ++s) {
+          Vec2f offset = settings.jitter ? rng.uniform2() : Vec2f(0.5f, 0.5f);
+          Ray ray = camera.generateRay(x + offset.x, y + offset.y);
+          RayResult r = tracer.trace({Vec3f(ray.origin), Vec3f(ray.direction), 0.0f});
+          diffuse += r.diffuse;
+          depth += r.depth;
+          normal += r.normal;
+          roughness += r.roughness;
+          f0 += r.f0;
+        }
+        int yi = int(y);
+        out[Buffer::Diffuse].setRgb(x, yi, diffuse * invSpp);
+        out[Buffer::Render].setRgb(x, yi, diffuse * invSpp);
+        out[Buffer::Depth].at(x, yi) = depth * invSpp;
+        out[Buffer::Normal].setRgb(x, yi, normalize(normal));
+        out[Buffer::Roughness].at(x, yi) = roughness * invSpp;
+        out[Buffer::F0].setRgb(x, yi, f0 * invSpp);
+      }
+  });
+  return out;
+}
+
+}  // namespace glint

@@ -1,0 +1,81 @@
+// The Gaussian view renderer: pixel-centre rays without jitter, averaging with it.
+#include "render/gaussian_renderer.h"
+
+#include <gtest/gtest.h>
+
+#include "math/rng.h"
+#include "raytrace/reference/reference_tracer.h"
+
+namespace glint {
+namespace {
+
+GaussianScene randomScene(int n, uint64_t seed) {
+  GaussianScene scene;
+  scene.resize(n);
+  Rng rng(seed);
+  for (int i = 0; i < n; ++i) {
+    scene.position[i] = {rng.uniform() * 2 - 1, rng.uniform() * 2 - 1, rng.uniform() * 2 - 1};
+    scene.rotation[i] = {rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f};
+    scene.logScale[i] = Vec3f(std::log(0.05f + 0.2f * rng.uniform()));
+    scene.opacityLogit[i] = rng.uniform() * 4 - 2;
+    scene.diffuse[i] = {rng.uniform(), rng.uniform(), rng.uniform()};
+    scene.normal[i] = normalize(Vec3f(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f));
+    scene.roughness[i] = rng.uniform();
+    scene.f0[i] = Rgb(rng.uniform());
+  }
+  return scene;
+}
+
+Camera testCamera() {
+  Camera camera;
+  camera.cameraToWorld = Mat4::lookAt({0.2, 0.3, 4}, {0, 0, 0}, {0, 1, 0});
+  camera.fovX = 0.9;
+  camera.width = 12;
+  camera.height = 9;
+  return camera;
+}
+
+TEST(GaussianRenderer, WithoutJitterEachPixelIsItsCentreRay) {
+  GaussianScene scene = randomScene(200, 1);
+  ReferenceTracer tracer;
+  tracer.build(scene, TraceSettings{});
+  Camera camera = testCamera();
+  RenderSettings settings;
+  settings.jitter = false;
+  ViewBuffers b = renderGaussianView(tracer, camera, settings, 0);
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      Ray ray = camera.generateRay(x + 0.5, y + 0.5);
+      RayResult r = tracer.trace({Vec3f(ray.origin), Vec3f(ray.direction), 0.0f});
+      EXPECT_EQ(b[Buffer::Diffuse].rgb(x, y), r.diffuse);
+      EXPECT_EQ(b[Buffer::Render].rgb(x, y), r.diffuse);
+      EXPECT_EQ(b[Buffer::Depth].at(x, y), r.depth);
+      EXPECT_EQ(b[Buffer::Roughness].at(x, y), r.roughness);
+      Vec3f n = normalize(r.normal);
+      EXPECT_NEAR(b[Buffer::Normal].at(x, y, 0), n.x, 1e-6f);
+    }
+}
+
+TEST(GaussianRenderer, JitteredSamplesAverageAndAreReproducible) {
+  GaussianScene scene = randomScene(200, 2);
+  ReferenceTracer tracer;
+  tracer.build(scene, TraceSettings{});
+  Camera camera = testCamera();
+  RenderSettings settings;
+  settings.spp = 4;
+  settings.seed = 9;
+  ViewBuffers a = renderGaussianView(tracer, camera, settings, 3);
+  ViewBuffers b = renderGaussianView(tracer, camera, settings, 3);
+  EXPECT_EQ(a[Buffer::Diffuse].pixels, b[Buffer::Diffuse].pixels);
+  settings.jitter = false;
+  ViewBuffers centre = renderGaussianView(tracer, camera, settings, 3);
+  EXPECT_NE(a[Buffer::Diffuse].pixels, centre[Buffer::Diffuse].pixels);
+  // Averages of values in [0, 1] stay in [0, 1].
+  for (float v : a[Buffer::Diffuse].pixels) {
+    EXPECT_GE(v, 0.0f);
+    EXPECT_LE(v, 1.0f);
+  }
+}
+
+}  // namespace
+}  // namespace glint
