@@ -19,6 +19,8 @@ int main(int argc, char** argv) {
   glint::addSynthCommand(app);
   glint::addInfoCommand(app);
   glint::addSheetCommand(app);
+  glint::addRenderCommand(app);
+  glint::addExportCommand(app);
   if (argc == 1) {
     std::fputs(app.help().c_str(), stdout);
     return 0;

@@ -12,6 +12,7 @@
 #include <fstream>
 #include <string>
 
+#include "scene/gaussian_ply.h"
 #include "synth/gltf_test_files.h"
 
 namespace {
@@ -143,6 +144,96 @@ TEST_F(CliTest, HelpExplainsEveryCommand) {
   Outcome synthHelp = runGlint("synth --help");
   for (const char* flag : {"--train", "--test", "--res", "--spp", "--bounces", "--seed", "--format", "--exposure", "--env"})
     EXPECT_NE(synthHelp.output.find(flag), std::string::npos) << flag;
+}
+
+TEST_F(CliTest, ExportWritesA3dgsSceneThatLoadsBackAndNamesBadInputs) {
+  glint::GaussianScene scene;
+  scene.resize(5);
+  for (size_t i = 0; i < scene.size(); ++i) {
+    float t = float(i);
+    scene.position[i] = {t, -2.0f * t, 0.5f + t};
+    scene.rotation[i] = {1.0f, 0.1f * t, 0.0f, -0.2f};
+    scene.logScale[i] = {-2.0f, -3.0f + 0.1f * t, -4.0f};
+    scene.opacityLogit[i] = 0.3f * t - 1.0f;
+    scene.diffuse[i] = {0.1f * t, 0.9f - 0.1f * t, 0.5f};
+    scene.normal[i] = {0.0f, 0.0f, 1.0f};
+    scene.roughness[i] = 0.2f;
+  }
+  glint::writeGaussianPly(path("scene.ply"), scene);
+
+  Outcome run = runGlint("export " + path("scene.ply") + " --format 3dgs -o " + path("splat.ply"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  glint::PlyLayout detected = glint::PlyLayout::Auto;
+  glint::GaussianScene splat = glint::readGaussianPly(path("splat.ply"), glint::PlyLayout::Auto, &detected);
+  EXPECT_EQ(detected, glint::PlyLayout::ThreeDgs);
+  ASSERT_EQ(splat.size(), scene.size());
+  for (size_t i = 0; i < scene.size(); ++i) {
+    EXPECT_EQ(splat.position[i], scene.position[i]);
+    EXPECT_EQ(splat.logScale[i], scene.logScale[i]);
+    EXPECT_EQ(splat.opacityLogit[i], scene.opacityLogit[i]);
+    for (int k = 0; k < 3; ++k) EXPECT_NEAR(splat.diffuse[i][k], scene.diffuse[i][k], 1e-6);
+  }
+
+  // A run folder is read through its scene.ply; the Glint layout round-trips exactly.
+  fs::create_directories(root_ / "run");
+  fs::copy_file(root_ / "scene.ply", root_ / "run" / "scene.ply");
+  run = runGlint("export " + path("run") + " --format glint -o " + path("again.ply"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  glint::GaussianScene again = glint::readGaussianPly(path("again.ply"));
+  EXPECT_EQ(again.diffuse, scene.diffuse);
+  EXPECT_EQ(again.roughness, scene.roughness);
+
+  fs::create_directories(root_ / "empty_run");
+  const BadInvocation cases[] = {
+      {"export " + path("missing.ply") + " --format 3dgs -o " + path("out.ply"), "missing.ply"},
+      {"export " + path("empty_run") + " -o " + path("out.ply"), "scene.ply"},
+      {"export " + path("scene.ply") + " --format splat -o " + path("out.ply"), "--format"},
+  };
+  for (const BadInvocation& c : cases) {
+    Outcome bad = runGlint(c.args);
+    EXPECT_NE(bad.status, 0) << c.args;
+    EXPECT_NE(bad.output.find(c.expected), std::string::npos) << c.args << "\n" << bad.output;
+  }
+  EXPECT_FALSE(fs::exists(root_ / "out.ply"));
+  EXPECT_NE(runGlint("export --help").output.find("--format"), std::string::npos);
+}
+
+}  // namespace
+
+namespace {
+
+TEST_F(CliTest, RenderWritesTheBuffersOfEverySplitViewWithTheDatasetsNames) {
+  Outcome synth = runGlint("synth builtin:spheres -o " + path("D") + " --train 2 --test 3 --res 16x12 --spp 1");
+  ASSERT_EQ(synth.status, 0) << synth.output;
+  // A small cloud of Gaussians around the origin.
+  glint::GaussianScene scene;
+  scene.resize(50);
+  for (size_t i = 0; i < scene.size(); ++i) {
+    scene.position[i] = {0.05f * float(i % 7) - 0.15f, 0.6f + 0.03f * float(i % 5), 0.04f * float(i % 3)};
+    scene.logScale[i] = glint::Vec3f(std::log(0.2f));
+    scene.opacityLogit[i] = 1.0f;
+    scene.diffuse[i] = {0.8f, 0.3f, 0.1f};
+    scene.normal[i] = {0, 1, 0};
+  }
+  glint::writeGaussianPly(path("scene.ply"), scene);
+  Outcome render = runGlint("render " + path("scene.ply") + " --dataset " + path("D") + " -o " + path("R") +
+                            " --tracer reference --spp 2");
+  ASSERT_EQ(render.status, 0) << render.output;
+  for (const char* buffer : {"render", "diffuse", "depth", "normal", "roughness", "f0"})
+    for (int v = 0; v < 3; ++v) {
+      char name[64];
+      std::snprintf(name, sizeof name, "%s/%s_%04d.exr", buffer, buffer, v);
+      EXPECT_TRUE(fs::exists(root_ / "R" / name)) << name;
+    }
+  EXPECT_FALSE(fs::exists(root_ / "R" / "specular"));
+  // Bad input: unknown tracer, missing dataset, non-empty unrelated output folder.
+  Outcome badTracer = runGlint("render " + path("scene.ply") + " --dataset " + path("D") + " -o " + path("R2") +
+                               " --tracer warp-drive");
+  EXPECT_NE(badTracer.status, 0);
+  EXPECT_NE(badTracer.output.find("warp-drive"), std::string::npos) << badTracer.output;
+  Outcome noDataset = runGlint("render " + path("scene.ply") + " --dataset " + path("nowhere") + " -o " + path("R3"));
+  EXPECT_NE(noDataset.status, 0);
+  EXPECT_NE(noDataset.output.find("nowhere"), std::string::npos) << noDataset.output;
 }
 
 }  // namespace
