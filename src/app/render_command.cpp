@@ -32,7 +32,7 @@ struct RenderOptions {
   float kernelPower = 3.0f;
   float alphaMin = 0.005f;
   float minTransmittance = 0.01f;
-  std::string tracer = "embree-k16";
+  std::string tracer = "fast";
   bool force = false;
 };
 

@@ -1,14 +1,16 @@
 // Creates a Gaussian tracer by name: the one place that knows every implementation.
 #include "core/error.h"
 #include "raytrace/embree_tracer.h"
+#include "raytrace/fast/fast_tracer.h"
 #include "raytrace/gaussian_tracer.h"
 #include "raytrace/reference/reference_tracer.h"
 
 namespace glint {
 
-std::vector<std::string> gaussianTracerNames() { return {"embree-k16", "reference"}; }
+std::vector<std::string> gaussianTracerNames() { return {"fast", "embree-k16", "reference"}; }
 
 std::unique_ptr<GaussianTracer> makeGaussianTracer(const std::string& kind) {
+  if (kind == "fast") return std::make_unique<FastGaussianTracer>();
   if (kind == "embree-k16") return std::make_unique<EmbreeK16Tracer>();
   if (kind == "reference") return std::make_unique<ReferenceTracer>();
   std::string names;

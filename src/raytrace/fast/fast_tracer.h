@@ -1,0 +1,48 @@
+// The fast CPU Gaussian tracer: an 8-wide BVH over the proxy boxes with AVX2 node and
+// leaf tests, traversed once with the nearest-entry subtree first, compositing hits in
+// exact front-to-back order as soon as no pending subtree can still hold a nearer one,
+// and stopping when the ray's transmittance falls below the threshold.
+#pragma once
+
+#include <cstdint>
+
+#include "raytrace/fast/bvh8.h"
+#include "raytrace/gaussian_tracer.h"
+
+namespace glint {
+
+// What a ray cost (for tests and benchmarks).
+struct FastTraceStats {
+  int passes = 0;             // traversals (more than 1 only when the hit buffer overflowed)
+  int64_t nodes = 0;          // inner nodes visited
+  int64_t leaves = 0;         // 8-lane leaf blocks tested
+  int64_t evaluations = 0;    // Gaussians whose proxy the ray crosses (kernel evaluated)
+};
+
+class FastGaussianTracer final : public GaussianTracer {
+ public:
+  static constexpr int kDefaultHitBufferCapacity = 128;
+  static constexpr int kMaxHitBufferCapacity = 256;
+
+  // hitBufferCapacity (2 to kMaxHitBufferCapacity) bounds the hits a ray holds while
+  // waiting to be composited; when a ray needs more, it keeps the nearest, composites
+  // them, and traverses again for the rest. Tests set it small to exercise that path.
+  explicit FastGaussianTracer(int hitBufferCapacity = kDefaultHitBufferCapacity);
+
+  const char* name() const override { return "fast"; }
+  void build(const GaussianScene& scene, const TraceSettings& settings) override;
+  void refit() override;
+  RayResult trace(const TraceRay& ray, HitList* hits = nullptr) const override;
+  // The same, also reporting what the ray cost (added to *stats).
+  RayResult trace(const TraceRay& ray, HitList* hits, FastTraceStats* stats) const;
+  size_t memoryBytes() const override { return bvh_.memoryBytes(); }
+
+  const Bvh8& bvh() const { return bvh_; }
+
+ private:
+  Bvh8 bvh_;
+  int hitBufferCapacity_;
+  bool built_ = false;
+};
+
+}  // namespace glint
