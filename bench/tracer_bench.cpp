@@ -210,10 +210,15 @@ int main(int argc, char** argv) {
   app.add_option("--gaussians", sizes, "Scene sizes")->capture_default_str();
   app.add_option("--tracers", only, "Measure only these tracers (default: all; the first is the speed-up baseline)");
   app.add_option("--json", jsonPath, "Also write the results to this JSON file");
+  bool exactTail = false;
+  app.add_flag("--exact-tail", exactTail,
+               "Keep traversing after termination for the exact final transmittance (the training mode of "
+               "appendix A.2) instead of stopping early (the rendering mode)");
   CLI11_PARSE(app, argc, argv);
 
   ThreadLimit limit(threads);
-  TraceSettings settings;  // the defaults: p = 3, alphaMin 0.005, minTransmittance 0.01, no exact tail
+  TraceSettings settings;  // the defaults: p = 3, alphaMin 0.005, minTransmittance 0.01
+  settings.exactTail = exactTail;
   std::vector<Row> rows;
   for (int n : sizes) {
     GaussianScene scene = makeRoom(size_t(n), 1);
@@ -233,8 +238,9 @@ int main(int argc, char** argv) {
     }
   }
 
-  std::printf("tracer_bench: %dx%d rays, %d threads, p = %.0f, alphaMin %.3f, minTransmittance %.2f\n", width, height,
-              maxThreads(), settings.kernelPower, settings.alphaMin, settings.minTransmittance);
+  std::printf("tracer_bench: %dx%d rays, %d threads, p = %.0f, alphaMin %.3f, minTransmittance %.2f, %s\n", width,
+              height, maxThreads(), settings.kernelPower, settings.alphaMin, settings.minTransmittance,
+              settings.exactTail ? "exact tail" : "early termination");
   std::printf("Mhits/s and hits/ray count composited hits; all/ray = every hit with alpha >= alphaMin (no\n"
               "termination); evals/ray = kernel evaluations (proxy reached); Mrays/CPUs = per CPU-second\n\n");
   std::printf("%-11s %-12s %8s %8s %9s %10s %9s %9s %8s %9s %9s %9s %7s\n", "tracer", "scene", "build s", "refit s",
@@ -244,7 +250,7 @@ int main(int argc, char** argv) {
     std::printf("%-11s %-12s %8.3f %8.4f %9.3f %10.3f %9.2f %9.1f %8.1f %9.1f %9.1f %8.2fx %6.2fx\n",
                 r.tracer.c_str(), r.scene.c_str(), r.buildSeconds, r.refitSeconds, r.megaRays, r.megaRaysPerCpu,
                 r.megaHits, r.hitsPerRay, r.allHitsPerRay, r.evaluationsPerRay, r.memoryMb, r.speedup, r.cpuSpeedup);
-    json.push_back({{"tracer", r.tracer}, {"scene", r.scene}, {"build_s", r.buildSeconds}, {"refit_s", r.refitSeconds},
+    json.push_back({{"tracer", r.tracer}, {"scene", r.scene}, {"exact_tail", settings.exactTail}, {"build_s", r.buildSeconds}, {"refit_s", r.refitSeconds},
                     {"mrays_per_s", r.megaRays}, {"mrays_per_cpu_s", r.megaRaysPerCpu}, {"mhits_per_s", r.megaHits},
                     {"composited_hits_per_ray", r.hitsPerRay}, {"all_hits_per_ray", r.allHitsPerRay},
                     {"evaluations_per_ray", r.evaluationsPerRay},
