@@ -1,4 +1,5 @@
 // Image I/O: round trips per format, files written by other tools, and clear errors for bad files.
+#include "common/expect_error.h"
 #include "io/image.h"
 
 #include <ImfChannelList.h>
@@ -21,6 +22,8 @@
 namespace glint {
 namespace {
 
+using test::expectErrorNaming;
+
 using test::TempFolder;
 
 // Deterministic pixels in [lo, hi), with a few special values mixed in when wide is set.
@@ -31,19 +34,6 @@ Image makeImage(int width, int height, int channels, float lo, float hi, uint64_
   return image;
 }
 
-// Expects fn to throw glint::Error whose message names path (and contains detail, if given).
-void expectErrorNaming(const std::function<void()>& fn, const std::filesystem::path& path, const std::string& detail = "") {
-  try {
-    fn();
-    ADD_FAILURE() << "no error for " << path;
-  } catch (const Error& e) {
-    std::string message = e.what();
-    EXPECT_NE(message.find(path.filename().string()), std::string::npos) << message;
-    if (!detail.empty()) {
-      EXPECT_NE(message.find(detail), std::string::npos) << message;
-    }
-  }
-}
 
 TEST(ImageFormat, FromExtensionCaseInsensitive) {
   EXPECT_EQ(imageFormatFromPath("a/b.exr"), ImageFormat::Exr);

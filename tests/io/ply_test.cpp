@@ -1,4 +1,5 @@
 // Generic PLY tables: typed round trips, skipping of lists and other elements, and clear errors.
+#include "common/expect_error.h"
 #include "io/ply.h"
 
 #include <gtest/gtest.h>
@@ -12,6 +13,8 @@
 
 namespace glint {
 namespace {
+
+using test::expectErrorNaming;
 
 using test::TempFolder;
 
@@ -28,18 +31,6 @@ struct RawPly {
   void save(const std::filesystem::path& path) const { test::writeBytes(path, header + body); }
 };
 
-// Expects fn to throw glint::Error whose message names path and contains every detail.
-void expectError(const std::function<void()>& fn, const std::filesystem::path& path,
-                 std::initializer_list<std::string> details) {
-  try {
-    fn();
-    ADD_FAILURE() << "no error for " << path;
-  } catch (const Error& e) {
-    std::string message = e.what();
-    EXPECT_NE(message.find(path.filename().string()), std::string::npos) << message;
-    for (const std::string& detail : details) EXPECT_NE(message.find(detail), std::string::npos) << message;
-  }
-}
 
 TEST(Ply, RoundTripKeepsEveryTypeAndValue) {
   TempFolder folder;
@@ -114,8 +105,8 @@ TEST(Ply, LookupByNameAndMissingPropertyError) {
   EXPECT_EQ(table.column("y"), (std::vector<float>{1.0f, 3.0f}));
   EXPECT_EQ(table.type("mystery"), PlyType::UInt8);
   EXPECT_EQ(table.type("x"), PlyType::Float64);
-  expectError([&] { table.column("opacity"); }, path, {"opacity"});
-  expectError([&] { table.type("opacity"); }, path, {"opacity"});
+  expectErrorNaming([&] { table.column("opacity"); }, path, {"opacity"});
+  expectErrorNaming([&] { table.type("opacity"); }, path, {"opacity"});
 }
 
 TEST(Ply, SkipsListsAndOtherElements) {
@@ -149,20 +140,20 @@ TEST(Ply, SkipsListsAndOtherElements) {
   PlyTable camera = readPly(path, "camera");
   EXPECT_FLOAT_EQ(camera.column("fov")[0], 0.7f);
 
-  expectError([&] { readPly(path, "normals"); }, path, {"no element 'normals'"});
+  expectErrorNaming([&] { readPly(path, "normals"); }, path, {"no element 'normals'"});
 }
 
 TEST(Ply, RejectsAsciiAndBigEndian) {
   TempFolder folder;
   auto ascii = folder / "ascii.ply";
   test::writeBytes(ascii, "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1.0\n");
-  expectError([&] { readPly(ascii); }, ascii, {"ASCII", "format ascii", "binary_little_endian"});
+  expectErrorNaming([&] { readPly(ascii); }, ascii, {"ASCII", "format ascii", "binary_little_endian"});
 
   auto big = folder / "big.ply";
   RawPly ply;
   ply.header = "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\nend_header\n";
   ply.put(1.0f).save(big);
-  expectError([&] { readPly(big); }, big, {"big-endian", "format binary_big_endian"});
+  expectErrorNaming([&] { readPly(big); }, big, {"big-endian", "format binary_big_endian"});
 }
 
 TEST(Ply, RejectsTruncatedData) {
@@ -173,7 +164,7 @@ TEST(Ply, RejectsTruncatedData) {
   for (int i = 0; i < 3; ++i) ply.put(float(i)).put(uint8_t(i));
   ply.put(3.0f);  // the last vertex lacks its colour byte
   ply.save(path);
-  expectError([&] { readPly(path); }, path, {"truncated: expected 20 bytes of vertex data, found 19"});
+  expectErrorNaming([&] { readPly(path); }, path, {"truncated: expected 20 bytes of vertex data, found 19"});
 
   // Truncated inside an element with lists, and inside an earlier element.
   auto listCut = folder / "list_cut.ply";
@@ -181,14 +172,14 @@ TEST(Ply, RejectsTruncatedData) {
   lists.header = "ply\nformat binary_little_endian 1.0\nelement vertex 2\nproperty list uchar float v\nend_header\n";
   lists.put(uint8_t(1)).put(1.0f).put(uint8_t(5)).put(1.0f);
   lists.save(listCut);
-  expectError([&] { readPly(listCut); }, listCut, {"truncated", "vertex 1"});
+  expectErrorNaming([&] { readPly(listCut); }, listCut, {"truncated", "vertex 1"});
 
   auto earlier = folder / "earlier_cut.ply";
   RawPly before;
   before.header =
       "ply\nformat binary_little_endian 1.0\nelement face 3\nproperty int a\nelement vertex 1\nproperty float x\nend_header\n";
   before.put(int32_t(1)).save(earlier);
-  expectError([&] { readPly(earlier); }, earlier, {"truncated", "face"});
+  expectErrorNaming([&] { readPly(earlier); }, earlier, {"truncated", "face"});
 }
 
 TEST(Ply, RejectsNonFiniteValuesNamingPropertyAndVertex) {
@@ -206,7 +197,7 @@ TEST(Ply, RejectsNonFiniteValuesNamingPropertyAndVertex) {
     ply.header = header;
     ply.put(0.0f).put(0.5).put(1.0f).put(0.5).put(2.0f).put(c.bad);
     ply.save(path);
-    expectError([&] { readPly(path); }, path, {"'opacity'", "vertex 2", c.what});
+    expectErrorNaming([&] { readPly(path); }, path, {"'opacity'", "vertex 2", c.what});
   }
 }
 
@@ -230,9 +221,9 @@ TEST(Ply, RejectsMalformedHeaders) {
        }) {
     auto path = folder / c.name;
     test::writeBytes(path, c.text);
-    expectError([&] { readPly(path); }, path, {c.detail});
+    expectErrorNaming([&] { readPly(path); }, path, {c.detail});
   }
-  expectError([&] { readPly(folder / "missing.ply"); }, folder / "missing.ply", {"not found"});
+  expectErrorNaming([&] { readPly(folder / "missing.ply"); }, folder / "missing.ply", {"not found"});
 }
 
 TEST(Ply, EmptyElementIsValid) {
@@ -253,7 +244,7 @@ TEST(Ply, WriteRefusesNonFiniteValuesAndLeavesNoFile) {
   table.add("x", {0.0f, 1.0f});
   table.add("scale_0", {0.0f, std::numeric_limits<float>::quiet_NaN()});
   auto path = folder / "bad.ply";
-  expectError([&] { writePly(path, table); }, path, {"'scale_0'", "vertex 1", "NaN"});
+  expectErrorNaming([&] { writePly(path, table); }, path, {"'scale_0'", "vertex 1", "NaN"});
   EXPECT_TRUE(std::filesystem::is_empty(folder.path()));
 }
 
@@ -263,7 +254,7 @@ TEST(Ply, HeaderWithoutFinalNewline) {
   test::writeBytes(path, "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nend_header");
   EXPECT_EQ(readPly(path).count, 0u);
   test::writeBytes(path, "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\nend_header");
-  expectError([&] { readPly(path); }, path, {"truncated: expected 4 bytes of vertex data, found 0"});
+  expectErrorNaming([&] { readPly(path); }, path, {"truncated: expected 4 bytes of vertex data, found 0"});
 }
 
 TEST(Ply, TypeNamesAndSizes) {

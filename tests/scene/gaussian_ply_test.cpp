@@ -1,5 +1,6 @@
 // Gaussian scene PLY files: bit-exact Glint round trips, 3DGS export and auto-detection,
 // lookup by name in any order and type, and clear errors naming the file.
+#include "common/expect_error.h"
 #include "scene/gaussian_ply.h"
 
 #include <gtest/gtest.h>
@@ -19,6 +20,8 @@
 
 namespace glint {
 namespace {
+
+using test::expectErrorNaming;
 
 namespace fs = std::filesystem;
 using test::TempFolder;
@@ -64,17 +67,6 @@ void expectSameGeometry(const GaussianScene& a, const GaussianScene& b) {
   }
 }
 
-// Expects fn to throw glint::Error whose message names path and contains every detail.
-void expectError(const std::function<void()>& fn, const fs::path& path, std::initializer_list<std::string> details) {
-  try {
-    fn();
-    ADD_FAILURE() << "no error for " << path;
-  } catch (const Error& e) {
-    std::string message = e.what();
-    EXPECT_NE(message.find(path.filename().string()), std::string::npos) << message;
-    for (const std::string& detail : details) EXPECT_NE(message.find(detail), std::string::npos) << message;
-  }
-}
 
 // A minimal Glint-layout table of n Gaussians (all required properties, no optional ones).
 PlyTable minimalTable(size_t n) {
@@ -244,7 +236,7 @@ TEST(GaussianPly, MissingRequiredPropertyIsNamed) {
     }
     fs::path path = folder / (std::string("without_") + missing + ".ply");
     writePly(path, table);
-    expectError([&] { readGaussianPly(path); }, path, {"'" + std::string(missing) + "'"});
+    expectErrorNaming([&] { readGaussianPly(path); }, path, {"'" + std::string(missing) + "'"});
   }
   // An optional group is all or nothing.
   PlyTable partial = minimalTable(3);
@@ -252,7 +244,7 @@ TEST(GaussianPly, MissingRequiredPropertyIsNamed) {
   partial.add("normal_2", {0.0f, 0.0f, 1.0f});
   fs::path path = folder / "partial_normal.ply";
   writePly(path, partial);
-  expectError([&] { readGaussianPly(path); }, path, {"'normal_0'", "'normal_1'"});
+  expectErrorNaming([&] { readGaussianPly(path); }, path, {"'normal_0'", "'normal_1'"});
 }
 
 TEST(GaussianPly, ZeroQuaternionIsAnErrorNamingTheVertex) {
@@ -261,7 +253,7 @@ TEST(GaussianPly, ZeroQuaternionIsAnErrorNamingTheVertex) {
   scene.rotation[6] = {0.0f, -0.0f, 0.0f, 0.0f};
   fs::path path = folder / "zero_rotation.ply";
   writeGaussianPly(path, scene);
-  expectError([&] { readGaussianPly(path); }, path, {"vertex 6", "zero rotation quaternion"});
+  expectErrorNaming([&] { readGaussianPly(path); }, path, {"vertex 6", "zero rotation quaternion"});
 }
 
 TEST(GaussianPly, DamagedAndForeignFilesAreRejectedNamingTheFile) {
@@ -271,20 +263,20 @@ TEST(GaussianPly, DamagedAndForeignFilesAreRejectedNamingTheFile) {
   fs::path truncated = folder / "truncated.ply";
   writeGaussianPly(truncated, scene);
   test::truncateToHalf(truncated);
-  expectError([&] { readGaussianPly(truncated); }, truncated, {"truncated"});
+  expectErrorNaming([&] { readGaussianPly(truncated); }, truncated, {"truncated"});
 
   fs::path bigEndian = folder / "big_endian.ply";
   writeGaussianPly(bigEndian, scene);
   std::string bytes = test::readBytes(bigEndian);
   bytes.replace(bytes.find("binary_little_endian"), 20, "binary_big_endian");
   test::writeBytes(bigEndian, bytes);
-  expectError([&] { readGaussianPly(bigEndian); }, bigEndian, {"big-endian"});
+  expectErrorNaming([&] { readGaussianPly(bigEndian); }, bigEndian, {"big-endian"});
 
   fs::path ascii = folder / "ascii.ply";
   test::writeBytes(ascii,
                    "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
                    "end_header\n0 0 0\n");
-  expectError([&] { readGaussianPly(ascii); }, ascii, {"ASCII"});
+  expectErrorNaming([&] { readGaussianPly(ascii); }, ascii, {"ASCII"});
 
   // Overwrite the opacity of vertex 3 (column 6 of 21 float32 columns) with a NaN.
   fs::path nan = folder / "nan.ply";
@@ -294,9 +286,9 @@ TEST(GaussianPly, DamagedAndForeignFilesAreRejectedNamingTheFile) {
   float quietNan = std::numeric_limits<float>::quiet_NaN();
   std::memcpy(&bytes[data + (3 * 21 + 6) * 4], &quietNan, 4);
   test::writeBytes(nan, bytes);
-  expectError([&] { readGaussianPly(nan); }, nan, {"'opacity'", "vertex 3", "NaN"});
+  expectErrorNaming([&] { readGaussianPly(nan); }, nan, {"'opacity'", "vertex 3", "NaN"});
 
-  expectError([&] { readGaussianPly(folder / "missing.ply"); }, folder / "missing.ply", {"not found"});
+  expectErrorNaming([&] { readGaussianPly(folder / "missing.ply"); }, folder / "missing.ply", {"not found"});
 }
 
 TEST(GaussianPly, WritingANanFailsAndLeavesTheOldFileIntact) {
@@ -306,10 +298,10 @@ TEST(GaussianPly, WritingANanFailsAndLeavesTheOldFileIntact) {
   writeGaussianPly(path, scene);
   GaussianScene bad = scene;
   bad.logScale[4].y = std::numeric_limits<float>::quiet_NaN();
-  expectError([&] { writeGaussianPly(path, bad); }, path, {"scale_1", "NaN"});
+  expectErrorNaming([&] { writeGaussianPly(path, bad); }, path, {"scale_1", "NaN"});
   bad.logScale[4].y = 0.0f;
   bad.diffuse[2].z = std::numeric_limits<float>::infinity();
-  expectError([&] { exportGaussianPly3dgs(path, bad); }, path, {"f_dc_2", "infinite"});
+  expectErrorNaming([&] { exportGaussianPly3dgs(path, bad); }, path, {"f_dc_2", "infinite"});
   // The failed writes touched neither the file nor the folder.
   expectSameGeometry(scene, readGaussianPly(path));
   size_t files = 0;
