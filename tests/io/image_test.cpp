@@ -1,5 +1,4 @@
 // Image I/O: round trips per format, files written by other tools, and clear errors for bad files.
-#include "common/expect_error.h"
 #include "io/image.h"
 
 #include <ImfChannelList.h>
@@ -15,6 +14,7 @@
 #include <cstring>
 #include <functional>
 
+#include "common/expect_error.h"
 #include "core/error.h"
 #include "math/rng.h"
 #include "temp_folder.h"

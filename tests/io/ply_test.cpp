@@ -1,5 +1,4 @@
 // Generic PLY tables: typed round trips, skipping of lists and other elements, and clear errors.
-#include "common/expect_error.h"
 #include "io/ply.h"
 
 #include <gtest/gtest.h>
@@ -8,6 +7,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "common/expect_error.h"
 #include "core/error.h"
 #include "temp_folder.h"
 

@@ -1,6 +1,5 @@
 // Gaussian scene PLY files: bit-exact Glint round trips, 3DGS export and auto-detection,
 // lookup by name in any order and type, and clear errors naming the file.
-#include "common/expect_error.h"
 #include "scene/gaussian_ply.h"
 
 #include <gtest/gtest.h>
@@ -14,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "common/expect_error.h"
 #include "core/error.h"
 #include "io/temp_folder.h"
 #include "math/rng.h"
