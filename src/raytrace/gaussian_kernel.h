@@ -33,6 +33,22 @@ inline T proxyRadius(T opacity, const TraceSettings& s) {
   return std::sqrt(r2);
 }
 
+// Opacity from its logit, o = sigmoid(logit) (derivations D8).
+template <typename T>
+T opacityFromLogit(T logit) {
+  return T(1) / (T(1) + std::exp(-logit));
+}
+
+// Row r of W is column r of R (local axis r in world space) divided by scale r, so
+// W (x - mean) gives x in the Gaussian's scale-normalised frame.
+template <typename T>
+Mat3<T> worldToLocal(const Quat<T>& q, const Vec3<T>& logScale) {
+  Mat3<T> rt = quatToRotation(q).transposed();
+  Mat3<T> w;
+  for (int r = 0; r < 3; ++r) w.m[r] = rt.m[r] * std::exp(-logScale[r]);
+  return w;
+}
+
 // Everything about one Gaussian that ray evaluation needs, derived from its parameters.
 template <typename T>
 struct GaussianFrame {
@@ -46,12 +62,9 @@ template <typename T>
 GaussianFrame<T> makeGaussianFrame(const GaussianScene& scene, size_t i, const TraceSettings& s) {
   GaussianFrame<T> g;
   g.mean = Vec3<T>(scene.position[i]);
-  Quat<T> q{T(scene.rotation[i].w), T(scene.rotation[i].x), T(scene.rotation[i].y), T(scene.rotation[i].z)};
-  Mat3<T> rt = quatToRotation(q).transposed();
-  const Vec3f& ls = scene.logScale[i];
-  T inv[3] = {std::exp(-T(ls.x)), std::exp(-T(ls.y)), std::exp(-T(ls.z))};
-  for (int r = 0; r < 3; ++r) g.worldToLocal.m[r] = rt.m[r] * inv[r];
-  g.opacity = T(1) / (T(1) + std::exp(-T(scene.opacityLogit[i])));
+  const Quatf& q = scene.rotation[i];
+  g.worldToLocal = worldToLocal(Quat<T>{T(q.w), T(q.x), T(q.y), T(q.z)}, Vec3<T>(scene.logScale[i]));
+  g.opacity = opacityFromLogit(T(scene.opacityLogit[i]));
   g.proxyRadius = proxyRadius(g.opacity, s);
   return g;
 }
