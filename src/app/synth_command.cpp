@@ -37,12 +37,17 @@ struct SynthOptions {
   bool force = false;
 };
 
+std::string lowercaseExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
 MeshScene loadScene(const std::string& spec) {
   const std::string prefix = "builtin:";
   if (spec.rfind(prefix, 0) == 0) return makeBuiltinScene(spec.substr(prefix.size()));
   fs::path path(spec);
-  std::string ext = path.extension().string();
-  for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  std::string ext = lowercaseExtension(path);
   if (ext != ".gltf" && ext != ".glb")
     throw Error(spec, "a scene is builtin:NAME or a .gltf/.glb file (unknown extension '" + ext + "')");
   return loadGltfScene(path);
@@ -58,8 +63,7 @@ bool hasAnyLight(const MeshScene& scene) {
 void applyEnvironment(MeshScene& scene, const SynthOptions& o) {
   if (!o.environment.empty()) {
     fs::path path(o.environment);
-    std::string ext = path.extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    std::string ext = lowercaseExtension(path);
     if (ext == ".exr" || ext == ".tif" || ext == ".tiff") {
       scene.environment.map = readImage(path);
       if (scene.environment.map.channels < 3) throw Error(o.environment, "an environment map needs 3 channels (RGB)");

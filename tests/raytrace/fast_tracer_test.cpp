@@ -1,4 +1,4 @@
-// The fast tracer against a brute-force oracle (every Gaussian in double precision, full
+// The fast tracer against the reference tracer (every Gaussian in double precision, full
 // sort by (key, id), the shared Compositor) on random overlapping scenes; its AVX2 tests
 // against their scalar twins; the buffer-overflow path, refit and degenerate scenes.
 #include "raytrace/fast/fast_tracer.h"
@@ -85,39 +85,17 @@ std::vector<TraceRay> randomRays(size_t n, uint64_t seed) {
   return rays;
 }
 
-// The semantics, spelled out: every Gaussian, double precision, sorted by (key, id).
-RayResult oracleTrace(const GaussianScene& scene, const std::vector<GaussianFrame<double>>& frames,
-                      const TraceSettings& settings, const TraceRay& ray, HitList* hits) {
-  struct Entry {
-    uint32_t id;
-    KernelHit<double> hit;
-  };
-  std::vector<Entry> entries;
-  Vec3d o(ray.origin), d(ray.direction);
-  for (size_t i = 0; i < frames.size(); ++i) {
-    KernelHit<double> h;
-    if (evaluateGaussian(frames[i], o, d, double(ray.tMin), settings, &h)) entries.push_back({uint32_t(i), h});
-  }
-  std::sort(entries.begin(), entries.end(), [](const Entry& a, const Entry& b) {
-    return a.hit.key != b.hit.key ? a.hit.key < b.hit.key : a.id < b.id;
-  });
-  Compositor<double> compositor(scene, settings, hits);
-  for (const Entry& e : entries)
-    if (!compositor.add(e.id, e.hit) && !settings.exactTail) break;
-  return compositor.finish();
-}
-
 struct Traced {
   std::vector<RayResult> results;
   std::vector<HitList> hits;
 };
 
+// The oracle is the reference tracer: every Gaussian, double precision, sorted by (key, id).
 Traced traceOracle(const GaussianScene& scene, const TraceSettings& settings, const std::vector<TraceRay>& rays) {
-  std::vector<GaussianFrame<double>> frames(scene.size());
-  for (size_t i = 0; i < scene.size(); ++i) frames[i] = makeGaussianFrame<double>(scene, i, settings);
+  ReferenceTracer reference;
+  reference.build(scene, settings);
   Traced out{std::vector<RayResult>(rays.size()), std::vector<HitList>(rays.size())};
-  parallelFor(int64_t(rays.size()), 16,
-              [&](int64_t i) { out.results[i] = oracleTrace(scene, frames, settings, rays[i], &out.hits[i]); });
+  parallelFor(int64_t(rays.size()), 16, [&](int64_t i) { out.results[i] = reference.trace(rays[i], &out.hits[i]); });
   return out;
 }
 
