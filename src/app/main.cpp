@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   glint::addSynthCommand(app);
   glint::addInfoCommand(app);
   glint::addSheetCommand(app);
+  glint::addTrainCommand(app);
   glint::addRenderCommand(app);
   glint::addExportCommand(app);
   if (argc == 1) {

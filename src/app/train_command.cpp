@@ -1,0 +1,287 @@
+// `glint train DATASET -o RUN`: learns a Gaussian scene from a dataset. The run folder holds
+// config.json (every hyper-parameter), log.csv, scene.ply and a resumable checkpoint.
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "app/commands.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "scene/dataset.h"
+#include "scene/gaussian_ply.h"
+#include "train/camera_culling.h"
+#include "train/checkpoint.h"
+#include "train/dense_init.h"
+#include "train/scene_extent.h"
+#include "train/train_config.h"
+#include "train/trainer.h"
+#include "train/training_eval.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TrainOptions {
+  std::string dataset;
+  std::string output;
+  std::string configFile;
+  bool resume = false;
+  bool force = false;
+  std::string tracer = "fast";
+  int evalViews = 20;
+  TrainConfig config;  // defaults, overridden by --config, then by explicit flags
+};
+
+std::atomic<bool> gInterrupted{false};
+extern "C" void onInterrupt(int) { gInterrupted = true; }
+
+constexpr const char* kLogHeader =
+    "step,loss,diffuse_l1,depth_l1,normal_l1,roughness_l1,f0_l1,gaussians,hits_per_ray,rays_per_s,wall_s,"
+    "test_diffuse_psnr,test_normal_deg\n";
+
+fs::path checkpointFile(const fs::path& run) { return run / "checkpoint" / "state.bin"; }
+
+// Keeps the log rows up to `step` (a resumed run rewrites what came after its checkpoint)
+// and returns the wall time of the last kept row.
+double truncateLog(const fs::path& log, int64_t step) {
+  std::string kept = kLogHeader;
+  double wall = 0;
+  std::ifstream in(log);
+  std::string line;
+  bool header = true;
+  while (std::getline(in, line)) {
+    if (header) {
+      header = false;
+      continue;
+    }
+    std::istringstream row(line);
+    std::string field;
+    std::getline(row, field, ',');
+    if (field.empty() || std::stoll(field) > step) break;
+    for (int k = 0; k < 10; ++k) std::getline(row, field, ',');  // wall_s is the 11th column
+    wall = std::atof(field.c_str());
+    kept += line + "\n";
+  }
+  writeTextAtomically(log, kept);
+  return wall;
+}
+
+std::string formatCount(double n) {
+  char buf[32];
+  if (n >= 1e6)
+    std::snprintf(buf, sizeof(buf), "%.2fM", n / 1e6);
+  else if (n >= 1e3)
+    std::snprintf(buf, sizeof(buf), "%.1fk", n / 1e3);
+  else
+    std::snprintf(buf, sizeof(buf), "%.0f", n);
+  return buf;
+}
+
+DenseInitSettings denseInitSettings(const InitSettings& s) {
+  DenseInitSettings d;
+  d.pixelStride = s.pixelStride;
+  d.maxPixelSamples = s.maxPixelSamples;
+  d.voxelFraction = s.voxelFraction;
+  d.minSamplesPerVoxel = s.minSamplesPerVoxel;
+  d.neighbours = s.neighbours;
+  d.opacity = s.opacity;
+  d.roughness = s.roughness;
+  d.f0 = s.f0;
+  d.forceDepthBuffers = s.source == "depth";
+  return d;
+}
+
+GaussianScene initialScene(const Dataset& dataset, const InitSettings& s) {
+  DenseInitSettings settings = denseInitSettings(s);
+  DenseInit init = s.source == "point-cloud" ? initFromPointCloud(dataset, settings)
+                                             : denseInitialisation(dataset, settings);
+  const DenseInitStats& st = init.stats;
+  if (st.source == InitSource::PointCloud)
+    std::fprintf(stderr, "glint train: initialised %zu Gaussians from point_cloud_dense.ply (%lld points)\n",
+                 init.scene.size(), (long long)st.pointsUnprojected);
+  else
+    std::fprintf(stderr,
+                 "glint train: initialised %zu Gaussians from the depth buffers (stride %d, %lld samples, "
+                 "voxel %.4g, %lld of %lld voxels kept)\n",
+                 init.scene.size(), st.pixelStride, (long long)st.pointsUnprojected, st.voxelSize,
+                 (long long)st.voxelsKept, (long long)st.voxelsOccupied);
+  return std::move(init.scene);
+}
+
+void saveRun(const fs::path& run, const Trainer& trainer) {
+  writeCheckpoint(checkpointFile(run), trainer.state());
+  writeGaussianPly(run / "scene.ply", trainer.scene());
+}
+
+void runTrain(TrainOptions& o, const CLI::App& cmd) {
+  const fs::path run = o.output;
+  TrainConfig config;
+  if (o.resume) {
+    if (!fs::exists(run / "config.json"))
+      throw Error(run.string(), "has no config.json: not a training run to resume");
+    config = readTrainConfig(run / "config.json");
+    if (cmd.get_option("--iters")->count() > 0) config.iters = o.config.iters;  // a resumed run may run longer
+  } else {
+    if (fs::exists(run) && !fs::is_directory(run)) throw Error(run.string(), "exists and is not a folder");
+    if (fs::exists(run) && !fs::is_empty(run) && !o.force)
+      throw Error(run.string(), "is not empty; resume it with --resume, choose another -o folder, or pass --force");
+    config = o.configFile.empty() ? TrainConfig() : readTrainConfig(o.configFile);
+    // Explicit flags win over the config file.
+    auto given = [&](const char* flag) { return cmd.get_option(flag)->count() > 0; };
+    if (given("--iters")) config.iters = o.config.iters;
+    if (given("--seed")) config.seed = o.config.seed;
+    if (given("--threads")) config.threads = o.config.threads;
+    if (given("--bounces")) config.bounces = o.config.bounces;
+    if (given("--batch-rays")) config.batchRays = o.config.batchRays;
+    if (given("--batch-views")) config.batchViews = o.config.batchViews;
+    if (given("--eval-every")) config.evalEvery = o.config.evalEvery;
+    if (given("--save-every")) config.saveEvery = o.config.saveEvery;
+    if (given("--init")) config.init.source = o.config.init.source;
+    config.dataset = fs::absolute(o.dataset).lexically_normal().string();
+    config.validate("command line");
+    fs::create_directories(run);
+    writeTextAtomically(run / "config.json", toJson(config).dump(2) + "\n");
+  }
+  if (!o.dataset.empty() && o.resume &&
+      fs::absolute(o.dataset).lexically_normal() != fs::path(config.dataset).lexically_normal())
+    throw Error(run.string(), "was trained on " + config.dataset + ", not " + o.dataset);
+
+  ThreadLimit threads(config.threads);
+  Dataset dataset = Dataset::open(config.dataset);
+  TrainingViews views = TrainingViews::load(dataset, dataset.train());
+  std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);
+  TestViews testViews = TestViews::load(dataset, dataset.test(), o.evalViews);
+
+  std::unique_ptr<Trainer> trainer;
+  double wallOffset = 0;
+  if (o.resume) {
+    TrainingState state = readCheckpoint(checkpointFile(run));
+    TrainConfig saved = config;
+    applyJson(nlohmann::json::parse(state.configJson), &saved, checkpointFile(run).string());
+    saved.iters = config.iters;
+    if (toJson(saved) != toJson(config))
+      throw Error(checkpointFile(run).string(), "was written with other settings than " +
+                                                    (run / "config.json").string() + "; they must not change");
+    std::fprintf(stderr, "glint train: resuming %s at step %lld\n", run.string().c_str(), (long long)state.step);
+    wallOffset = truncateLog(run / "log.csv", state.step);
+    trainer = std::make_unique<Trainer>(config, views, spheres, std::move(state), o.tracer);
+  } else {
+    float extent = sceneExtent(dataset.train());
+    GaussianScene initial = initialScene(dataset, config.init);
+    trainer = std::make_unique<Trainer>(config, views, spheres, std::move(initial), extent, o.tracer);
+    writeTextAtomically(run / "log.csv", kLogHeader);
+  }
+
+  std::signal(SIGINT, onInterrupt);
+  std::signal(SIGTERM, onInterrupt);
+  std::ofstream log(run / "log.csv", std::ios::app);
+  auto start = std::chrono::steady_clock::now();
+  std::fprintf(stderr, "glint train: %zu Gaussians, %zu training views of %dx%d, %d rays per step, %d threads\n",
+               trainer->scene().size(), views.viewCount(), views.width(), views.height(), config.batchRays,
+               maxThreads());
+  ProgressBar progress("train", config.iters, "steps");
+  progress.advance(trainer->stepCount());
+  double lastPsnr = NAN;
+  while (trainer->stepCount() < config.iters) {
+    StepReport r = trainer->step();
+    double wall = wallOffset + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::string psnrField, normalField;
+    if (!testViews.empty() && (r.step % config.evalEvery == 0 || r.step == config.iters)) {
+      TestScore score = testViews.score(trainer->tracer());
+      lastPsnr = score.diffusePsnr;
+      char buf[64];
+      std::snprintf(buf, sizeof(buf), "%.3f", score.diffusePsnr);
+      psnrField = buf;
+      std::snprintf(buf, sizeof(buf), "%.3f", score.normalDegrees);
+      normalField = buf;
+    }
+    char line[512];
+    std::snprintf(line, sizeof(line), "%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.2f,%.0f,%.2f,%s,%s\n",
+                  (long long)r.step, r.loss, r.terms.diffuse, r.terms.depth, r.terms.normal, r.terms.roughness,
+                  r.terms.f0, r.gaussians, double(r.hits) / double(std::max<int64_t>(r.rays, 1)),
+                  double(r.rays) / r.seconds, wall, psnrField.c_str(), normalField.c_str());
+    log << line << std::flush;
+    char status[200];
+    std::snprintf(status, sizeof(status), "loss %.4f | %s Gaussians | %s rays/s%s", r.loss,
+                  formatCount(double(r.gaussians)).c_str(), formatCount(double(r.rays) / r.seconds).c_str(),
+                  std::isnan(lastPsnr) ? "" : (" | test " + std::to_string(lastPsnr).substr(0, 5) + " dB").c_str());
+    progress.setStatus(status);
+    progress.advance();
+    if (r.overflowedRays > 0)
+      std::fprintf(stderr, "glint train: warning: %lld rays overflowed their hit list at step %lld\n",
+                   (long long)r.overflowedRays, (long long)r.step);
+    if (r.step % config.saveEvery == 0 || r.step == config.iters) saveRun(run, *trainer);
+    if (gInterrupted) {
+      saveRun(run, *trainer);
+      progress.finish();
+      std::fprintf(stderr, "glint train: interrupted; saved step %lld to %s (continue with --resume)\n",
+                   (long long)r.step, checkpointFile(run).string().c_str());
+      std::exit(130);
+    }
+  }
+  progress.finish();
+  if (trainer->stepCount() >= config.iters && !fs::exists(run / "scene.ply")) saveRun(run, *trainer);
+  std::fprintf(stderr, "glint train: done; %zu Gaussians in %s\n", trainer->scene().size(),
+               (run / "scene.ply").string().c_str());
+}
+
+}  // namespace
+
+void addTrainCommand(CLI::App& app) {
+  auto o = std::make_shared<TrainOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "train", "Learn a Gaussian scene from a dataset (diffuse and G-buffer supervision). Writes RUN/config.json, "
+               "RUN/log.csv, RUN/scene.ply and a resumable RUN/checkpoint/; Ctrl-C saves and stops.");
+  const TrainConfig defaults;
+  cmd->add_option("dataset", o->dataset, "Dataset folder (transforms_train.json, train/...); optional with --resume");
+  cmd->add_option("-o,--output", o->output, "Run folder to create (or to continue with --resume)")->required();
+  cmd->add_option("--iters", o->config.iters, "Training steps")->check(CLI::Range(1, 100000000))->default_val(defaults.iters);
+  cmd->add_option("--config", o->configFile, "JSON file of hyper-parameters (the layout of RUN/config.json); flags "
+                                             "given explicitly override it")->check(CLI::ExistingFile);
+  cmd->add_option("--seed", o->config.seed, "Seed of the ray batches")->default_val(defaults.seed);
+  cmd->add_option("--threads", o->config.threads, "Worker threads (0 = all cores); a run is reproducible for a "
+                                                  "given seed and thread count")
+      ->check(CLI::Range(0, 1024))
+      ->default_val(defaults.threads);
+  cmd->add_option("--bounces", o->config.bounces, "Reflection bounces (0 = first segment only; reflections are not "
+                                                  "trained yet)")
+      ->check(CLI::Range(0, 0))
+      ->default_val(defaults.bounces);
+  cmd->add_option("--batch-rays", o->config.batchRays, "Rays per step")
+      ->check(CLI::Range(1, 1 << 24))
+      ->default_val(defaults.batchRays);
+  cmd->add_option("--batch-views", o->config.batchViews, "Training views each step's rays are drawn from")
+      ->check(CLI::Range(1, 1 << 20))
+      ->default_val(defaults.batchViews);
+  cmd->add_option("--eval-every", o->config.evalEvery, "Steps between test-view scores in the log")
+      ->check(CLI::Range(1, 100000000))
+      ->default_val(defaults.evalEvery);
+  cmd->add_option("--eval-views", o->evalViews, "Test views scored during training (evenly spaced; 0 = none)")
+      ->check(CLI::Range(0, 100000))
+      ->default_val(o->evalViews);
+  cmd->add_option("--save-every", o->config.saveEvery, "Steps between checkpoints (and scene.ply)")
+      ->check(CLI::Range(1, 100000000))
+      ->default_val(defaults.saveEvery);
+  cmd->add_option("--init", o->config.init.source, "Initialisation: auto (point_cloud_dense.ply if present, else "
+                                                   "the depth buffers), depth, point-cloud")
+      ->check(CLI::IsMember({"auto", "depth", "point-cloud"}))
+      ->default_val(defaults.init.source);
+  cmd->add_option("--tracer", o->tracer, "Gaussian tracer (fast, embree-k16, reference)")->default_val(o->tracer);
+  cmd->add_flag("--resume", o->resume, "Continue the run in -o from its checkpoint, exactly as if never stopped");
+  cmd->add_flag("--force", o->force, "Start a new run in a non-empty -o folder (its files are overwritten)");
+  cmd->callback([o, cmd]() {
+    if (!o->resume && o->dataset.empty()) throw Error("glint train", "needs a DATASET folder (or --resume)");
+    runTrain(*o, *cmd);
+  });
+}
+
+}  // namespace glint

@@ -1,0 +1,51 @@
+// Adam (Kingma and Ba 2015) over the parameter arrays of a GaussianScene, one learning rate
+// per parameter group, with the bias correction of PyTorch's implementation (3DGS's).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "raytrace/gaussian_gradients.h"
+#include "scene/gaussians.h"
+#include "train/train_config.h"
+
+namespace glint {
+
+// Learning rates of one step.
+struct StepLearningRates {
+  float position, rotation, scale, opacity, diffuse, normal, roughness, f0;
+};
+
+// The position rate at a step: log-linear from init to final x extent over decaySteps
+// (constant at final afterwards); the other groups are constant.
+StepLearningRates learningRatesAt(const LearningRates& lr, float sceneExtent, int64_t step);
+
+class AdamOptimizer {
+ public:
+  explicit AdamOptimizer(const AdamSettings& settings = {}) : settings_(settings) {}
+
+  // Sizes the moments for n Gaussians (zeroed) and restarts the step count.
+  void reset(size_t n);
+  // One Adam step (step count t becomes t + 1) of every parameter of scene with its gradient.
+  void step(GaussianScene* scene, const GaussianGradients& gradient, const StepLearningRates& rates);
+  // Keeps the moments of the Gaussians whose keep[i] is true (after pruning).
+  void filter(const std::vector<bool>& keep);
+
+  int64_t stepCount() const { return step_; }
+  // The moments, for checkpoints (`weight` is unused).
+  GaussianGradients& firstMoment() { return m_; }
+  GaussianGradients& secondMoment() { return v_; }
+  const GaussianGradients& firstMoment() const { return m_; }
+  const GaussianGradients& secondMoment() const { return v_; }
+  void setStepCount(int64_t step) { step_ = step; }
+
+ private:
+  AdamSettings settings_;
+  GaussianGradients m_, v_;
+  int64_t step_ = 0;
+};
+
+// Keeps the entries of g whose keep[i] is true, in order.
+void filterGradients(GaussianGradients* g, const std::vector<bool>& keep);
+
+}  // namespace glint

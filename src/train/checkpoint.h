@@ -1,0 +1,30 @@
+// Resumable training state on disk (RUN/checkpoint/state.bin): parameters, Adam moments and
+// step, the pruning accumulator, the step counter and the config it was made with. Written
+// atomically; read back bit for bit, so a resumed run continues exactly.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "scene/gaussians.h"
+#include "train/adam.h"
+
+namespace glint {
+
+struct TrainingState {
+  int64_t step = 0;        // steps completed
+  float sceneExtent = 0;
+  GaussianScene scene;
+  AdamOptimizer adam;
+  std::vector<float> pruneWeight;  // blend weight accumulated since the last prune
+  std::string configJson;          // the run's config, to refuse resuming with another
+};
+
+void writeCheckpoint(const std::filesystem::path& file, const TrainingState& state);
+// Throws Error naming the file when it is missing, truncated, of another version or
+// corrupt (a checksum covers every byte).
+TrainingState readCheckpoint(const std::filesystem::path& file);
+
+}  // namespace glint

@@ -1,0 +1,52 @@
+// The per-ray L1 losses of the first segment (paper section 3.2): diffuse, and the G-buffer
+// terms depth, normal, roughness and F0, masked where the pixel has no surface; with the
+// _vjp that starts the backward pass.
+#pragma once
+
+#include "math/vec.h"
+#include "raytrace/ray_backward.h"
+#include "raytrace/ray_result.h"
+#include "train/train_config.h"
+
+namespace glint {
+
+// Ground truth of one training pixel (linear values, DATA-FORMAT.md).
+struct PixelTarget {
+  Rgb diffuse;
+  Rgb specular;
+  float depth = 0;
+  Vec3f normal;
+  float roughness = 0;
+  Rgb f0;
+  bool surface = false;  // hasSurface(depth): the G-buffer terms apply
+};
+
+// Each term is the mean absolute error over the batch (and the term's channels); the
+// G-buffer terms average over the batch's surface pixels only.
+struct LossNormalisation {
+  double diffuseRays = 1;  // rays in the batch
+  double surfaceRays = 1;  // rays of the batch whose pixel has a surface
+};
+
+// Unweighted terms (sums over rays of per-ray contributions, already normalised), so that
+// summing them over a batch gives the batch's mean errors.
+struct LossTerms {
+  double diffuse = 0, depth = 0, normal = 0, roughness = 0, f0 = 0;
+
+  double weighted(const LossWeights& w) const {
+    return w.diffuse * diffuse + w.depth * depth + w.normal * normal + w.roughness * roughness + w.f0 * f0;
+  }
+  LossTerms& operator+=(const LossTerms& o) {
+    diffuse += o.diffuse, depth += o.depth, normal += o.normal, roughness += o.roughness, f0 += o.f0;
+    return *this;
+  }
+};
+
+// One ray's contribution to each term.
+LossTerms rayLoss(const RayResult& r, const PixelTarget& target, const LossNormalisation& n);
+
+// dL/d result for L = rayLoss(...).weighted(weights); d|x|/dx = sign(x), 0 at 0.
+RayResultAdjoint rayLoss_vjp(const RayResult& r, const PixelTarget& target, const LossNormalisation& n,
+                             const LossWeights& weights);
+
+}  // namespace glint

@@ -1,0 +1,174 @@
+// TrainConfig <-> JSON. One list of fields (forEachField) drives writing, reading and the
+// unknown-key check, so a new hyper-parameter is added in one place.
+#include "train/train_config.h"
+
+#include <fstream>
+#include <set>
+
+#include "core/atomic_file.h"
+#include "core/error.h"
+
+namespace glint {
+
+namespace {
+
+// Calls f(section, key, field) for every field; section "" is the top level.
+template <typename Config, typename F>
+void forEachField(Config& c, F&& f) {
+  f("", "dataset", c.dataset);
+  f("", "iters", c.iters);
+  f("", "seed", c.seed);
+  f("", "threads", c.threads);
+  f("", "bounces", c.bounces);
+  f("", "batch_rays", c.batchRays);
+  f("", "batch_views", c.batchViews);
+  f("", "eval_every", c.evalEvery);
+  f("", "save_every", c.saveEvery);
+  f("", "scale_decay", c.scaleDecay);
+  f("loss", "diffuse", c.loss.diffuse);
+  f("loss", "depth", c.loss.depth);
+  f("loss", "normal", c.loss.normal);
+  f("loss", "roughness", c.loss.roughness);
+  f("loss", "f0", c.loss.f0);
+  f("lr", "position_init", c.lr.positionInit);
+  f("lr", "position_final", c.lr.positionFinal);
+  f("lr", "position_decay_steps", c.lr.positionDecaySteps);
+  f("lr", "rotation", c.lr.rotation);
+  f("lr", "scale", c.lr.scale);
+  f("lr", "opacity", c.lr.opacity);
+  f("lr", "diffuse", c.lr.diffuse);
+  f("lr", "normal", c.lr.normal);
+  f("lr", "roughness", c.lr.roughness);
+  f("lr", "f0", c.lr.f0);
+  f("adam", "beta1", c.adam.beta1);
+  f("adam", "beta2", c.adam.beta2);
+  f("adam", "epsilon", c.adam.epsilon);
+  f("prune", "every", c.prune.every);
+  f("prune", "start", c.prune.start);
+  f("prune", "weight_threshold", c.prune.weightThreshold);
+  f("prune", "camera_sphere_factor", c.prune.cameraSphereFactor);
+  f("init", "source", c.init.source);
+  f("init", "pixel_stride", c.init.pixelStride);
+  f("init", "max_pixel_samples", c.init.maxPixelSamples);
+  f("init", "voxel_fraction", c.init.voxelFraction);
+  f("init", "min_samples_per_voxel", c.init.minSamplesPerVoxel);
+  f("init", "neighbours", c.init.neighbours);
+  f("init", "opacity", c.init.opacity);
+  f("init", "roughness", c.init.roughness);
+  f("init", "f0", c.init.f0);
+  f("trace", "kernel_power", c.trace.kernelPower);
+  f("trace", "alpha_min", c.trace.alphaMin);
+  f("trace", "min_transmittance", c.trace.minTransmittance);
+  f("trace", "exact_tail", c.trace.exactTail);
+}
+
+std::string keyName(const char* section, const char* key) {
+  return std::string(section).empty() ? std::string(key) : std::string(section) + "." + key;
+}
+
+void require(bool ok, const std::string& source, const std::string& problem) {
+  if (!ok) throw Error(source, problem);
+}
+
+}  // namespace
+
+nlohmann::json toJson(const TrainConfig& config) {
+  nlohmann::json j = nlohmann::json::object();
+  forEachField(config, [&](const char* section, const char* key, const auto& field) {
+    if (std::string(section).empty())
+      j[key] = field;
+    else
+      j[section][key] = field;
+  });
+  return j;
+}
+
+void applyJson(const nlohmann::json& json, TrainConfig* config, const std::string& source) {
+  require(json.is_object(), source, "is not a JSON object of training settings");
+  std::set<std::string> known;
+  forEachField(*config, [&](const char* section, const char* key, auto& field) {
+    known.insert(keyName(section, key));
+    const nlohmann::json* node = &json;
+    if (!std::string(section).empty()) {
+      auto s = json.find(section);
+      if (s == json.end()) return;
+      require(s->is_object(), source, std::string("\"") + section + "\" must be an object");
+      node = &*s;
+    }
+    auto v = node->find(key);
+    if (v == node->end()) return;
+    using Field = std::decay_t<decltype(field)>;
+    bool typeOk = std::is_same_v<Field, std::string> ? v->is_string()
+                  : std::is_same_v<Field, bool>      ? v->is_boolean()
+                  : std::is_integral_v<Field>        ? v->is_number_integer()
+                                                     : v->is_number();
+    require(typeOk, source, "\"" + keyName(section, key) + "\" has the wrong type (" + v->type_name() + ")");
+    field = v->get<Field>();
+  });
+  for (auto it = json.begin(); it != json.end(); ++it) {
+    if (it->is_object()) {
+      for (auto inner = it->begin(); inner != it->end(); ++inner)
+        require(known.count(it.key() + "." + inner.key()) > 0, source,
+                "has an unknown setting \"" + it.key() + "." + inner.key() + "\"");
+    } else {
+      require(known.count(it.key()) > 0, source, "has an unknown setting \"" + it.key() + "\"");
+    }
+  }
+  config->validate(source);
+}
+
+void TrainConfig::validate(const std::string& source) const {
+  auto positive = [&](double v, const char* name) { require(v > 0, source, std::string(name) + " must be positive"); };
+  positive(iters, "iters");
+  positive(batchRays, "batch_rays");
+  positive(batchViews, "batch_views");
+  positive(evalEvery, "eval_every");
+  positive(saveEvery, "save_every");
+  require(threads >= 0 && threads <= 1024, source, "threads must be in [0, 1024]");
+  require(bounces == 0, source, "bounces must be 0: reflections are not trained yet");
+  require(scaleDecay > 0 && scaleDecay <= 1, source, "scale_decay must be in (0, 1]");
+  for (float w : {loss.diffuse, loss.depth, loss.normal, loss.roughness, loss.f0})
+    require(w >= 0, source, "loss weights must be non-negative");
+  for (float r : {lr.positionInit, lr.positionFinal, lr.rotation, lr.scale, lr.opacity, lr.diffuse, lr.normal,
+                  lr.roughness, lr.f0})
+    require(r >= 0 && r < 10, source, "learning rates must be in [0, 10)");
+  positive(lr.positionDecaySteps, "lr.position_decay_steps");
+  require(lr.positionFinal <= lr.positionInit, source, "lr.position_final must not exceed lr.position_init");
+  require(adam.beta1 >= 0 && adam.beta1 < 1 && adam.beta2 >= 0 && adam.beta2 < 1, source,
+          "adam.beta1 and adam.beta2 must be in [0, 1)");
+  positive(adam.epsilon, "adam.epsilon");
+  positive(prune.every, "prune.every");
+  require(prune.start >= 0, source, "prune.start must be non-negative");
+  require(prune.weightThreshold >= 0, source, "prune.weight_threshold must be non-negative");
+  require(prune.cameraSphereFactor >= 0 && prune.cameraSphereFactor < 1, source,
+          "prune.camera_sphere_factor must be in [0, 1)");
+  require(init.source == "auto" || init.source == "depth" || init.source == "point-cloud", source,
+          "init.source must be \"auto\", \"depth\" or \"point-cloud\"");
+  require(init.pixelStride >= 0, source, "init.pixel_stride must be non-negative (0 = automatic)");
+  positive(double(init.maxPixelSamples), "init.max_pixel_samples");
+  require(init.neighbours >= 1 && init.neighbours <= 64, source, "init.neighbours must be in [1, 64]");
+  positive(init.voxelFraction, "init.voxel_fraction");
+  positive(init.minSamplesPerVoxel, "init.min_samples_per_voxel");
+  require(init.opacity > 0 && init.opacity < 1, source, "init.opacity must be in (0, 1)");
+  require(init.roughness >= 0 && init.roughness <= 1, source, "init.roughness must be in [0, 1]");
+  require(init.f0 >= 0 && init.f0 <= 1, source, "init.f0 must be in [0, 1]");
+  require(trace.kernelPower >= 0.25f && trace.kernelPower <= 16, source, "trace.kernel_power must be in [0.25, 16]");
+  require(trace.alphaMin > 0 && trace.alphaMin < 0.5f, source, "trace.alpha_min must be in (0, 0.5)");
+  require(trace.minTransmittance > 0 && trace.minTransmittance < 1, source,
+          "trace.min_transmittance must be in (0, 1)");
+}
+
+TrainConfig readTrainConfig(const std::filesystem::path& path) {
+  std::string text = readTextFile(path);
+  nlohmann::json json;
+  try {
+    json = nlohmann::json::parse(text);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error(path.string(), std::string("is not valid JSON: ") + e.what());
+  }
+  TrainConfig config;
+  applyJson(json, &config, path.string());
+  return config;
+}
+
+}  // namespace glint

@@ -1,0 +1,103 @@
+// Every hyper-parameter of a training run, with the paper's defaults, and its JSON form
+// (RUN/config.json and --config files).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "raytrace/trace_settings.h"
+
+namespace glint {
+
+// Weights of the L1 terms (paper section 3.2).
+struct LossWeights {
+  float diffuse = 5.0f;
+  float depth = 2.5f;
+  float normal = 2.5f;
+  float roughness = 1.0f;
+  float f0 = 1.0f;
+};
+
+// Adam learning rates per parameter group (defaults of the paper's code). The position
+// rate is multiplied by the scene extent and decays log-linearly from positionInit to
+// positionFinal over positionDecaySteps steps (3DGS).
+struct LearningRates {
+  float positionInit = 1.6e-4f;
+  float positionFinal = 1.6e-6f;
+  int positionDecaySteps = 32000;
+  float rotation = 1e-3f;
+  float scale = 5e-3f;
+  float opacity = 2.5e-2f;
+  float diffuse = 5e-3f;
+  float normal = 2.5e-3f;
+  float roughness = 2.5e-3f;
+  float f0 = 2.5e-3f;
+};
+
+struct AdamSettings {
+  float beta1 = 0.9f;
+  float beta2 = 0.999f;
+  float epsilon = 1e-15f;
+};
+
+// Weight-based pruning (appendix A.4) and the removal of Gaussians near training cameras.
+struct PruneSettings {
+  int every = 125;             // steps between prunes
+  int start = 1250;            // first step that prunes
+  // A Gaussian is pruned when its blend weight per full training image, averaged over the
+  // steps of the interval, is below this (the paper sums weights over all pixels of the
+  // step's image; a step here traces batchRays rays, so weights are scaled by
+  // pixels-per-view / batchRays).
+  float weightThreshold = 0.1f;
+  float cameraSphereFactor = 0.8f;  // sphere radius = this x the nearest input depth
+};
+
+// Dense initialisation (appendix A.3).
+struct InitSettings {
+  std::string source = "auto";  // "auto" (point cloud if present, else depth), "depth", "point-cloud"
+  int pixelStride = 0;          // unproject every stride-th pixel in x and y; 0 = automatic
+  int64_t maxPixelSamples = 1000000;    // the automatic stride keeps at most this many pixels
+  float voxelFraction = 1.0f / 256.0f;  // voxel edge as a fraction of the scene extent
+  int minSamplesPerVoxel = 2;
+  int neighbours = 3;  // initial scale = mean distance to this many nearest points
+  float opacity = 0.1f;
+  float roughness = 0.1f;
+  float f0 = 0.04f;
+};
+
+struct TrainConfig {
+  std::string dataset;  // absolute path of the dataset
+  int iters = 8000;
+  uint64_t seed = 0;
+  int threads = 0;   // 0 = all cores
+  int bounces = 0;   // 0 = first segment only (reflections come later)
+  int batchRays = 16384;
+  int batchViews = 4;  // training views a batch's rays are drawn from
+  int evalEvery = 1000;
+  int saveEvery = 1000;
+  float scaleDecay = 0.9999f;
+  LossWeights loss;
+  LearningRates lr;
+  AdamSettings adam;
+  PruneSettings prune;
+  InitSettings init;
+  TraceSettings trace = [] {
+    TraceSettings t;
+    t.exactTail = true;  // the tail estimate of appendix A.2 needs the exact final T
+    return t;
+  }();
+
+  // Throws Error(source, ...) for out-of-range values.
+  void validate(const std::string& source) const;
+};
+
+nlohmann::json toJson(const TrainConfig& config);
+// Overrides the fields present in json; unknown keys and wrong types are errors naming
+// `source` (a file name) and the key.
+void applyJson(const nlohmann::json& json, TrainConfig* config, const std::string& source);
+TrainConfig readTrainConfig(const std::filesystem::path& path);  // defaults + the file
+
+}  // namespace glint

@@ -1,0 +1,181 @@
+// The training step. Determinism: a step's rays depend only on (seed, step); the batch is
+// split into one contiguous range per slot (one slot per thread), each slot accumulates
+// into its own gradient buffer, and the buffers are summed in slot order, so a run is
+// reproducible bit for bit for a given seed and thread count, resumed or not.
+#include "train/trainer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/parallel.h"
+
+namespace glint {
+
+struct Trainer::Slot {
+  GaussianGradients gradient;
+  HitList hits;
+  RayBackwardScratch<float> scratch;
+  LossTerms terms;
+  int64_t hitCount = 0;
+  int64_t overflowed = 0;
+};
+
+Trainer::Trainer(const TrainConfig& config, const TrainingViews& views, std::vector<CameraSphere> spheres,
+                 GaussianScene initial, float sceneExtent, const std::string& tracerKind)
+    : config_(config), views_(views), spheres_(std::move(spheres)), scene_(std::move(initial)),
+      extent_(sceneExtent), adam_(config.adam) {
+  scene_.filter(outsideCameraSpheres(scene_, spheres_));
+  if (scene_.empty()) throw Error(config_.dataset, "the initial scene has no Gaussians outside the camera spheres");
+  adam_.reset(scene_.size());
+  pruneWeight_.assign(scene_.size(), 0.0f);
+  setUp(tracerKind);
+}
+
+Trainer::Trainer(const TrainConfig& config, const TrainingViews& views, std::vector<CameraSphere> spheres,
+                 TrainingState state, const std::string& tracerKind)
+    : config_(config), views_(views), spheres_(std::move(spheres)), scene_(std::move(state.scene)),
+      extent_(state.sceneExtent), step_(state.step), adam_(config.adam),
+      pruneWeight_(std::move(state.pruneWeight)) {
+  adam_.reset(scene_.size());
+  adam_.firstMoment() = std::move(state.adam.firstMoment());
+  adam_.secondMoment() = std::move(state.adam.secondMoment());
+  adam_.setStepCount(state.adam.stepCount());
+  setUp(tracerKind);
+}
+
+Trainer::~Trainer() = default;
+
+void Trainer::setUp(const std::string& tracerKind) {
+  tracer_ = makeGaussianTracer(tracerKind);
+  tracer_->build(scene_, config_.trace);
+  int slots = std::max(1, maxThreads());
+  for (int s = 0; s < slots; ++s) {
+    slots_.push_back(std::make_unique<Slot>());
+    slots_.back()->hits.capacity = hitCapacityWithoutOverflow(config_.trace);
+  }
+}
+
+TrainingState Trainer::state() const {
+  TrainingState s;
+  s.step = step_;
+  s.sceneExtent = extent_;
+  s.scene = scene_;
+  s.adam = adam_;
+  s.pruneWeight = pruneWeight_;
+  s.configJson = toJson(config_).dump();
+  return s;
+}
+
+void Trainer::traceBatch(StepReport* report) {
+  views_.drawBatch(config_.seed, step_, config_.batchRays, config_.batchViews, &batch_);
+  LossNormalisation norm;
+  norm.diffuseRays = double(batch_.size());
+  int64_t surface = 0;
+  for (const BatchRay& b : batch_) surface += views_.target(b.view, b.pixel).surface ? 1 : 0;
+  norm.surfaceRays = double(std::max<int64_t>(surface, 1));
+
+  const size_t n = scene_.size();
+  const int64_t slotCount = int64_t(slots_.size());
+  const int64_t rays = int64_t(batch_.size());
+  parallelFor(slotCount, 1, [&](int64_t s) {
+    Slot& slot = *slots_[s];
+    if (slot.gradient.size() != n)
+      slot.gradient.reset(n);
+    else
+      slot.gradient.zero(0, n);
+    slot.terms = {};
+    slot.hitCount = slot.overflowed = 0;
+    auto sink = [&](uint32_t id, const HitGradient<float>& g) { slot.gradient.add(id, g); };
+    for (int64_t r = rays * s / slotCount; r < rays * (s + 1) / slotCount; ++r) {
+      const BatchRay& b = batch_[r];
+      const PixelTarget& target = views_.target(b.view, b.pixel);
+      RayResult result = tracer_->trace(b.ray, &slot.hits);
+      slot.terms += rayLoss(result, target, norm);
+      slot.hitCount += int64_t(slot.hits.hits.size());
+      if (slot.hits.overflowed) {
+        ++slot.overflowed;
+        continue;
+      }
+      RayResultAdjoint v = rayLoss_vjp(result, target, norm, config_.loss);
+      backwardRay<float>(scene_, config_.trace, b.ray, slot.hits, result, v, slot.scratch, sink);
+    }
+  });
+  // Reduce into slot 0, in slot order for every Gaussian.
+  GaussianGradients& total = slots_[0]->gradient;
+  parallelForChunks(int64_t(n), 8192, [&](int64_t begin, int64_t end) {
+    for (size_t s = 1; s < slots_.size(); ++s) total.addRange(slots_[s]->gradient, size_t(begin), size_t(end));
+  });
+  for (const auto& slot : slots_) {
+    report->terms += slot->terms;
+    report->hits += slot->hitCount;
+    report->overflowedRays += slot->overflowed;
+  }
+  report->rays = rays;
+}
+
+StepReport Trainer::step() {
+  auto start = std::chrono::steady_clock::now();
+  StepReport report;
+  traceBatch(&report);
+  const GaussianGradients& gradient = slots_[0]->gradient;
+  for (size_t i = 0; i < scene_.size(); ++i) pruneWeight_[i] += gradient.weight[i];
+
+  adam_.step(&scene_, gradient, learningRatesAt(config_.lr, extent_, step_));
+  // Scale decay (appendix: favour small Gaussians, which keep rays cheap) and the valid
+  // ranges of the attributes.
+  const float logDecay = std::log(config_.scaleDecay);
+  parallelForChunks(int64_t(scene_.size()), 8192, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end; ++i) {
+      scene_.logScale[i] += Vec3f(logDecay);
+      Rgb& c = scene_.diffuse[i];
+      c = {std::max(c.x, 0.0f), std::max(c.y, 0.0f), std::max(c.z, 0.0f)};
+      scene_.roughness[i] = std::clamp(scene_.roughness[i], 0.0f, 1.0f);
+      Rgb& f = scene_.f0[i];
+      f = {std::clamp(f.x, 0.0f, 1.0f), std::clamp(f.y, 0.0f, 1.0f), std::clamp(f.z, 0.0f, 1.0f)};
+    }
+  });
+  ++step_;
+  report.pruned = housekeeping();
+  report.step = step_;
+  report.gaussians = scene_.size();
+  report.loss = report.terms.weighted(config_.loss);
+  report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+size_t Trainer::housekeeping() {
+  const PruneSettings& p = config_.prune;
+  if (step_ % p.every != 0) {
+    tracer_->refit();
+    return 0;
+  }
+  if (step_ < p.start) {  // intervals before the first prune only restart the accumulator
+    std::fill(pruneWeight_.begin(), pruneWeight_.end(), 0.0f);
+    tracer_->refit();
+    return 0;
+  }
+  // Weight per full training image, averaged over the interval's steps (appendix A.4).
+  const double perImage = double(views_.pixelsPerView()) / double(config_.batchRays);
+  const double scale = perImage / double(p.every);
+  std::vector<bool> keep = outsideCameraSpheres(scene_, spheres_);
+  for (size_t i = 0; i < scene_.size(); ++i)
+    if (double(pruneWeight_[i]) * scale < double(p.weightThreshold)) keep[i] = false;
+  size_t kept = size_t(std::count(keep.begin(), keep.end(), true));
+  if (kept == 0) throw Error(config_.dataset, "pruning would remove every Gaussian at step " + std::to_string(step_) +
+                                                  "; lower prune.weight_threshold");
+  size_t removed = scene_.size() - kept;
+  std::fill(pruneWeight_.begin(), pruneWeight_.end(), 0.0f);
+  if (removed == 0) {
+    tracer_->refit();
+    return 0;
+  }
+  scene_.filter(keep);
+  adam_.filter(keep);
+  pruneWeight_.assign(scene_.size(), 0.0f);
+  tracer_->build(scene_, config_.trace);
+  return removed;
+}
+
+}  // namespace glint

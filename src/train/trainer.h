@@ -1,0 +1,77 @@
+// The training loop of the first segment (paper sections 3.1-3.3, appendix A): each step
+// draws a batch of rays, runs the fused forward/backward pass per ray, reduces the
+// per-thread gradients, takes an Adam step, applies the schedule (scale decay, clamping,
+// pruning, camera-sphere culling) and refits or rebuilds the tracer.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "raytrace/gaussian_gradients.h"
+#include "raytrace/gaussian_tracer.h"
+#include "raytrace/ray_backward.h"
+#include "train/adam.h"
+#include "train/camera_culling.h"
+#include "train/checkpoint.h"
+#include "train/ray_loss.h"
+#include "train/train_config.h"
+#include "train/training_views.h"
+
+namespace glint {
+
+struct StepReport {
+  int64_t step = 0;          // steps completed after this one
+  LossTerms terms;           // unweighted mean errors of the batch
+  double loss = 0;           // weighted total
+  size_t gaussians = 0;      // after housekeeping
+  int64_t rays = 0;
+  int64_t hits = 0;          // composited hits over the batch
+  int64_t overflowedRays = 0;  // rays whose hit list overflowed (no gradient; never expected)
+  size_t pruned = 0;         // removed this step (weight pruning and camera spheres)
+  double seconds = 0;        // wall time of the step
+};
+
+class Trainer {
+ public:
+  // Starts from `initial` (the dense initialisation) at step 0. The views and spheres
+  // are referenced and must outlive the trainer. Gaussians inside the camera spheres are
+  // removed at once.
+  Trainer(const TrainConfig& config, const TrainingViews& views, std::vector<CameraSphere> spheres,
+          GaussianScene initial, float sceneExtent, const std::string& tracerKind = "fast");
+  // Continues from a checkpoint's state (its config must be the one given).
+  Trainer(const TrainConfig& config, const TrainingViews& views, std::vector<CameraSphere> spheres,
+          TrainingState state, const std::string& tracerKind = "fast");
+  ~Trainer();
+
+  StepReport step();
+
+  int64_t stepCount() const { return step_; }
+  const GaussianScene& scene() const { return scene_; }
+  float sceneExtent() const { return extent_; }
+  // The tracer over the current scene (built with the training settings), for evaluation.
+  const GaussianTracer& tracer() const { return *tracer_; }
+  TrainingState state() const;
+
+ private:
+  struct Slot;  // per-thread scratch and gradient buffer
+
+  void setUp(const std::string& tracerKind);
+  void traceBatch(StepReport* report);
+  size_t housekeeping();
+
+  TrainConfig config_;
+  const TrainingViews& views_;
+  std::vector<CameraSphere> spheres_;
+  GaussianScene scene_;
+  float extent_ = 1;
+  int64_t step_ = 0;
+  AdamOptimizer adam_;
+  std::vector<float> pruneWeight_;
+  std::unique_ptr<GaussianTracer> tracer_;
+  std::vector<std::unique_ptr<Slot>> slots_;
+  std::vector<BatchRay> batch_;
+};
+
+}  // namespace glint
