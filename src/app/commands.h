@@ -10,5 +10,6 @@ void addInfoCommand(CLI::App& app);
 void addSheetCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
+void addEvalCommand(CLI::App& app);
 
 }  // namespace glint

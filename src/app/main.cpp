@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   glint::addInfoCommand(app);
   glint::addSheetCommand(app);
   glint::addRenderCommand(app);
+  glint::addEvalCommand(app);
   glint::addExportCommand(app);
   if (argc == 1) {
     std::fputs(app.help().c_str(), stdout);
