@@ -11,5 +11,6 @@ void addSheetCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addTrainCommand(CLI::App& app);
+void addEvalCommand(CLI::App& app);
 
 }  // namespace glint

@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   glint::addSheetCommand(app);
   glint::addTrainCommand(app);
   glint::addRenderCommand(app);
+  glint::addEvalCommand(app);
   glint::addExportCommand(app);
   if (argc == 1) {
     std::fputs(app.help().c_str(), stdout);

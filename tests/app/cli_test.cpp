@@ -1,5 +1,5 @@
-// End-to-end tests of the `glint` program: the issue's synth/info scenario, and clear
-// errors with non-zero exits for bad input.
+// End-to-end tests of the `glint` program: the issue's synth/info scenario, render and eval
+// of scenes and training runs, and clear errors with non-zero exits for bad input.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -7,10 +7,13 @@
 
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "scene/gaussian_ply.h"
 #include "synth/gltf_test_files.h"
@@ -140,7 +143,7 @@ TEST_F(CliTest, SynthTurnsAGltfFileIntoAValidDataset) {
 TEST_F(CliTest, HelpExplainsEveryCommand) {
   Outcome help = runGlint("--help");
   EXPECT_EQ(help.status, 0);
-  for (const char* command : {"synth", "info", "sheet"}) EXPECT_NE(help.output.find(command), std::string::npos);
+  for (const char* command : {"synth", "info", "sheet", "render", "eval"}) EXPECT_NE(help.output.find(command), std::string::npos);
   Outcome synthHelp = runGlint("synth --help");
   for (const char* flag : {"--train", "--test", "--res", "--spp", "--bounces", "--seed", "--format", "--exposure", "--env"})
     EXPECT_NE(synthHelp.output.find(flag), std::string::npos) << flag;
@@ -234,6 +237,113 @@ TEST_F(CliTest, RenderWritesTheBuffersOfEverySplitViewWithTheDatasetsNames) {
   Outcome noDataset = runGlint("render " + path("scene.ply") + " --dataset " + path("nowhere") + " -o " + path("R3"));
   EXPECT_NE(noDataset.status, 0);
   EXPECT_NE(noDataset.output.find("nowhere"), std::string::npos) << noDataset.output;
+}
+
+}  // namespace
+
+namespace {
+
+// A small cloud of Gaussians around the origin of builtin:spheres, written to path.
+void writeSmallCloud(const fs::path& path) {
+  glint::GaussianScene scene;
+  scene.resize(60);
+  for (size_t i = 0; i < scene.size(); ++i) {
+    scene.position[i] = {0.1f * float(i % 7) - 0.3f, 0.6f + 0.05f * float(i % 5), 0.08f * float(i % 3)};
+    scene.logScale[i] = glint::Vec3f(std::log(0.2f));
+    scene.opacityLogit[i] = 1.0f;
+    scene.diffuse[i] = {0.5f, 0.4f, 0.3f};
+    scene.normal[i] = {0, 1, 0};
+  }
+  glint::writeGaussianPly(path, scene);
+}
+
+nlohmann::json readJson(const fs::path& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+// Every metric of one metrics.json entry is a finite number.
+void expectFiniteMetrics(const nlohmann::json& m) {
+  for (const char* pass : {"diffuse", "specular", "final"})
+    for (const char* key : {"psnr", "ssim", "psnr_tonemapped", "ssim_tonemapped"})
+      EXPECT_TRUE(m[pass][key].is_number()) << pass << " " << key << ": " << m.dump();
+  EXPECT_TRUE(m["depth_rmse"].is_number()) << m.dump();
+  EXPECT_TRUE(m["normal_angle_deg"].is_number()) << m.dump();
+  double ssim = m["final"]["ssim"].get<double>();
+  EXPECT_GT(ssim, -1.0);
+  EXPECT_LT(ssim, 1.0);
+}
+
+TEST_F(CliTest, EvalWritesMetricsForAPlyAndForATrainingRun) {
+  Outcome synth = runGlint("synth builtin:spheres -o " + path("D") + " --train 1 --test 2 --res 24x18 --spp 2");
+  ASSERT_EQ(synth.status, 0) << synth.output;
+  writeSmallCloud(root_ / "cloud.ply");
+
+  // A bare .ply has no run folder to write into: -o is required.
+  Outcome noOutput = runGlint("eval " + path("cloud.ply") + " --dataset " + path("D"));
+  EXPECT_NE(noOutput.status, 0);
+  EXPECT_NE(noOutput.output.find("-o"), std::string::npos) << noOutput.output;
+
+  Outcome ply = runGlint("eval " + path("cloud.ply") + " --dataset " + path("D") + " -o " + path("m.json"));
+  ASSERT_EQ(ply.status, 0) << ply.output;
+  EXPECT_NE(ply.output.find("mean"), std::string::npos) << ply.output;
+  nlohmann::json metrics = readJson(root_ / "m.json");
+  EXPECT_EQ(metrics["split"], "test");
+  EXPECT_EQ(metrics["views"], 2);
+  EXPECT_EQ(metrics["tracer"], "fast");
+  expectFiniteMetrics(metrics["mean"]);
+  ASSERT_EQ(metrics["per_view"].size(), 2u);
+  EXPECT_EQ(metrics["per_view"][1]["view"], "test/render/render_0001");
+  for (const nlohmann::json& view : metrics["per_view"]) expectFiniteMetrics(view);
+
+  // A run folder names its dataset and trace settings; flags override the settings.
+  fs::create_directories(root_ / "run");
+  fs::copy_file(root_ / "cloud.ply", root_ / "run" / "scene.ply");
+  nlohmann::json config = {{"dataset", path("D")}, {"trace", {{"kernel_power", 1.0}, {"alpha_min", 0.01}}}};
+  std::ofstream(root_ / "run" / "config.json") << config.dump(2);
+  Outcome run = runGlint("eval " + path("run") + " --save-images --alpha-min 0.02");
+  ASSERT_EQ(run.status, 0) << run.output;
+  metrics = readJson(root_ / "run" / "eval" / "metrics.json");
+  EXPECT_EQ(metrics["trace"]["kernel_power"], 1.0);
+  EXPECT_NEAR(metrics["trace"]["alpha_min"].get<double>(), 0.02, 1e-7);
+  expectFiniteMetrics(metrics["mean"]);
+  for (const char* buffer : {"render", "diffuse", "depth", "normal"})
+    EXPECT_TRUE(fs::exists(root_ / "run" / "eval" / "test" / buffer / (std::string(buffer) + "_0001.exr"))) << buffer;
+
+  // glint render takes the same run folder, without --dataset.
+  Outcome render = runGlint("render " + path("run") + " -o " + path("R"));
+  ASSERT_EQ(render.status, 0) << render.output;
+  EXPECT_NE(render.output.find("p = 1"), std::string::npos) << render.output;
+  EXPECT_TRUE(fs::exists(root_ / "R" / "render" / "render_0001.exr"));
+  Outcome train = runGlint("render " + path("run") + " --split train --kernel-power 2 -o " + path("R2"));
+  ASSERT_EQ(train.status, 0) << train.output;
+  EXPECT_NE(train.output.find("p = 2"), std::string::npos) << train.output;
+  EXPECT_TRUE(fs::exists(root_ / "R2" / "render" / "render_0000.exr"));
+}
+
+TEST_F(CliTest, RunFoldersWithoutASceneOrWithABadConfigAreRejected) {
+  fs::create_directories(root_ / "empty_run");
+  fs::create_directories(root_ / "bad_run");
+  writeSmallCloud(root_ / "bad_run" / "scene.ply");
+  std::ofstream(root_ / "bad_run" / "config.json") << "{ \"dataset\": ";
+  fs::create_directories(root_ / "lost_run");
+  writeSmallCloud(root_ / "lost_run" / "scene.ply");
+  const BadInvocation cases[] = {
+      {"eval " + path("empty_run"), "no scene.ply"},
+      {"render " + path("empty_run") + " -o " + path("R"), "no scene.ply"},
+      {"eval " + path("bad_run"), "config.json"},
+      {"render " + path("bad_run") + " -o " + path("R"), "config.json"},
+      {"eval " + path("lost_run"), "--dataset"},
+      {"render " + path("lost_run") + " -o " + path("R"), "--dataset"},
+      {"eval " + path("lost_run") + " --dataset " + path("nowhere"), "nowhere"},
+  };
+  for (const BadInvocation& c : cases) {
+    Outcome run = runGlint(c.args);
+    EXPECT_NE(run.status, 0) << c.args;
+    EXPECT_NE(run.output.find(c.expected), std::string::npos) << c.args << "\n" << run.output;
+  }
+  EXPECT_FALSE(fs::exists(root_ / "R"));
+  EXPECT_FALSE(fs::exists(root_ / "lost_run" / "eval"));
 }
 
 }  // namespace

@@ -1,0 +1,184 @@
+// `glint eval RUN --dataset D --split test`: renders every view of a split from a trained
+// scene and compares it with the dataset's ground truth, writing RUN/eval/metrics.json.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/rendered_buffers.h"
+#include "app/scene_source.h"
+#include "app/trace_flags.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "eval/view_metrics.h"
+#include "raytrace/gaussian_tracer.h"
+#include "render/gaussian_renderer.h"
+#include "scene/dataset.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct EvalOptions {
+  std::string run;
+  std::string dataset;
+  std::string split = "test";
+  std::string output;
+  int spp = 1;
+  uint64_t seed = 0;
+  int threads = 0;
+  bool saveImages = false;
+  TraceFlags trace;
+};
+
+// RUN/eval/metrics.json unless -o names another file; a bare .ply has no run folder to
+// write into, so it needs -o.
+fs::path metricsPath(const EvalOptions& o) {
+  if (!o.output.empty()) return o.output;
+  if (!fs::is_directory(o.run))
+    throw Error(o.run, "is a scene file, not a training run folder: pass -o FILE for the metrics");
+  return fs::path(o.run) / "eval" / "metrics.json";
+}
+
+// "31.42", "inf" for an exact match, "-" for a metric without pixels.
+std::string formatMetric(double x, int decimals) {
+  if (std::isnan(x)) return "-";
+  if (std::isinf(x)) return "inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, x);
+  return text;
+}
+
+void printTable(const DatasetSplit& split, const std::vector<ViewMetrics>& views, const ViewMetrics& mean) {
+  std::printf("%-32s %12s %12s %12s %12s %10s %10s\n", "view", "diffuse dB", "diffuse 8b", "final dB", "final 8b",
+              "depth RMSE", "normal deg");
+  auto row = [](const std::string& name, const ViewMetrics& m) {
+    std::printf("%-32s %12s %12s %12s %12s %10s %10s\n", name.c_str(), formatMetric(m.diffuse.psnr, 2).c_str(),
+                formatMetric(m.diffuse.psnrTonemapped, 2).c_str(), formatMetric(m.final.psnr, 2).c_str(),
+                formatMetric(m.final.psnrTonemapped, 2).c_str(), formatMetric(m.depthRmse, 4).c_str(),
+                formatMetric(m.normalAngleDegrees, 2).c_str());
+  };
+  for (size_t v = 0; v < views.size(); ++v) row(split.views[v].filePath, views[v]);
+  row("mean", mean);
+  std::printf("\n%-10s %8s %8s %12s %12s   (mean over views; 8-bit = filmic tonemap, quantised)\n", "pass", "PSNR",
+              "SSIM", "PSNR 8-bit", "SSIM 8-bit");
+  auto pass = [](const char* name, const PassMetrics& p) {
+    std::printf("%-10s %8s %8s %12s %12s\n", name, formatMetric(p.psnr, 2).c_str(), formatMetric(p.ssim, 4).c_str(),
+                formatMetric(p.psnrTonemapped, 2).c_str(), formatMetric(p.ssimTonemapped, 4).c_str());
+  };
+  pass("diffuse", mean.diffuse);
+  pass("specular", mean.specular);
+  pass("final", mean.final);
+}
+
+void runEval(const EvalOptions& o) {
+  ThreadLimit threads(o.threads);
+  SceneSource source = loadSceneSource(o.run);
+  fs::path output = metricsPath(o);
+  TraceSettings trace = o.trace.apply(source.trace);
+  fs::path datasetPath = o.dataset.empty() ? source.dataset : fs::path(o.dataset);
+  if (datasetPath.empty())
+    throw Error(o.run, "names no dataset to compare with (only a training run's config.json can): pass --dataset");
+
+  Dataset dataset = Dataset::open(datasetPath);
+  const DatasetSplit& split = dataset.split(o.split);
+  if (split.views.empty()) throw Error(datasetPath.string(), "the " + o.split + " split has no views to evaluate");
+
+  std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(o.trace.tracer());
+  tracer->build(source.scene, trace);
+  std::fprintf(stderr, "glint eval: %zu Gaussians, %s tracer; %zu %s views at %dx%d, %d spp\n", source.scene.size(),
+               tracer->name(), split.views.size(), o.split.c_str(), split.width, split.height, o.spp);
+
+  // One sample goes through the pixel centre, like the ground truth's G-buffers; more are
+  // jittered over the pixel.
+  RenderSettings settings;
+  settings.spp = o.spp;
+  settings.jitter = o.spp > 1;
+  settings.seed = o.seed;
+  fs::path imagesFolder = output.parent_path() / o.split;
+  std::vector<ViewMetrics> views(split.views.size());
+  auto start = std::chrono::steady_clock::now();
+  {
+    ProgressBar progress("eval", int64_t(split.views.size()), "views");
+    for (size_t v = 0; v < split.views.size(); ++v) {
+      ViewBuffers rendered = renderGaussianView(*tracer, split.camera(v), settings, uint64_t(v));
+      views[v] = evaluateView(rendered, dataset.loadView(split, v));
+      if (o.saveImages) writeRenderedBuffers(imagesFolder, split.views[v].filePath, rendered);
+      progress.advance();
+    }
+  }
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ViewMetrics mean = averageViewMetrics(views);
+
+  nlohmann::json report = {
+      {"scene", o.run},
+      {"dataset", datasetPath.string()},
+      {"split", o.split},
+      {"views", split.views.size()},
+      {"width", split.width},
+      {"height", split.height},
+      {"spp", o.spp},
+      {"tracer", tracer->name()},
+      {"trace",
+       {{"kernel_power", trace.kernelPower},
+        {"alpha_min", trace.alphaMin},
+        {"min_transmittance", trace.minTransmittance}}},
+      {"seconds", seconds},
+      {"mean", toJson(mean)},
+  };
+  nlohmann::json perView = nlohmann::json::array();
+  for (size_t v = 0; v < views.size(); ++v) {
+    nlohmann::json entry = toJson(views[v]);
+    entry["view"] = split.views[v].filePath;
+    perView.push_back(entry);
+  }
+  report["per_view"] = perView;
+  writeTextAtomically(output, report.dump(2) + "\n");
+
+  printTable(split, views, mean);
+  std::printf("\nmetrics: %s%s\n", output.string().c_str(),
+              o.saveImages ? (", images: " + imagesFolder.string()).c_str() : "");
+}
+
+}  // namespace
+
+void addEvalCommand(CLI::App& app) {
+  auto o = std::make_shared<EvalOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "eval",
+      "Render every view of a dataset split from a trained scene and compare with the ground truth: PSNR and SSIM "
+      "(11x11 Gaussian window, sigma 1.5) of the diffuse, specular and final passes, in linear space (data range 1) "
+      "and on the filmic-tonemapped 8-bit images; depth RMSE and mean normal angle (degrees) where the ground truth "
+      "has a surface. Writes RUN/eval/metrics.json (per view and averaged) and prints a table.");
+  cmd->add_option("run", o->run,
+                  "Training run folder (scene.ply, config.json), or a Gaussian scene .ply (then -o is required)")
+      ->required();
+  cmd->add_option("--dataset", o->dataset, "Dataset with the ground truth; default: the run's dataset");
+  cmd->add_option("--split", o->split, "Split to evaluate")
+      ->check(CLI::IsMember({"train", "test"}))
+      ->capture_default_str();
+  cmd->add_option("-o,--output", o->output, "Metrics file (default RUN/eval/metrics.json), written atomically");
+  cmd->add_option("--spp", o->spp, "Rays per pixel: 1 goes through the pixel centre, more are jittered and averaged")
+      ->check(CLI::Range(1, 1 << 16))
+      ->capture_default_str();
+  cmd->add_option("--seed", o->seed, "Seed of the sub-pixel jitter (with --spp > 1)")->capture_default_str();
+  cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  o->trace.add(cmd);
+  cmd->add_flag("--save-images", o->saveImages,
+                "Also write the rendered buffers as EXR next to the metrics file, under <split>/ (RUN/eval/test/...)");
+  cmd->callback([o]() { runEval(*o); });
+}
+
+}  // namespace glint

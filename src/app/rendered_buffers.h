@@ -1,0 +1,24 @@
+// The buffers that `glint render` and `glint eval --save-images` write, and their file
+// names, which mirror the dataset's (OUT/depth/depth_0007.exr).
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "scene/buffers.h"
+
+namespace glint {
+
+// No specular until reflections exist: the renderer leaves it zero.
+constexpr Buffer kRenderedBuffers[] = {Buffer::Render, Buffer::Diffuse, Buffer::Depth,
+                                       Buffer::Normal, Buffer::Roughness, Buffer::F0};
+
+// "test/render/render_0007" -> "OUT/depth/depth_0007.exr".
+std::filesystem::path renderedBufferPath(const std::filesystem::path& out, const std::string& renderFilePath,
+                                         Buffer buffer);
+
+// Writes kRenderedBuffers of one view as EXR files (each atomically).
+void writeRenderedBuffers(const std::filesystem::path& out, const std::string& renderFilePath,
+                          const ViewBuffers& buffers);
+
+}  // namespace glint

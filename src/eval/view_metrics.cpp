@@ -1,0 +1,85 @@
+// Evaluation of one view against its ground truth, averaging over views, and JSON output.
+#include "eval/view_metrics.h"
+
+#include <cmath>
+#include <limits>
+
+#include "eval/image_metrics.h"
+
+namespace glint {
+
+namespace {
+
+// Mean of the finite values of one metric; see averageViewMetrics for the other cases.
+template <typename Get>
+double meanOfFinite(std::span<const ViewMetrics> views, Get get) {
+  double sum = 0;
+  size_t count = 0;
+  bool anyInfinite = false;
+  for (const ViewMetrics& v : views) {
+    double x = get(v);
+    if (std::isfinite(x)) {
+      sum += x;
+      ++count;
+    } else if (std::isinf(x)) {
+      anyInfinite = true;
+    }
+  }
+  if (count > 0) return sum / double(count);
+  return anyInfinite ? std::numeric_limits<double>::infinity() : std::numeric_limits<double>::quiet_NaN();
+}
+
+PassMetrics averagePass(std::span<const ViewMetrics> views, PassMetrics ViewMetrics::* pass) {
+  PassMetrics m;
+  m.psnr = meanOfFinite(views, [&](const ViewMetrics& v) { return (v.*pass).psnr; });
+  m.ssim = meanOfFinite(views, [&](const ViewMetrics& v) { return (v.*pass).ssim; });
+  m.psnrTonemapped = meanOfFinite(views, [&](const ViewMetrics& v) { return (v.*pass).psnrTonemapped; });
+  m.ssimTonemapped = meanOfFinite(views, [&](const ViewMetrics& v) { return (v.*pass).ssimTonemapped; });
+  return m;
+}
+
+nlohmann::json number(double x) { return std::isfinite(x) ? nlohmann::json(x) : nlohmann::json(nullptr); }
+
+nlohmann::json passJson(const PassMetrics& m) {
+  return {{"psnr", number(m.psnr)},
+          {"ssim", number(m.ssim)},
+          {"psnr_tonemapped", number(m.psnrTonemapped)},
+          {"ssim_tonemapped", number(m.ssimTonemapped)}};
+}
+
+}  // namespace
+
+PassMetrics evaluatePass(const Image& predicted, const Image& truth) {
+  return {psnr(predicted, truth), ssim(predicted, truth), psnrTonemapped8Bit(predicted, truth),
+          ssimTonemapped8Bit(predicted, truth)};
+}
+
+ViewMetrics evaluateView(const ViewBuffers& rendered, const ViewBuffers& truth) {
+  ViewMetrics m;
+  m.diffuse = evaluatePass(rendered[Buffer::Diffuse], truth[Buffer::Diffuse]);
+  m.specular = evaluatePass(rendered[Buffer::Specular], truth[Buffer::Specular]);
+  m.final = evaluatePass(rendered[Buffer::Render], truth[Buffer::Render]);
+  m.depthRmse = depthRmse(rendered[Buffer::Depth], truth[Buffer::Depth]);
+  m.normalAngleDegrees = normalAngleDegrees(rendered[Buffer::Normal], truth[Buffer::Normal], truth[Buffer::Depth]);
+  return m;
+}
+
+ViewMetrics averageViewMetrics(std::span<const ViewMetrics> views) {
+  ViewMetrics m;
+  m.diffuse = averagePass(views, &ViewMetrics::diffuse);
+  m.specular = averagePass(views, &ViewMetrics::specular);
+  m.final = averagePass(views, &ViewMetrics::final);
+  m.depthRmse = meanOfFinite(views, [](const ViewMetrics& v) { return v.depthRmse; });
+  m.normalAngleDegrees = meanOfFinite(views, [](const ViewMetrics& v) { return v.normalAngleDegrees; });
+  return m;
+}
+
+nlohmann::json toJson(const ViewMetrics& metrics) {
+  return {{"diffuse", passJson(metrics.diffuse)},
+          {"specular", passJson(metrics.specular)},
+          {"final", passJson(metrics.final)},
+          {"depth_rmse", number(metrics.depthRmse)},
+          {"normal_angle_deg", number(metrics.normalAngleDegrees)}};
+}
+
+}  // namespace glint

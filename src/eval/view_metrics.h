@@ -1,0 +1,44 @@
+// The metrics of one evaluated view (every pass and G-buffer against the ground truth),
+// their average over views, and their JSON form for metrics.json.
+#pragma once
+
+#include <span>
+
+#include <nlohmann/json.hpp>
+
+#include "scene/buffers.h"
+
+namespace glint {
+
+// PSNR and SSIM of one radiance pass, in linear space and on tonemapped 8-bit images.
+struct PassMetrics {
+  double psnr = 0;
+  double ssim = 0;
+  double psnrTonemapped = 0;
+  double ssimTonemapped = 0;
+};
+
+struct ViewMetrics {
+  PassMetrics diffuse;
+  PassMetrics specular;
+  PassMetrics final;            // the 'render' buffer
+  double depthRmse = 0;         // NaN when the view has no surface pixel
+  double normalAngleDegrees = 0;
+};
+
+PassMetrics evaluatePass(const Image& predicted, const Image& truth);
+// Compares a rendered view with its ground truth (see image_metrics.h for each metric).
+ViewMetrics evaluateView(const ViewBuffers& rendered, const ViewBuffers& truth);
+
+// The mean of each metric over the views where it is finite: a view without surface
+// pixels has no depth error rather than a zero one, and a view rendered exactly (infinite
+// PSNR) is left out of the PSNR mean instead of making it infinite. A metric finite in no
+// view is NaN (infinite if every view had infinite PSNR).
+ViewMetrics averageViewMetrics(std::span<const ViewMetrics> views);
+
+// {"diffuse": {"psnr", "ssim", "psnr_tonemapped", "ssim_tonemapped"}, "specular": {...},
+//  "final": {...}, "depth_rmse", "normal_angle_deg"}. JSON has no NaN or infinity: those
+// become null.
+nlohmann::json toJson(const ViewMetrics& metrics);
+
+}  // namespace glint
