@@ -60,6 +60,12 @@ void readRunConfig(const fs::path& file, SceneSource& source) {
     readTraceValue(trace, "kernel_power", 0.25, 16.0, file, source.trace.kernelPower);
     readTraceValue(trace, "alpha_min", 1e-6, 0.5, file, source.trace.alphaMin);
     readTraceValue(trace, "min_transmittance", 0.0, 1.0, file, source.trace.minTransmittance);
+    // A scene trained with the truncation tail estimate (appendix A.2) renders with it.
+    if (trace.contains("exact_tail")) {
+      if (!trace["exact_tail"].is_boolean())
+        throw Error(file.string(), "\"trace\".\"exact_tail\" must be true or false, got " + trace["exact_tail"].dump());
+      source.trace.exactTail = trace["exact_tail"].get<bool>();
+    }
   }
 }
 

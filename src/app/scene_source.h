@@ -19,7 +19,7 @@ struct SceneSource {
 // folder: RUN/scene.ply is required, and RUN/config.json is read if present, taking
 // "dataset" (a path string, kept as written: the trainer writes it absolute) and
 // "trace": {"kernel_power", "alpha_min", "min_transmittance"} (numbers, each optional,
-// within the ranges the command-line flags accept). Throws Error naming the folder or the
+// within the ranges the command-line flags accept) and "exact_tail" (a boolean). Throws Error naming the folder or the
 // file that is missing, corrupt or out of range.
 SceneSource loadSceneSource(const std::filesystem::path& p);
 
