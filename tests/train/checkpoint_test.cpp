@@ -1,0 +1,96 @@
+// Checkpoints: a bit-exact round trip of the whole training state, and clear errors for
+// missing, foreign, truncated and corrupted files.
+#include "train/checkpoint.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+
+#include "common/expect_error.h"
+#include "io/temp_folder.h"
+#include "math/rng.h"
+
+namespace glint {
+namespace {
+
+TrainingState randomState() {
+  Rng rng(77);
+  TrainingState s;
+  s.step = 4321;
+  s.sceneExtent = 3.25f;
+  s.configJson = "{\"iters\": 9}";
+  s.scene.resize(37);
+  auto r = [&] { return float(rng.uniformDouble() * 2 - 1); };
+  for (size_t i = 0; i < s.scene.size(); ++i) {
+    s.scene.position[i] = Vec3f(r(), r(), r());
+    s.scene.rotation[i] = Quatf{r(), r(), r(), r()};
+    s.scene.logScale[i] = Vec3f(r(), r(), r());
+    s.scene.opacityLogit[i] = r();
+    s.scene.diffuse[i] = Rgb(r(), r(), r());
+    s.scene.normal[i] = Vec3f(r(), r(), r());
+    s.scene.roughness[i] = r();
+    s.scene.f0[i] = Rgb(r(), r(), r());
+  }
+  s.adam.reset(s.scene.size());
+  for (size_t i = 0; i < s.scene.size(); ++i) {
+    s.adam.firstMoment().position[i] = Vec3f(r(), r(), r());
+    s.adam.secondMoment().f0[i] = Rgb(r(), r(), r());
+  }
+  s.adam.setStepCount(4000);
+  s.pruneWeight.resize(s.scene.size());
+  for (float& w : s.pruneWeight) w = r();
+  return s;
+}
+
+template <typename V>
+bool sameBytes(const std::vector<V>& a, const std::vector<V>& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(V)) == 0;
+}
+
+TEST(Checkpoint, RoundTripIsBitExact) {
+  test::TempFolder temp;
+  TrainingState s = randomState();
+  std::filesystem::path file = temp.path() / "checkpoint" / "state.bin";
+  writeCheckpoint(file, s);
+  TrainingState back = readCheckpoint(file);
+  EXPECT_EQ(back.step, s.step);
+  EXPECT_EQ(back.sceneExtent, s.sceneExtent);
+  EXPECT_EQ(back.configJson, s.configJson);
+  EXPECT_EQ(back.adam.stepCount(), 4000);
+  EXPECT_TRUE(sameBytes(back.scene.position, s.scene.position));
+  EXPECT_TRUE(sameBytes(back.scene.rotation, s.scene.rotation));
+  EXPECT_TRUE(sameBytes(back.scene.logScale, s.scene.logScale));
+  EXPECT_TRUE(sameBytes(back.scene.opacityLogit, s.scene.opacityLogit));
+  EXPECT_TRUE(sameBytes(back.scene.diffuse, s.scene.diffuse));
+  EXPECT_TRUE(sameBytes(back.scene.normal, s.scene.normal));
+  EXPECT_TRUE(sameBytes(back.scene.roughness, s.scene.roughness));
+  EXPECT_TRUE(sameBytes(back.scene.f0, s.scene.f0));
+  EXPECT_TRUE(sameBytes(back.adam.firstMoment().position, s.adam.firstMoment().position));
+  EXPECT_TRUE(sameBytes(back.adam.secondMoment().f0, s.adam.secondMoment().f0));
+  EXPECT_TRUE(sameBytes(back.pruneWeight, s.pruneWeight));
+}
+
+TEST(Checkpoint, RejectsBadFiles) {
+  test::TempFolder temp;
+  std::filesystem::path file = temp.path() / "state.bin";
+  test::expectErrorNaming([&] { readCheckpoint(file); }, file, "cannot be opened");
+  writeCheckpoint(file, randomState());
+  std::string bytes;
+  {
+    std::ifstream in(file, std::ios::binary);
+    bytes.assign((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  }
+  auto writeBytes = [&](const std::string& b) { std::ofstream(file, std::ios::binary) << b; };
+  writeBytes(bytes.substr(0, bytes.size() / 2));
+  test::expectErrorNaming([&] { readCheckpoint(file); }, file, "corrupt or truncated");
+  std::string flipped = bytes;
+  flipped[flipped.size() / 2] ^= 0x10;
+  writeBytes(flipped);
+  test::expectErrorNaming([&] { readCheckpoint(file); }, file, "checksum");
+  writeBytes("ply\nformat binary_little_endian 1.0\n");
+  test::expectErrorNaming([&] { readCheckpoint(file); }, file, "not a Glint checkpoint");
+}
+
+}  // namespace
+}  // namespace glint
