@@ -68,17 +68,16 @@ TrainingState Trainer::state() const {
   return s;
 }
 
-void Trainer::traceBatch(StepReport* report) {
-  views_.drawBatch(config_.seed, step_, config_.batchRays, config_.batchViews, &batch_);
+void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, StepReport* report) {
   LossNormalisation norm;
-  norm.diffuseRays = double(batch_.size());
+  norm.diffuseRays = double(batch.size());
   int64_t surface = 0;
-  for (const BatchRay& b : batch_) surface += views_.target(b.view, b.pixel).surface ? 1 : 0;
+  for (const BatchRay& b : batch) surface += views_.target(b.view, b.pixel).surface ? 1 : 0;
   norm.surfaceRays = double(std::max<int64_t>(surface, 1));
 
   const size_t n = scene_.size();
   const int64_t slotCount = int64_t(slots_.size());
-  const int64_t rays = int64_t(batch_.size());
+  const int64_t rays = int64_t(batch.size());
   parallelFor(slotCount, 1, [&](int64_t s) {
     Slot& slot = *slots_[s];
     if (slot.gradient.size() != n)
@@ -89,11 +88,12 @@ void Trainer::traceBatch(StepReport* report) {
     slot.hitCount = slot.overflowed = 0;
     auto sink = [&](uint32_t id, const HitGradient<float>& g) { slot.gradient.add(id, g); };
     for (int64_t r = rays * s / slotCount; r < rays * (s + 1) / slotCount; ++r) {
-      const BatchRay& b = batch_[r];
+      const BatchRay& b = batch[r];
       const PixelTarget& target = views_.target(b.view, b.pixel);
       RayResult result = tracer_->trace(b.ray, &slot.hits);
       slot.terms += rayLoss(result, target, norm);
       slot.hitCount += int64_t(slot.hits.hits.size());
+      if (!backward) continue;
       if (slot.hits.overflowed) {
         ++slot.overflowed;
         continue;
@@ -118,7 +118,8 @@ void Trainer::traceBatch(StepReport* report) {
 StepReport Trainer::step() {
   auto start = std::chrono::steady_clock::now();
   StepReport report;
-  traceBatch(&report);
+  views_.drawBatch(config_.seed, step_, config_.batchRays, config_.batchViews, &batch_);
+  forwardBackward(batch_, /*backward=*/true, &report);
   const GaussianGradients& gradient = slots_[0]->gradient;
   for (size_t i = 0; i < scene_.size(); ++i) pruneWeight_[i] += gradient.weight[i];
 

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,11 @@ class Trainer {
 
   StepReport step();
 
+  // The fused forward/backward pass of a batch into the per-thread gradient buffers,
+  // reduced into one, without an update (step() = drawBatch + this + Adam + schedule).
+  // With backward false only the forward pass and the loss run (benchmarks compare the two).
+  void forwardBackward(std::span<const BatchRay> batch, bool backward, StepReport* report);
+
   int64_t stepCount() const { return step_; }
   const GaussianScene& scene() const { return scene_; }
   float sceneExtent() const { return extent_; }
@@ -58,7 +64,6 @@ class Trainer {
   struct Slot;  // per-thread scratch and gradient buffer
 
   void setUp(const std::string& tracerKind);
-  void traceBatch(StepReport* report);
   size_t housekeeping();
 
   TrainConfig config_;

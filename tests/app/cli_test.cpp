@@ -15,6 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "app/run_glint.h"
 #include "scene/gaussian_ply.h"
 #include "synth/gltf_test_files.h"
 
@@ -22,23 +23,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Outcome {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-Outcome runGlint(const std::string& args) {
-  std::string command = std::string(GLINT_BINARY) + " " + args + " 2>&1";
-  Outcome run;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return run;
-  std::array<char, 4096> buffer;
-  size_t n;
-  while ((n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0) run.output.append(buffer.data(), n);
-  int raw = pclose(pipe);
-  run.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  return run;
-}
+using glint::test::Outcome;
+using glint::test::runGlint;
 
 class CliTest : public ::testing::Test {
  protected:

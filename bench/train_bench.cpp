@@ -1,0 +1,135 @@
+// Benchmark of the training pass on the same scene and rays: the forward pass alone (in
+// rendering mode, and in training mode with the exact tail and hit lists), the fused
+// forward+backward pass, and whole training steps (with reduction, Adam and refit). The
+// scene is a dense initialisation trained for --warmup steps, so that hit counts are
+// those of training. Prints a table with the ratios and writes JSON (--json FILE).
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/parallel.h"
+#include "scene/dataset.h"
+#include "synth/builtin_scenes.h"
+#include "synth/dataset_generator.h"
+#include "train/camera_culling.h"
+#include "train/dense_init.h"
+#include "train/scene_extent.h"
+#include "train/trainer.h"
+
+using namespace glint;
+namespace fs = std::filesystem;
+
+namespace {
+
+double secondsOf(const std::function<void()>& f) {
+  auto start = std::chrono::steady_clock::now();
+  f();
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Forward vs fused forward+backward throughput of Glint's training pass"};
+  std::string datasetPath, jsonPath;
+  int warmup = 300, batches = 8, batchRays = 16384, threads = 2;
+  app.add_option("--dataset", datasetPath, "Dataset to train on (default: builtin:spheres, 40 views of 160x120, "
+                                           "rendered into a temporary folder)");
+  app.add_option("--warmup", warmup, "Training steps before measuring")->check(CLI::Range(0, 1000000));
+  app.add_option("--batches", batches, "Batches measured per pass")->check(CLI::Range(1, 100000));
+  app.add_option("--batch-rays", batchRays, "Rays per batch")->check(CLI::Range(1, 1 << 24));
+  app.add_option("--threads", threads, "Threads")->check(CLI::Range(1, 1024));
+  app.add_option("--json", jsonPath, "Write the results as JSON here");
+  CLI11_PARSE(app, argc, argv);
+  ThreadLimit limit(threads);
+
+  fs::path temp;
+  if (datasetPath.empty()) {
+    temp = fs::temp_directory_path() / ("glint_train_bench_" + std::to_string(::getpid()));
+    SynthSettings s;
+    s.trainViews = 40;
+    s.testViews = 2;
+    s.width = 160;
+    s.height = 120;
+    s.spp = 8;
+    std::fprintf(stderr, "rendering builtin:spheres (40 views, 160x120, 8 spp) into %s\n", temp.c_str());
+    generateDataset(makeBuiltinScene("spheres"), s, temp);
+    datasetPath = temp.string();
+  }
+  Dataset dataset = Dataset::open(datasetPath);
+  TrainingViews views = TrainingViews::load(dataset, dataset.train());
+  TrainConfig config;
+  config.dataset = datasetPath;
+  config.batchRays = batchRays;
+  DenseInit init = denseInitialisation(dataset);
+  Trainer trainer(config, views, cameraSpheres(dataset, dataset.train()), std::move(init.scene),
+                  sceneExtent(dataset.train()));
+  std::fprintf(stderr, "warming up: %d training steps on %zu Gaussians\n", warmup, trainer.scene().size());
+  for (int i = 0; i < warmup; ++i) trainer.step();
+
+  // The same batches for every pass (drawn for steps beyond the warm-up).
+  std::vector<std::vector<BatchRay>> rays(static_cast<size_t>(batches));
+  for (int b = 0; b < batches; ++b) views.drawBatch(config.seed, 1000000 + b, batchRays, config.batchViews, &rays[b]);
+  const double totalRays = double(batches) * batchRays;
+
+  // Rendering mode: no exact tail, no hit list, the tracer's own batch loop.
+  TraceSettings renderSettings = config.trace;
+  renderSettings.exactTail = false;
+  std::unique_ptr<GaussianTracer> renderTracer = makeGaussianTracer("fast");
+  renderTracer->build(trainer.scene(), renderSettings);
+  std::vector<TraceRay> traceRays;
+  std::vector<RayResult> results(static_cast<size_t>(batchRays));
+  double renderSeconds = secondsOf([&] {
+    for (const auto& batch : rays) {
+      traceRays.clear();
+      for (const BatchRay& r : batch) traceRays.push_back(r.ray);
+      renderTracer->traceBatch(traceRays, results);
+    }
+  });
+  StepReport forwardReport, fusedReport;
+  double forwardSeconds = secondsOf([&] {
+    for (const auto& batch : rays) trainer.forwardBackward(batch, false, &forwardReport);
+  });
+  double fusedSeconds = secondsOf([&] {
+    for (const auto& batch : rays) trainer.forwardBackward(batch, true, &fusedReport);
+  });
+  double stepSeconds = secondsOf([&] {
+    for (int b = 0; b < batches; ++b) trainer.step();
+  });
+
+  struct Row {
+    const char* name;
+    double seconds;
+  } rows[] = {{"forward, rendering mode", renderSeconds},
+              {"forward, training mode (exact tail, hit lists, loss)", forwardSeconds},
+              {"fused forward+backward", fusedSeconds},
+              {"whole step (+ reduction, Adam, refit)", stepSeconds}};
+  std::printf("train_bench: %zu Gaussians, %.1f composited hits per ray, %d rays per batch, %d batches, %d threads\n",
+              trainer.scene().size(), double(fusedReport.hits) / double(fusedReport.rays), batchRays, batches,
+              threads);
+  std::printf("%-55s %10s %12s\n", "pass", "Mrays/s", "time ratio");
+  nlohmann::json json;
+  json["gaussians"] = trainer.scene().size();
+  json["hits_per_ray"] = double(fusedReport.hits) / double(fusedReport.rays);
+  json["batch_rays"] = batchRays;
+  json["threads"] = threads;
+  for (const Row& r : rows) {
+    std::printf("%-55s %10.3f %11.2fx\n", r.name, totalRays / r.seconds / 1e6, r.seconds / forwardSeconds);
+    json["passes"][r.name] = {{"mrays_per_s", totalRays / r.seconds / 1e6}, {"ratio_to_training_forward", r.seconds / forwardSeconds}};
+  }
+  std::printf("fused / forward (training mode): %.2fx   fused / forward (rendering mode): %.2fx   (paper: 2.23x, "
+              "target <= 2.5x)\n",
+              fusedSeconds / forwardSeconds, fusedSeconds / renderSeconds);
+  json["fused_over_forward_training_mode"] = fusedSeconds / forwardSeconds;
+  json["fused_over_forward_rendering_mode"] = fusedSeconds / renderSeconds;
+  if (!jsonPath.empty()) std::ofstream(jsonPath) << json.dump(2) << "\n";
+  if (!temp.empty()) fs::remove_all(temp);
+  return 0;
+}
