@@ -86,24 +86,11 @@ std::string formatCount(double n) {
   return buf;
 }
 
-DenseInitSettings denseInitSettings(const InitSettings& s) {
-  DenseInitSettings d;
-  d.pixelStride = s.pixelStride;
-  d.maxPixelSamples = s.maxPixelSamples;
-  d.voxelFraction = s.voxelFraction;
-  d.minSamplesPerVoxel = s.minSamplesPerVoxel;
-  d.neighbours = s.neighbours;
-  d.opacity = s.opacity;
-  d.roughness = s.roughness;
-  d.f0 = s.f0;
-  d.forceDepthBuffers = s.source == "depth";
-  return d;
-}
-
-GaussianScene initialScene(const Dataset& dataset, const InitSettings& s) {
-  DenseInitSettings settings = denseInitSettings(s);
-  DenseInit init = s.source == "point-cloud" ? initFromPointCloud(dataset, settings)
-                                             : denseInitialisation(dataset, settings);
+GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config) {
+  DenseInitSettings settings = config.init;
+  settings.forceDepthBuffers = config.initSource == "depth";
+  DenseInit init = config.initSource == "point-cloud" ? initFromPointCloud(dataset, settings)
+                                                      : denseInitialisation(dataset, settings);
   const DenseInitStats& st = init.stats;
   if (st.source == InitSource::PointCloud)
     std::fprintf(stderr, "glint train: initialised %zu Gaussians from point_cloud_dense.ply (%lld points)\n",
@@ -145,7 +132,7 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
     if (given("--batch-views")) config.batchViews = o.config.batchViews;
     if (given("--eval-every")) config.evalEvery = o.config.evalEvery;
     if (given("--save-every")) config.saveEvery = o.config.saveEvery;
-    if (given("--init")) config.init.source = o.config.init.source;
+    if (given("--init")) config.initSource = o.config.initSource;
     config.dataset = fs::absolute(o.dataset).lexically_normal().string();
     config.validate("command line");
     fs::create_directories(run);
@@ -176,7 +163,7 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
     trainer = std::make_unique<Trainer>(config, views, spheres, std::move(state), o.tracer);
   } else {
     float extent = sceneExtent(dataset.train());
-    GaussianScene initial = initialScene(dataset, config.init);
+    GaussianScene initial = initialScene(dataset, config);
     trainer = std::make_unique<Trainer>(config, views, spheres, std::move(initial), extent, o.tracer);
     writeTextAtomically(run / "log.csv", kLogHeader);
   }
@@ -271,10 +258,10 @@ void addTrainCommand(CLI::App& app) {
   cmd->add_option("--save-every", o->config.saveEvery, "Steps between checkpoints (and scene.ply)")
       ->check(CLI::Range(1, 100000000))
       ->default_val(defaults.saveEvery);
-  cmd->add_option("--init", o->config.init.source, "Initialisation: auto (point_cloud_dense.ply if present, else "
+  cmd->add_option("--init", o->config.initSource, "Initialisation: auto (point_cloud_dense.ply if present, else "
                                                    "the depth buffers), depth, point-cloud")
       ->check(CLI::IsMember({"auto", "depth", "point-cloud"}))
-      ->default_val(defaults.init.source);
+      ->default_val(defaults.initSource);
   cmd->add_option("--tracer", o->tracer, "Gaussian tracer (fast, embree-k16, reference)")->default_val(o->tracer);
   cmd->add_flag("--resume", o->resume, "Continue the run in -o from its checkpoint, exactly as if never stopped");
   cmd->add_flag("--force", o->force, "Start a new run in a non-empty -o folder (its files are overwritten)");

@@ -47,7 +47,7 @@ void forEachField(Config& c, F&& f) {
   f("prune", "start", c.prune.start);
   f("prune", "weight_threshold", c.prune.weightThreshold);
   f("prune", "camera_sphere_factor", c.prune.cameraSphereFactor);
-  f("init", "source", c.init.source);
+  f("init", "source", c.initSource);
   f("init", "pixel_stride", c.init.pixelStride);
   f("init", "max_pixel_samples", c.init.maxPixelSamples);
   f("init", "voxel_fraction", c.init.voxelFraction);
@@ -142,7 +142,7 @@ void TrainConfig::validate(const std::string& source) const {
   require(prune.weightThreshold >= 0, source, "prune.weight_threshold must be non-negative");
   require(prune.cameraSphereFactor >= 0 && prune.cameraSphereFactor < 1, source,
           "prune.camera_sphere_factor must be in [0, 1)");
-  require(init.source == "auto" || init.source == "depth" || init.source == "point-cloud", source,
+  require(initSource == "auto" || initSource == "depth" || initSource == "point-cloud", source,
           "init.source must be \"auto\", \"depth\" or \"point-cloud\"");
   require(init.pixelStride >= 0, source, "init.pixel_stride must be non-negative (0 = automatic)");
   positive(double(init.maxPixelSamples), "init.max_pixel_samples");

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "raytrace/trace_settings.h"
+#include "train/dense_init.h"
 
 namespace glint {
 
@@ -55,19 +56,6 @@ struct PruneSettings {
   float cameraSphereFactor = 0.8f;  // sphere radius = this x the nearest input depth
 };
 
-// Dense initialisation (appendix A.3).
-struct InitSettings {
-  std::string source = "auto";  // "auto" (point cloud if present, else depth), "depth", "point-cloud"
-  int pixelStride = 0;          // unproject every stride-th pixel in x and y; 0 = automatic
-  int64_t maxPixelSamples = 1000000;    // the automatic stride keeps at most this many pixels
-  float voxelFraction = 1.0f / 256.0f;  // voxel edge as a fraction of the scene extent
-  int minSamplesPerVoxel = 2;
-  int neighbours = 3;  // initial scale = mean distance to this many nearest points
-  float opacity = 0.1f;
-  float roughness = 0.1f;
-  float f0 = 0.04f;
-};
-
 struct TrainConfig {
   std::string dataset;  // absolute path of the dataset
   int iters = 8000;
@@ -83,7 +71,10 @@ struct TrainConfig {
   LearningRates lr;
   AdamSettings adam;
   PruneSettings prune;
-  InitSettings init;
+  // Dense initialisation (appendix A.3): "auto" (point_cloud_dense.ply if present, else
+  // the depth buffers), "depth" or "point-cloud", and the settings of either.
+  std::string initSource = "auto";
+  DenseInitSettings init;
   TraceSettings trace = [] {
     TraceSettings t;
     t.exactTail = true;  // the tail estimate of appendix A.2 needs the exact final T

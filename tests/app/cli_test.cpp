@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -72,6 +73,15 @@ struct BadInvocation {
   std::string expected;  // a fragment the error message must contain
 };
 
+// Each invocation must fail with a non-zero exit and a message containing its fragment.
+void expectEachRejected(std::span<const BadInvocation> cases) {
+  for (const BadInvocation& c : cases) {
+    Outcome bad = runGlint(c.args);
+    EXPECT_NE(bad.status, 0) << c.args;
+    EXPECT_NE(bad.output.find(c.expected), std::string::npos) << c.args << "\n" << bad.output;
+  }
+}
+
 TEST_F(CliTest, BadInputGetsOneClearErrorAndANonZeroExit) {
   std::ofstream(path("not_a_scene.obj")) << "v 0 0 0\n";
   fs::create_directories(root_ / "precious");
@@ -94,11 +104,7 @@ TEST_F(CliTest, BadInputGetsOneClearErrorAndANonZeroExit) {
       {"sheet " + path("nowhere") + " -o " + path("s.png"), "nowhere"},
       {"frobnicate", "frobnicate"},
   };
-  for (const BadInvocation& c : cases) {
-    Outcome run = runGlint(c.args);
-    EXPECT_NE(run.status, 0) << c.args;
-    EXPECT_NE(run.output.find(c.expected), std::string::npos) << c.args << "\n" << run.output;
-  }
+  expectEachRejected(cases);
   // The user's folder is untouched.
   EXPECT_TRUE(fs::exists(root_ / "precious" / "notes.txt"));
   EXPECT_FALSE(fs::exists(root_ / "precious" / "transforms_train.json"));
@@ -178,11 +184,7 @@ TEST_F(CliTest, ExportWritesA3dgsSceneThatLoadsBackAndNamesBadInputs) {
       {"export " + path("empty_run") + " -o " + path("out.ply"), "scene.ply"},
       {"export " + path("scene.ply") + " --format splat -o " + path("out.ply"), "--format"},
   };
-  for (const BadInvocation& c : cases) {
-    Outcome bad = runGlint(c.args);
-    EXPECT_NE(bad.status, 0) << c.args;
-    EXPECT_NE(bad.output.find(c.expected), std::string::npos) << c.args << "\n" << bad.output;
-  }
+  expectEachRejected(cases);
   EXPECT_FALSE(fs::exists(root_ / "out.ply"));
   EXPECT_NE(runGlint("export --help").output.find("--format"), std::string::npos);
 }
@@ -323,11 +325,7 @@ TEST_F(CliTest, RunFoldersWithoutASceneOrWithABadConfigAreRejected) {
       {"render " + path("lost_run") + " -o " + path("R"), "--dataset"},
       {"eval " + path("lost_run") + " --dataset " + path("nowhere"), "nowhere"},
   };
-  for (const BadInvocation& c : cases) {
-    Outcome run = runGlint(c.args);
-    EXPECT_NE(run.status, 0) << c.args;
-    EXPECT_NE(run.output.find(c.expected), std::string::npos) << c.args << "\n" << run.output;
-  }
+  expectEachRejected(cases);
   EXPECT_FALSE(fs::exists(root_ / "R"));
   EXPECT_FALSE(fs::exists(root_ / "lost_run" / "eval"));
 }

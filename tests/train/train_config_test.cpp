@@ -20,7 +20,7 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.loss.normal = 0.5f;
   c.lr.f0 = 0.01f;
   c.prune.start = 17;
-  c.init.source = "depth";
+  c.initSource = "depth";
   c.trace.kernelPower = 2.0f;
   c.trace.exactTail = false;
   TrainConfig back;
