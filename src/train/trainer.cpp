@@ -112,7 +112,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     report->hits += slot->hitCount;
     report->overflowedRays += slot->overflowed;
   }
-  report->rays = rays;
+  report->rays += rays;
 }
 
 StepReport Trainer::step() {
