@@ -47,6 +47,7 @@ void forEachField(Config& c, F&& f) {
   f("prune", "start", c.prune.start);
   f("prune", "weight_threshold", c.prune.weightThreshold);
   f("prune", "camera_sphere_factor", c.prune.cameraSphereFactor);
+  f("prune", "camera_cull_region", c.prune.cameraCullRegion);
   f("init", "source", c.initSource);
   f("init", "pixel_stride", c.init.pixelStride);
   f("init", "max_pixel_samples", c.init.maxPixelSamples);
@@ -102,7 +103,12 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
                   : std::is_same_v<Field, bool>      ? v->is_boolean()
                   : std::is_integral_v<Field>        ? v->is_number_integer()
                                                      : v->is_number();
-    require(typeOk, source, "\"" + keyName(section, key) + "\" has the wrong type (" + v->type_name() + ")");
+    if (!typeOk) {
+      // Built by appending: GCC 12 warns falsely (-Wrestrict) on the chained operator+.
+      std::string problem = "\"";
+      problem.append(keyName(section, key)).append("\" has the wrong type (").append(v->type_name()).append(")");
+      throw Error(source, problem);
+    }
     field = v->get<Field>();
   });
   for (auto it = json.begin(); it != json.end(); ++it) {
@@ -142,6 +148,8 @@ void TrainConfig::validate(const std::string& source) const {
   require(prune.weightThreshold >= 0, source, "prune.weight_threshold must be non-negative");
   require(prune.cameraSphereFactor >= 0 && prune.cameraSphereFactor < 1, source,
           "prune.camera_sphere_factor must be in [0, 1)");
+  require(prune.cameraCullRegion == "in-view" || prune.cameraCullRegion == "whole-sphere", source,
+          "prune.camera_cull_region must be \"in-view\" or \"whole-sphere\"");
   require(initSource == "auto" || initSource == "depth" || initSource == "point-cloud", source,
           "init.source must be \"auto\", \"depth\" or \"point-cloud\"");
   require(init.pixelStride >= 0, source, "init.pixel_stride must be non-negative (0 = automatic)");

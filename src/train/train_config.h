@@ -54,6 +54,10 @@ struct PruneSettings {
   // pixels-per-view / batchRays).
   float weightThreshold = 0.1f;
   float cameraSphereFactor = 0.8f;  // sphere radius = this x the nearest input depth
+  // "in-view" culls only the part of a sphere its camera sees; "whole-sphere" is the
+  // paper's rule, which also removes real walls behind cameras inside a room
+  // (train/camera_culling.h).
+  std::string cameraCullRegion = "in-view";
 };
 
 struct TrainConfig {

@@ -22,11 +22,17 @@ struct Trainer::Slot {
   int64_t overflowed = 0;
 };
 
+namespace {
+CullRegion cullRegion(const PruneSettings& p) {
+  return p.cameraCullRegion == "whole-sphere" ? CullRegion::WholeSphere : CullRegion::SphereInView;
+}
+}  // namespace
+
 Trainer::Trainer(const TrainConfig& config, const TrainingViews& views, std::vector<CameraSphere> spheres,
                  GaussianScene initial, float sceneExtent, const std::string& tracerKind)
     : config_(config), views_(views), spheres_(std::move(spheres)), scene_(std::move(initial)),
       extent_(sceneExtent), adam_(config.adam) {
-  scene_.filter(outsideCameraSpheres(scene_, spheres_));
+  scene_.filter(outsideCameraSpheres(scene_, spheres_, cullRegion(config_.prune)));
   if (scene_.empty()) throw Error(config_.dataset, "the initial scene has no Gaussians outside the camera spheres");
   adam_.reset(scene_.size());
   pruneWeight_.assign(scene_.size(), 0.0f);
@@ -160,7 +166,7 @@ size_t Trainer::housekeeping() {
   // Weight per full training image, averaged over the interval's steps (appendix A.4).
   const double perImage = double(views_.pixelsPerView()) / double(config_.batchRays);
   const double scale = perImage / double(p.every);
-  std::vector<bool> keep = outsideCameraSpheres(scene_, spheres_);
+  std::vector<bool> keep = outsideCameraSpheres(scene_, spheres_, cullRegion(config_.prune));
   for (size_t i = 0; i < scene_.size(); ++i)
     if (double(pruneWeight_[i]) * scale < double(p.weightThreshold)) keep[i] = false;
   size_t kept = size_t(std::count(keep.begin(), keep.end(), true));
