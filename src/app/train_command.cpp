@@ -38,6 +38,7 @@ struct TrainOptions {
   bool force = false;
   std::string tracer = "fast";
   int evalViews = 20;
+  int evalSpp = 4;
   TrainConfig config;  // defaults, overridden by --config, then by explicit flags
 };
 
@@ -183,7 +184,7 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
     double wall = wallOffset + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::string psnrField, normalField;
     if (!testViews.empty() && (r.step % config.evalEvery == 0 || r.step == config.iters)) {
-      TestScore score = testViews.score(trainer->tracer());
+      TestScore score = testViews.score(trainer->tracer(), o.evalSpp);
       lastPsnr = score.diffusePsnr;
       char buf[64];
       std::snprintf(buf, sizeof(buf), "%.3f", score.diffusePsnr);
@@ -255,6 +256,10 @@ void addTrainCommand(CLI::App& app) {
   cmd->add_option("--eval-views", o->evalViews, "Test views scored during training (evenly spaced; 0 = none)")
       ->check(CLI::Range(0, 100000))
       ->default_val(o->evalViews);
+  cmd->add_option("--eval-spp", o->evalSpp, "Jittered samples per pixel of the logged test diffuse PSNR (glint eval "
+                                             "uses 16)")
+      ->check(CLI::Range(1, 1024))
+      ->default_val(o->evalSpp);
   cmd->add_option("--save-every", o->config.saveEvery, "Steps between checkpoints (and scene.ply)")
       ->check(CLI::Range(1, 100000000))
       ->default_val(defaults.saveEvery);

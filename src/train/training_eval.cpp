@@ -22,13 +22,16 @@ TestViews TestViews::load(const Dataset& dataset, const DatasetSplit& split, int
   return t;
 }
 
-TestScore TestViews::score(const GaussianTracer& tracer) const {
+TestScore TestViews::score(const GaussianTracer& tracer, int spp) const {
   TestScore s;
-  RenderSettings settings;
-  settings.jitter = false;  // pixel centres, like the G-buffers
+  RenderSettings pixel, centre;
+  pixel.spp = spp;
+  pixel.jitter = spp > 1;
+  centre.jitter = false;
   for (size_t v = 0; v < cameras_.size(); ++v) {
-    ViewBuffers rendered = renderGaussianView(tracer, cameras_[v], settings, uint64_t(v));
+    ViewBuffers rendered = renderGaussianView(tracer, cameras_[v], pixel, uint64_t(v));
     s.diffusePsnr += psnrTonemapped8Bit(rendered[Buffer::Diffuse], diffuse_[v]);
+    if (pixel.jitter) rendered = renderGaussianView(tracer, cameras_[v], centre, uint64_t(v));
     double angle = normalAngleDegrees(rendered[Buffer::Normal], normal_[v], depth_[v]);
     s.normalDegrees += std::isfinite(angle) ? angle : 0.0;
   }

@@ -23,7 +23,9 @@ class TestViews {
   static TestViews load(const Dataset& dataset, const DatasetSplit& split, int maxViews);
   bool empty() const { return cameras_.empty(); }
   size_t size() const { return cameras_.size(); }
-  TestScore score(const GaussianTracer& tracer) const;
+  // Diffuse from spp jittered samples per pixel (the ground truth averages the pixel),
+  // normals from the pixel-centre ray (like the ground truth's G-buffers).
+  TestScore score(const GaussianTracer& tracer, int spp) const;
 
  private:
   std::vector<Camera> cameras_;

@@ -69,7 +69,7 @@ TEST_F(TrainerTest, LossFallsAndTestViewsImprove) {
   TrainConfig c = smallConfig();
   std::unique_ptr<Trainer> trainer = makeTrainer(c);
   TestViews test = TestViews::load(*dataset_, dataset_->test(), 4);
-  TestScore before = test.score(trainer->tracer());
+  TestScore before = test.score(trainer->tracer(), 4);
   // Mean loss over windows of 50 steps: each window below the one before.
   std::vector<double> windows;
   double sum = 0;
@@ -84,7 +84,7 @@ TEST_F(TrainerTest, LossFallsAndTestViewsImprove) {
   }
   for (size_t k = 1; k < windows.size(); ++k) EXPECT_LT(windows[k], windows[k - 1]) << "window " << k;
   EXPECT_LT(windows.back(), 0.5 * windows.front());
-  TestScore after = test.score(trainer->tracer());
+  TestScore after = test.score(trainer->tracer(), 4);
   EXPECT_GT(after.diffusePsnr, before.diffusePsnr + 5.0) << "before " << before.diffusePsnr;
   EXPECT_LT(after.normalDegrees, before.normalDegrees - 10.0) << "before " << before.normalDegrees;
 }
