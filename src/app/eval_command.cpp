@@ -107,6 +107,7 @@ void runEval(const EvalOptions& o) {
   settings.spp = o.spp;
   settings.jitter = o.spp > 1;
   settings.seed = o.seed;
+  settings.path = o.trace.path();
   fs::path imagesFolder = output.parent_path() / o.split;
   std::vector<ViewMetrics> views(split.views.size());
   auto start = std::chrono::steady_clock::now();

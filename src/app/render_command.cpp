@@ -82,6 +82,7 @@ void runRender(const RenderOptions& o) {
   settings.spp = o.spp;
   settings.jitter = !o.noJitter;
   settings.seed = o.seed;
+  settings.path = o.trace.path();
   ProgressBar progress("render", int64_t(split.views.size()), "views");
   for (size_t v = 0; v < split.views.size(); ++v) {
     Camera camera{split.views[v].cameraToWorld, split.cameraAngleX, width, height};
@@ -97,8 +98,9 @@ void addRenderCommand(CLI::App& app) {
   auto o = std::make_shared<RenderOptions>();
   CLI::App* cmd = app.add_subcommand(
       "render", "Render a Gaussian scene (.ply, or a training run folder) from the cameras of a dataset split. Writes "
-                "OUT/{render,diffuse,depth,normal,roughness,f0}/NAME_####.exr with the dataset's file names; until "
-                "reflections exist, render = diffuse.");
+                "OUT/{render,diffuse,specular,depth,normal,roughness,f0}/NAME_####.exr with the dataset's file names. "
+                "Specular is path-traced through the Gaussians (--bounces segments after the first, GGX sampled from "
+                "the blended roughness and F0); render = diffuse + specular.");
   cmd->add_option("scene", o->scene,
                   "Gaussian scene (.ply in Glint's or the 3DGS layout), or a training run folder (scene.ply, and "
                   "config.json for the dataset and trace settings)")

@@ -9,9 +9,8 @@
 
 namespace glint {
 
-// No specular until reflections exist: the renderer leaves it zero.
-constexpr Buffer kRenderedBuffers[] = {Buffer::Render, Buffer::Diffuse, Buffer::Depth,
-                                       Buffer::Normal, Buffer::Roughness, Buffer::F0};
+constexpr Buffer kRenderedBuffers[] = {Buffer::Render, Buffer::Diffuse, Buffer::Specular, Buffer::Depth,
+                                       Buffer::Normal,  Buffer::Roughness, Buffer::F0};
 
 // "test/render/render_0007" -> "OUT/depth/depth_0007.exr".
 std::filesystem::path renderedBufferPath(const std::filesystem::path& out, const std::string& renderFilePath,

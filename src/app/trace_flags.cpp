@@ -19,6 +19,15 @@ void TraceFlags::add(CLI::App* cmd) {
                   "Compositing stops below this transmittance; default: the run's, else this")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
+  cmd->add_option("--bounces", path_.bounces,
+                  "Reflection segments after the first (0 = diffuse only; specular = their sum, render = diffuse + "
+                  "specular)")
+      ->check(CLI::Range(0, 64))
+      ->capture_default_str();
+  cmd->add_option("--invalid-normal", path_.invalidNormalLength,
+                  "A path ends where the blended normal is shorter than this before normalisation")
+      ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
   cmd->add_option("--tracer", tracer_, "Gaussian tracer: " + [] {
     std::string names;
     for (const std::string& n : gaussianTracerNames()) names += (names.empty() ? "" : ", ") + n;

@@ -17,9 +17,18 @@ class Compositor {
     if (hits_) hits_->clear();
   }
 
+  // Reflection rays ignore Gaussians whose attached normal points along the ray (their
+  // back faces: the surface the ray leaves) closer than `until` to the origin, against
+  // surface acne (paper appendix B).
+  void skipBackfacing(const Vec3f& direction, float until) {
+    skipDirection_ = direction;
+    skipUntil_ = T(until);
+  }
+
   // Adds the next hit in front-to-back order. Returns false once the ray has terminated
   // (transmittance below the threshold): later hits only count towards the exact tail.
   bool add(uint32_t id, const KernelHit<T>& h) {
+    if (h.key < skipUntil_ && dot(scene_.normal[id], skipDirection_) > 0.0f) return !terminated_;
     if (terminated_) {
       tailTransmittance_ *= T(1) - h.alpha;
       return false;
@@ -79,6 +88,8 @@ class Compositor {
   T tailTransmittance_ = 1;
   int count_ = 0;
   bool terminated_ = false;
+  Vec3f skipDirection_{0.0f};
+  T skipUntil_ = 0;
 };
 
 }  // namespace glint

@@ -308,6 +308,7 @@ RayResult EmbreeK16Tracer::trace(const TraceRay& ray, HitList* hits, EmbreeTrace
   GLINT_CHECK(m.scene != nullptr, "trace before build");
   if (stats) *stats = EmbreeTraceStats{};
   Compositor<float> compositor(*m.scene, m.settings, hits);
+  if (ray.backfaceSkip > 0) compositor.skipBackfacing(ray.direction, ray.backfaceSkip);
   if (!m.rtcScene || m.gaussianOfPrim.empty()) return compositor.finish();
 
   Impl::RayContext context;

@@ -19,6 +19,9 @@ struct TraceRay {
   Vec3f origin;
   Vec3f direction;  // unit length
   float tMin = 0;   // hits whose proxy ends before tMin are ignored
+  // Hits closer than this to the origin whose Gaussian's normal points along the ray are
+  // ignored (reflection rays, against self-occlusion; paper appendix B). 0 = none.
+  float backfaceSkip = 0;
 };
 
 class GaussianTracer {

@@ -14,13 +14,17 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
     for (int64_t y = rowBegin; y < rowEnd; ++y)
       for (int x = 0; x < camera.width; ++x) {
         Rng rng = Rng::forKeys({settings.seed, viewKey, uint64_t(y) * camera.width + x});
-        Rgb diffuse(0.0f), normal(0.0f), f0(0.0f);
+        Rgb diffuse(0.0f), specular(0.0f), normal(0.0f), f0(0.0f);
         float depth = 0, roughness = 0;
         for (int s = 0; s < settings.spp; ++s) {
           Vec2f offset = settings.jitter ? rng.uniform2() : Vec2f(0.5f, 0.5f);
           Ray ray = camera.generateRay(x + offset.x, y + offset.y);
-          RayResult r = tracer.trace({Vec3f(ray.origin), Vec3f(ray.direction), 0.0f});
+          uint64_t pixel = uint64_t(y) * uint64_t(camera.width) + uint64_t(x);
+          PathResult path = tracePath(tracer, {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f}, settings.path,
+                                      settings.seed, viewKey, pixel, uint64_t(s));
+          const RayResult& r = path.first;
           diffuse += r.diffuse;
+          specular += path.specular;
           depth += r.depth;
           normal += r.normal;
           roughness += r.roughness;
@@ -28,7 +32,8 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
         }
         int yi = int(y);
         out[Buffer::Diffuse].setRgb(x, yi, diffuse * invSpp);
-        out[Buffer::Render].setRgb(x, yi, diffuse * invSpp);
+        out[Buffer::Specular].setRgb(x, yi, specular * invSpp);
+        out[Buffer::Render].setRgb(x, yi, (diffuse + specular) * invSpp);
         out[Buffer::Depth].at(x, yi) = depth * invSpp;
         out[Buffer::Normal].setRgb(x, yi, normalize(normal));
         out[Buffer::Roughness].at(x, yi) = roughness * invSpp;

@@ -5,6 +5,7 @@
 #include <cstdint>
 
 #include "raytrace/gaussian_tracer.h"
+#include "render/gaussian_path.h"
 #include "scene/buffers.h"
 #include "scene/camera.h"
 
@@ -16,10 +17,12 @@ struct RenderSettings {
   // jitter every sample goes through the pixel centre.
   bool jitter = true;
   uint64_t seed = 0;
+  PathSettings path;  // bounces 0: first segment only (specular stays zero)
 };
 
-// Renders render, diffuse, depth, normal, roughness and f0 of one view (specular stays
-// zero until reflections exist; render = diffuse). Each buffer averages the spp samples;
+// Renders the buffers of one view: diffuse and the G-buffers from each path's first segment,
+// specular from its later segments (settings.path), render = diffuse + specular. Each
+// buffer averages the spp samples;
 // the normal buffer is the average of the blended normals, normalised where non-zero.
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
                                uint64_t viewKey);

@@ -210,13 +210,12 @@ TEST_F(CliTest, RenderWritesTheBuffersOfEverySplitViewWithTheDatasetsNames) {
   Outcome render = runGlint("render " + path("scene.ply") + " --dataset " + path("D") + " -o " + path("R") +
                             " --tracer reference --spp 2");
   ASSERT_EQ(render.status, 0) << render.output;
-  for (const char* buffer : {"render", "diffuse", "depth", "normal", "roughness", "f0"})
+  for (const char* buffer : {"render", "diffuse", "specular", "depth", "normal", "roughness", "f0"})
     for (int v = 0; v < 3; ++v) {
       char name[64];
       std::snprintf(name, sizeof name, "%s/%s_%04d.exr", buffer, buffer, v);
       EXPECT_TRUE(fs::exists(root_ / "R" / name)) << name;
     }
-  EXPECT_FALSE(fs::exists(root_ / "R" / "specular"));
   // Bad input: unknown tracer, missing dataset, non-empty unrelated output folder.
   Outcome badTracer = runGlint("render " + path("scene.ply") + " --dataset " + path("D") + " -o " + path("R2") +
                                " --tracer warp-drive");

@@ -370,5 +370,24 @@ TEST(FastTracer, Avx2TestsAreBitIdenticalToTheScalarOnes) {
 }
 #endif
 
+// Reflection rays' back-face skipping: the fast tracer matches the reference, and the skip
+// really removes hits (Gaussians whose normal points along the ray near the origin).
+TEST(FastTracer, BackfaceSkippingMatchesTheReference) {
+  GaussianScene scene = randomScene(2000, 31);
+  std::vector<TraceRay> rays = randomRays(600, 32);
+  for (TraceRay& r : rays) r.backfaceSkip = 1.5f;
+  TraceSettings settings;
+  FastGaussianTracer tracer;
+  tracer.build(scene, settings);
+  Traced fast = traceFast(tracer, rays);
+  expectSame(fast, traceOracle(scene, settings, rays), 1e-4f, "backface skip 1.5");
+  std::vector<TraceRay> plain = rays;
+  for (TraceRay& r : plain) r.backfaceSkip = 0;
+  Traced unskipped = traceFast(tracer, plain);
+  int changed = 0;
+  for (size_t i = 0; i < rays.size(); ++i) changed += fast.results[i].hitCount != unskipped.results[i].hitCount;
+  EXPECT_GT(changed, int(rays.size() / 4));
+}
+
 }  // namespace
 }  // namespace glint

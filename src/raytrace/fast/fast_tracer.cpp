@@ -39,6 +39,7 @@ class RayTraversal {
         buffer_(capacity),
         capacity_(capacity),
         stats_(stats) {
+    if (ray.backfaceSkip > 0) compositor_.skipBackfacing(ray.direction, ray.backfaceSkip);
     float p = settings_.kernelPower;
     integerPower_ = (p == std::round(p) && p >= 1.0f && p <= 4.0f) ? int(p) : 0;
   }

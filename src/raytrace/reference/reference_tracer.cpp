@@ -40,6 +40,7 @@ RayResult ReferenceTracer::trace(const TraceRay& ray, HitList* hits) const {
     return a.hit.key != b.hit.key ? a.hit.key < b.hit.key : a.id < b.id;
   });
   Compositor<double> compositor(*scene_, settings_, hits);
+  if (ray.backfaceSkip > 0) compositor.skipBackfacing(ray.direction, ray.backfaceSkip);
   for (const Entry& e : entries) {
     if (!compositor.add(e.id, e.hit) && !settings_.exactTail) break;
   }

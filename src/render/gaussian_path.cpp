@@ -1,0 +1,47 @@
+// Path segments through the Gaussians with GGX importance sampling.
+#include "render/gaussian_path.h"
+
+#include <algorithm>
+
+#include "bsdf/cook_torrance.h"
+#include "math/frame.h"
+#include "math/rng.h"
+
+namespace glint {
+
+PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, const PathSettings& settings,
+                     uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample) {
+  PathResult path;
+  path.first = tracer.trace(primary);
+  path.specular = Rgb(0.0f);
+  RayResult current = path.first;
+  TraceRay ray = primary;
+  Rgb throughput(1.0f);
+  for (int k = 1; k <= settings.bounces; ++k) {
+    if (!(current.normalLength >= settings.invalidNormalLength)) break;
+    Vec3f n = current.normal / current.normalLength;
+    // Blended normals may face away from the incoming ray (Gaussians seen from behind);
+    // the surface is then taken as seen from the ray's side.
+    if (dot(n, ray.direction) > 0) n = -n;
+    Frame<float> frame = Frame<float>::fromNormal(n);
+    Vec3f wo = frame.toLocal(-ray.direction);
+    float rho = std::max(std::clamp(current.roughness, 0.0f, 1.0f), settings.minRoughness);
+    CookTorranceLobe lobe(current.f0, rho * rho);
+    Rng rng = Rng::forKeys({seed, view, pixel, sample, uint64_t(k)});
+    BsdfSample s = lobe.sample(wo, rng.uniform2());
+    if (!s.valid) break;
+    throughput = throughput * s.weight;
+    TraceRay next;
+    next.origin = ray.origin + ray.direction * current.depth + n * settings.normalOffset;
+    next.direction = normalize(frame.toWorld(s.wi));
+    next.tMin = 0.0f;
+    next.backfaceSkip = settings.backfaceSkip;
+    current = tracer.trace(next);
+    path.specular += throughput * current.diffuse;
+    ++path.segments;
+    ray = next;
+  }
+  return path;
+}
+
+}  // namespace glint

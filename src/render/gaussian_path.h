@@ -1,0 +1,37 @@
+// Paths through the Gaussians (paper sections 3.1-3.2): the first segment gives the blended
+// diffuse colour and G-buffers; each later segment leaves the expected termination point
+// of the previous one in a direction drawn from the GGX distribution of visible normals
+// for the blended roughness, and returns the blended diffuse colour of what it hits (the
+// cached irradiance of equation 3), weighted by the Cook-Torrance throughput.
+#pragma once
+
+#include <cstdint>
+
+#include "raytrace/gaussian_tracer.h"
+
+namespace glint {
+
+struct PathSettings {
+  int bounces = 0;  // segments after the first; the paper's default is 2 (path length 3)
+  // A blended normal shorter than this before normalisation is invalid and ends the path
+  // (paper text 0.6, the authors' code 0.7).
+  float invalidNormalLength = 0.7f;
+  float minRoughness = 0.01f;  // alpha = max(roughness, this)^2
+  float normalOffset = 1e-3f;  // reflection origins move this far along the normal
+  // Reflection rays ignore back-facing Gaussians this close to their origin (appendix B).
+  float backfaceSkip = 0.1f;
+};
+
+// One path's outputs: the first segment's result and the specular light of the later ones.
+struct PathResult {
+  RayResult first;
+  Rgb specular;      // sum over segments k >= 1 of throughput_k x blended diffuse_k
+  int segments = 1;  // segments traced
+};
+
+// Random numbers of segment k come from Rng::forKeys({keys..., k}), so any path can be
+// re-run alone from its keys (seed, view, pixel, sample).
+PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, const PathSettings& settings,
+                     uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample);
+
+}  // namespace glint
