@@ -63,4 +63,11 @@ std::vector<size_t> parseIndexList(const std::string& text, const std::string& f
   return indices;
 }
 
+Vec2i parsePixel(const std::string& text, const std::string& flag) {
+  std::vector<size_t> xy = parseIndexList(text, flag);
+  if (xy.size() != 2 || xy[0] > 1u << 20 || xy[1] > 1u << 20)
+    throw Error(flag, "expects a pixel position X,Y (e.g. 80,60), got '" + text + "'");
+  return {int(xy[0]), int(xy[1])};
+}
+
 }  // namespace glint

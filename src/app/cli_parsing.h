@@ -15,5 +15,7 @@ Vec2i parseResolution(const std::string& text, const std::string& flag);
 Rgb parseColor(const std::string& text, const std::string& flag);
 // "0,5,9" -> {0, 5, 9}. Throws Error naming the flag.
 std::vector<size_t> parseIndexList(const std::string& text, const std::string& flag);
+// "12,34" -> (12, 34), a pixel position. Throws Error naming the flag.
+Vec2i parsePixel(const std::string& text, const std::string& flag);
 
 }  // namespace glint

@@ -33,7 +33,36 @@ struct RenderOptions {
   uint64_t seed = 0;
   TraceFlags trace;
   bool force = false;
+  std::string debugPixel;  // "x,y": print that pixel's paths instead of rendering
+  int debugView = 0;
 };
+
+// Prints every segment of a pixel's paths: where it starts and goes, its throughput, what
+// it blends, and its composited hits (the first few).
+void printPixelPaths(const std::vector<std::vector<PathSegment>>& paths, int x, int y, size_t view) {
+  std::printf("pixel (%d, %d) of view %zu: %zu samples\n", x, y, view, paths.size());
+  for (size_t s = 0; s < paths.size(); ++s) {
+    for (size_t k = 0; k < paths[s].size(); ++k) {
+      const PathSegment& seg = paths[s][k];
+      const RayResult& r = seg.result;
+      std::printf("sample %zu segment %zu: origin (%.4f, %.4f, %.4f) direction (%.4f, %.4f, %.4f) throughput "
+                  "(%.4f, %.4f, %.4f)\n",
+                  s, k, seg.ray.origin.x, seg.ray.origin.y, seg.ray.origin.z, seg.ray.direction.x,
+                  seg.ray.direction.y, seg.ray.direction.z, seg.throughput.x, seg.throughput.y, seg.throughput.z);
+      std::printf("  diffuse (%.4f, %.4f, %.4f) depth %.4f normal length %.3f roughness %.3f f0 (%.3f, %.3f, %.3f) "
+                  "T %.4f hits %d%s\n",
+                  r.diffuse.x, r.diffuse.y, r.diffuse.z, r.depth, r.normalLength, r.roughness, r.f0.x, r.f0.y, r.f0.z,
+                  r.transmittance, r.hitCount, r.truncated ? " (truncated)" : "");
+      size_t shown = std::min<size_t>(seg.hits.hits.size(), 8);
+      for (size_t h = 0; h < shown; ++h) {
+        const HitRecord& hit = seg.hits.hits[h];
+        std::printf("    hit %zu: Gaussian %u t %.4f alpha %.4f response %.4f\n", h, hit.id, hit.t, hit.alpha,
+                    hit.response);
+      }
+      if (seg.hits.hits.size() > shown) std::printf("    ... %zu more hits\n", seg.hits.hits.size() - shown);
+    }
+  }
+}
 
 void checkOutputFolder(const fs::path& out, bool force) {
   if (!fs::exists(out) || force) return;
@@ -44,6 +73,7 @@ void checkOutputFolder(const fs::path& out, bool force) {
 }
 
 void runRender(const RenderOptions& o) {
+  if (o.output.empty() && o.debugPixel.empty()) throw Error("glint render", "needs an output folder: pass -o OUT");
   SceneSource source = loadSceneSource(o.scene);
   const GaussianScene& scene = source.scene;
   TraceSettings trace = o.trace.apply(source.trace);
@@ -66,7 +96,7 @@ void runRender(const RenderOptions& o) {
     Image image = readImage(*first);
     width = image.width, height = image.height;
   }
-  checkOutputFolder(o.output, o.force);
+  if (o.debugPixel.empty()) checkOutputFolder(o.output, o.force);
 
   std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(o.trace.tracer());
   auto start = std::chrono::steady_clock::now();
@@ -83,6 +113,19 @@ void runRender(const RenderOptions& o) {
   settings.jitter = !o.noJitter;
   settings.seed = o.seed;
   settings.path = o.trace.path();
+  if (!o.debugPixel.empty()) {
+    Vec2i p = parsePixel(o.debugPixel, "--debug-pixel");
+    if (p.x < 0 || p.y < 0 || p.x >= width || p.y >= height)
+      throw Error("--debug-pixel", o.debugPixel + " lies outside the " + std::to_string(width) + "x" +
+                                       std::to_string(height) + " image");
+    if (o.debugView < 0 || size_t(o.debugView) >= split.views.size())
+      throw Error("--view", std::to_string(o.debugView) + " is not a view of the " + o.split + " split (it has " +
+                                std::to_string(split.views.size()) + ")");
+    Camera camera{split.views[o.debugView].cameraToWorld, split.cameraAngleX, width, height};
+    printPixelPaths(tracePixelPaths(*tracer, camera, settings, uint64_t(o.debugView), p.x, p.y), p.x, p.y,
+                    size_t(o.debugView));
+    return;
+  }
   ProgressBar progress("render", int64_t(split.views.size()), "views");
   for (size_t v = 0; v < split.views.size(); ++v) {
     Camera camera{split.views[v].cameraToWorld, split.cameraAngleX, width, height};
@@ -108,13 +151,17 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--dataset", o->dataset,
                   "Dataset whose cameras to use (only transforms_*.json is needed); default: the run's dataset");
   cmd->add_option("--split", o->split, "Camera split")->check(CLI::IsMember({"train", "test"}))->capture_default_str();
-  cmd->add_option("-o,--output", o->output, "Output folder")->required();
+  cmd->add_option("-o,--output", o->output, "Output folder (required unless --debug-pixel)");
   cmd->add_option("--res", o->resolution, "Image size WIDTHxHEIGHT (default: that of the split's render images)");
   cmd->add_option("--spp", o->spp, "Rays per pixel, averaged")->check(CLI::Range(1, 1 << 16))->capture_default_str();
   cmd->add_flag("--no-jitter", o->noJitter,
                 "Send every ray through the pixel centre instead of a random sub-pixel position");
   cmd->add_option("--seed", o->seed, "Seed of the sub-pixel jitter")->capture_default_str();
   o->trace.add(cmd);
+  cmd->add_option("--debug-pixel", o->debugPixel,
+                  "X,Y: print the paths of this pixel of --view (segments, throughputs, blended values, hits), "
+                  "traced exactly as in the full render, and write nothing");
+  cmd->add_option("--view", o->debugView, "View index (in the split) for --debug-pixel")->capture_default_str();
   cmd->add_flag("--force", o->force, "Write into a non-empty output folder");
   cmd->callback([o]() { runRender(*o); });
 }

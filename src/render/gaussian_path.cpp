@@ -10,9 +10,20 @@
 namespace glint {
 
 PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, const PathSettings& settings,
-                     uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample) {
+                     uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample,
+                     std::vector<PathSegment>* segments) {
+  // Traces one segment, recording it when asked.
+  auto traceSegment = [&](const TraceRay& ray, const Rgb& throughput) {
+    if (!segments) return tracer.trace(ray);
+    PathSegment& s = segments->emplace_back();
+    s.ray = ray;
+    s.throughput = throughput;
+    s.result = tracer.trace(ray, &s.hits);
+    return s.result;
+  };
+  if (segments) segments->clear();
   PathResult path;
-  path.first = tracer.trace(primary);
+  path.first = traceSegment(primary, Rgb(1.0f));
   path.specular = Rgb(0.0f);
   RayResult current = path.first;
   TraceRay ray = primary;
@@ -36,7 +47,7 @@ PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, cons
     next.direction = normalize(frame.toWorld(s.wi));
     next.tMin = 0.0f;
     next.backfaceSkip = settings.backfaceSkip;
-    current = tracer.trace(next);
+    current = traceSegment(next, throughput);
     path.specular += throughput * current.diffuse;
     ++path.segments;
     ray = next;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "raytrace/gaussian_tracer.h"
 
@@ -29,9 +30,19 @@ struct PathResult {
   int segments = 1;  // segments traced
 };
 
+// One traced segment, recorded for inspection (glint render --debug-pixel).
+struct PathSegment {
+  TraceRay ray;
+  Rgb throughput;  // weight of this segment's blended diffuse in the specular sum (1 for the first)
+  RayResult result;
+  HitList hits;    // its composited hits, front to back
+};
+
 // Random numbers of segment k come from Rng::forKeys({keys..., k}), so any path can be
-// re-run alone from its keys (seed, view, pixel, sample).
+// re-run alone from its keys (seed, view, pixel, sample). With `segments`, every segment
+// is traced with its hit list and recorded there.
 PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, const PathSettings& settings,
-                     uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample);
+                     uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample,
+                     std::vector<PathSegment>* segments = nullptr);
 
 }  // namespace glint

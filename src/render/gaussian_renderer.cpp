@@ -6,6 +6,36 @@
 
 namespace glint {
 
+namespace {
+
+// The sub-pixel positions of a pixel's samples, drawn from its own stream.
+class PixelSamples {
+ public:
+  PixelSamples(const RenderSettings& settings, uint64_t viewKey, uint64_t pixel)
+      : rng_(Rng::forKeys({settings.seed, viewKey, pixel})), jitter_(settings.jitter) {}
+  Vec2f next() { return jitter_ ? rng_.uniform2() : Vec2f(0.5f, 0.5f); }
+
+ private:
+  Rng rng_;
+  bool jitter_;
+};
+
+}  // namespace
+
+std::vector<std::vector<PathSegment>> tracePixelPaths(const GaussianTracer& tracer, const Camera& camera,
+                                                      const RenderSettings& settings, uint64_t viewKey, int x, int y) {
+  uint64_t pixel = uint64_t(y) * uint64_t(camera.width) + uint64_t(x);
+  PixelSamples samples(settings, viewKey, pixel);
+  std::vector<std::vector<PathSegment>> paths(size_t(settings.spp));
+  for (int s = 0; s < settings.spp; ++s) {
+    Vec2f offset = samples.next();
+    Ray ray = camera.generateRay(x + offset.x, y + offset.y);
+    tracePath(tracer, {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f}, settings.path, settings.seed, viewKey, pixel,
+              uint64_t(s), &paths[size_t(s)]);
+  }
+  return paths;
+}
+
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
                                uint64_t viewKey) {
   ViewBuffers out = ViewBuffers::allocate(camera.width, camera.height);
@@ -13,13 +43,13 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
   parallelForChunks(camera.height, 1, [&](int64_t rowBegin, int64_t rowEnd) {
     for (int64_t y = rowBegin; y < rowEnd; ++y)
       for (int x = 0; x < camera.width; ++x) {
-        Rng rng = Rng::forKeys({settings.seed, viewKey, uint64_t(y) * camera.width + x});
+        uint64_t pixel = uint64_t(y) * uint64_t(camera.width) + uint64_t(x);
+        PixelSamples samples(settings, viewKey, pixel);
         Rgb diffuse(0.0f), specular(0.0f), normal(0.0f), f0(0.0f);
         float depth = 0, roughness = 0;
         for (int s = 0; s < settings.spp; ++s) {
-          Vec2f offset = settings.jitter ? rng.uniform2() : Vec2f(0.5f, 0.5f);
+          Vec2f offset = samples.next();
           Ray ray = camera.generateRay(x + offset.x, y + offset.y);
-          uint64_t pixel = uint64_t(y) * uint64_t(camera.width) + uint64_t(x);
           PathResult path = tracePath(tracer, {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f}, settings.path,
                                       settings.seed, viewKey, pixel, uint64_t(s));
           const RayResult& r = path.first;

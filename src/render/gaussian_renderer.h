@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "raytrace/gaussian_tracer.h"
 #include "render/gaussian_path.h"
@@ -26,5 +27,10 @@ struct RenderSettings {
 // the normal buffer is the average of the blended normals, normalised where non-zero.
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
                                uint64_t viewKey);
+
+// Re-runs the paths of one pixel exactly as renderGaussianView traces them (same sample
+// positions and random numbers) and returns every segment with its hits, per sample.
+std::vector<std::vector<PathSegment>> tracePixelPaths(const GaussianTracer& tracer, const Camera& camera,
+                                                      const RenderSettings& settings, uint64_t viewKey, int x, int y);
 
 }  // namespace glint

@@ -82,6 +82,13 @@ TEST_F(TrainCliTest, KilledAndResumedRunMatchesTheUninterruptedOne) {
   Outcome eval = runGlint("eval " + path("A"));
   EXPECT_EQ(eval.status, 0) << eval.output;
   EXPECT_TRUE(fs::exists(path("A") + "/eval/metrics.json"));
+  Outcome debug = runGlint("render " + path("A") + " --debug-pixel 16,20 --view 1 --bounces 2");
+  EXPECT_EQ(debug.status, 0) << debug.output;
+  EXPECT_NE(debug.output.find("sample 0 segment 0"), std::string::npos) << debug.output;
+  EXPECT_NE(debug.output.find("hit 0: Gaussian"), std::string::npos) << debug.output;
+  Outcome outside = runGlint("render " + path("A") + " --debug-pixel 32,0");
+  EXPECT_NE(outside.status, 0);
+  EXPECT_NE(outside.output.find("outside the 32x24 image"), std::string::npos) << outside.output;
 }
 
 TEST_F(TrainCliTest, RefusesBadInput) {

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "raytrace/gaussian_tracer.h"
+#include "render/gaussian_renderer.h"
 
 namespace glint {
 namespace {
@@ -96,6 +97,34 @@ TEST(GaussianPath, RoughPathsDependOnlyOnTheirKeys) {
   Rgb mean = sum / 256.0f;
   EXPECT_GT(mean.x, 0.05f);
   EXPECT_LT(mean.x, 0.7f);
+}
+
+// Any pixel re-run alone (glint render --debug-pixel) reproduces the full render's value.
+TEST(GaussianPath, PixelReRunAloneMatchesTheRender) {
+  MirrorScene m(0.3f, Vec3f(0, 0, 1));
+  Camera camera;
+  camera.cameraToWorld = Mat4::lookAt(Vec3d(0.5, -0.5, 1.5), Vec3d(0, 0, 0), Vec3d(0, 0, 1));
+  camera.width = 12;
+  camera.height = 9;
+  RenderSettings settings;
+  settings.spp = 3;
+  settings.seed = 5;
+  settings.path.bounces = 2;
+  ViewBuffers image = renderGaussianView(*m.tracer, camera, settings, 7);
+  for (auto [x, y] : {std::pair{3, 4}, std::pair{11, 0}, std::pair{6, 8}}) {
+    std::vector<std::vector<PathSegment>> paths = tracePixelPaths(*m.tracer, camera, settings, 7, x, y);
+    ASSERT_EQ(paths.size(), 3u);
+    Rgb specular(0.0f), diffuse(0.0f);
+    for (const auto& path : paths) {
+      diffuse += path[0].result.diffuse;
+      Rgb sum(0.0f);
+      for (size_t k = 1; k < path.size(); ++k) sum += path[k].throughput * path[k].result.diffuse;
+      specular += sum;
+    }
+    EXPECT_EQ(image[Buffer::Specular].rgb(x, y), specular * (1.0f / 3.0f));
+    EXPECT_EQ(image[Buffer::Diffuse].rgb(x, y), diffuse * (1.0f / 3.0f));
+  }
+  EXPECT_GT(image[Buffer::Specular].rgb(6, 4).x, 0.0f);
 }
 
 }  // namespace
