@@ -21,8 +21,8 @@ done
 printf '%-8s %8s %8s %10s %10s %10s %10s %10s\n' batch steps wall_s "PSNR@60s" "PSNR@180s" "PSNR@end" "t(32dB)" "t(33dB)"
 for b in $batches; do
   awk -F, -v b="$b" 'NR > 1 {
-      steps = $1; wall = $11
-      if ($12 != "") { p = $12
+      steps = $1; wall = $12
+      if ($13 != "") { p = $13
         if (wall <= 60) p60 = p; if (wall <= 180) p180 = p; last = p
         if (p >= 32 && t32 == "") t32 = wall; if (p >= 33 && t33 == "") t33 = wall }
     } END { printf "%-8s %8d %8.0f %10s %10s %10s %10s %10s\n", b, steps, wall, p60, p180, last,

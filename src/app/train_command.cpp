@@ -46,7 +46,7 @@ std::atomic<bool> gInterrupted{false};
 extern "C" void onInterrupt(int) { gInterrupted = true; }
 
 constexpr const char* kLogHeader =
-    "step,loss,diffuse_l1,depth_l1,normal_l1,roughness_l1,f0_l1,gaussians,hits_per_ray,rays_per_s,wall_s,"
+    "step,loss,diffuse_l1,depth_l1,normal_l1,roughness_l1,f0_l1,specular_l1,gaussians,hits_per_ray,rays_per_s,wall_s,"
     "test_diffuse_psnr,test_normal_deg\n";
 
 fs::path checkpointFile(const fs::path& run) { return run / "checkpoint" / "state.bin"; }
@@ -68,7 +68,7 @@ double truncateLog(const fs::path& log, int64_t step) {
     std::string field;
     std::getline(row, field, ',');
     if (field.empty() || std::stoll(field) > step) break;
-    for (int k = 0; k < 10; ++k) std::getline(row, field, ',');  // wall_s is the 11th column
+    for (int k = 0; k < 11; ++k) std::getline(row, field, ',');  // wall_s is the 12th column
     wall = std::atof(field.c_str());
     kept += line + "\n";
   }
@@ -193,9 +193,9 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
       normalField = buf;
     }
     char line[512];
-    std::snprintf(line, sizeof(line), "%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.2f,%.0f,%.2f,%s,%s\n",
+    std::snprintf(line, sizeof(line), "%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.2f,%.0f,%.2f,%s,%s\n",
                   (long long)r.step, r.loss, r.terms.diffuse, r.terms.depth, r.terms.normal, r.terms.roughness,
-                  r.terms.f0, r.gaussians, double(r.hits) / double(std::max<int64_t>(r.rays, 1)),
+                  r.terms.f0, r.terms.specular, r.gaussians, double(r.hits) / double(std::max<int64_t>(r.rays, 1)),
                   double(r.rays) / r.seconds, wall, psnrField.c_str(), normalField.c_str());
     log << line << std::flush;
     char status[200];
@@ -240,9 +240,9 @@ void addTrainCommand(CLI::App& app) {
                                                   "given seed and thread count")
       ->check(CLI::Range(0, 1024))
       ->default_val(defaults.threads);
-  cmd->add_option("--bounces", o->config.bounces, "Reflection bounces (0 = first segment only; reflections are not "
-                                                  "trained yet)")
-      ->check(CLI::Range(0, 0))
+  cmd->add_option("--bounces", o->config.bounces, "Reflected segments trained with L_r after the warm-up "
+                                                  "(reflection_warmup steps); 0 = first segment only")
+      ->check(CLI::Range(0, 8))
       ->default_val(defaults.bounces);
   cmd->add_option("--batch-rays", o->config.batchRays, "Rays per step")
       ->check(CLI::Range(1, 1 << 24))

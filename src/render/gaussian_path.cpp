@@ -18,6 +18,7 @@ PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, cons
     PathSegment& s = segments->emplace_back();
     s.ray = ray;
     s.throughput = throughput;
+    s.hits.capacity = settings.hitListCapacity;
     s.result = tracer.trace(ray, &s.hits);
     return s.result;
   };

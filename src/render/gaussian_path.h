@@ -21,6 +21,7 @@ struct PathSettings {
   float normalOffset = 1e-3f;  // reflection origins move this far along the normal
   // Reflection rays ignore back-facing Gaussians this close to their origin (appendix B).
   float backfaceSkip = 0.1f;
+  size_t hitListCapacity = 512;  // of the hit lists recorded in PathSegment
 };
 
 // One path's outputs: the first segment's result and the specular light of the later ones.

@@ -38,4 +38,12 @@ RayResultAdjoint rayLoss_vjp(const RayResult& r, const PixelTarget& t, const Los
   return v;
 }
 
+double specularLoss(const Rgb& specular, const PixelTarget& t, const LossNormalisation& n) {
+  return absSum(specular - t.specular) / (3 * n.diffuseRays);
+}
+
+Rgb specularLoss_vjp(const Rgb& specular, const PixelTarget& t, const LossNormalisation& n, const LossWeights& w) {
+  return sign(specular - t.specular) * float(w.specular / (3 * n.diffuseRays));
+}
+
 }  // namespace glint

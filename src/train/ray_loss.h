@@ -32,18 +32,27 @@ struct LossNormalisation {
 // summing them over a batch gives the batch's mean errors.
 struct LossTerms {
   double diffuse = 0, depth = 0, normal = 0, roughness = 0, f0 = 0;
+  double specular = 0;  // L_r, once reflections are trained
 
   double weighted(const LossWeights& w) const {
-    return w.diffuse * diffuse + w.depth * depth + w.normal * normal + w.roughness * roughness + w.f0 * f0;
+    return w.diffuse * diffuse + w.depth * depth + w.normal * normal + w.roughness * roughness + w.f0 * f0 +
+           w.specular * specular;
   }
   LossTerms& operator+=(const LossTerms& o) {
     diffuse += o.diffuse, depth += o.depth, normal += o.normal, roughness += o.roughness, f0 += o.f0;
+    specular += o.specular;
     return *this;
   }
 };
 
 // One ray's contribution to each term.
 LossTerms rayLoss(const RayResult& r, const PixelTarget& target, const LossNormalisation& n);
+
+// The reflection term L_r = mean |specular - target| over the batch's rays and channels,
+// and its gradient with respect to the path's specular sum (weights.specular included).
+double specularLoss(const Rgb& specular, const PixelTarget& target, const LossNormalisation& n);
+Rgb specularLoss_vjp(const Rgb& specular, const PixelTarget& target, const LossNormalisation& n,
+                     const LossWeights& weights);
 
 // dL/d result for L = rayLoss(...).weighted(weights); d|x|/dx = sign(x), 0 at 0.
 RayResultAdjoint rayLoss_vjp(const RayResult& r, const PixelTarget& target, const LossNormalisation& n,

@@ -20,6 +20,9 @@ void forEachField(Config& c, F&& f) {
   f("", "seed", c.seed);
   f("", "threads", c.threads);
   f("", "bounces", c.bounces);
+  f("", "reflection_warmup", c.reflectionWarmup);
+  f("", "invalid_normal_length", c.invalidNormalLength);
+  f("", "backface_skip", c.backfaceSkip);
   f("", "batch_rays", c.batchRays);
   f("", "batch_views", c.batchViews);
   f("", "eval_every", c.evalEvery);
@@ -30,6 +33,7 @@ void forEachField(Config& c, F&& f) {
   f("loss", "normal", c.loss.normal);
   f("loss", "roughness", c.loss.roughness);
   f("loss", "f0", c.loss.f0);
+  f("loss", "specular", c.loss.specular);
   f("lr", "position_init", c.lr.positionInit);
   f("lr", "position_final", c.lr.positionFinal);
   f("lr", "position_decay_steps", c.lr.positionDecaySteps);
@@ -131,9 +135,12 @@ void TrainConfig::validate(const std::string& source) const {
   positive(evalEvery, "eval_every");
   positive(saveEvery, "save_every");
   require(threads >= 0 && threads <= 1024, source, "threads must be in [0, 1024]");
-  require(bounces == 0, source, "bounces must be 0: reflections are not trained yet");
+  require(bounces >= 0 && bounces <= 8, source, "bounces must be in [0, 8]");
+  require(reflectionWarmup >= 0, source, "reflection_warmup must be non-negative");
+  require(invalidNormalLength >= 0 && invalidNormalLength <= 1, source, "invalid_normal_length must be in [0, 1]");
+  require(backfaceSkip >= 0, source, "backface_skip must be non-negative");
   require(scaleDecay > 0 && scaleDecay <= 1, source, "scale_decay must be in (0, 1]");
-  for (float w : {loss.diffuse, loss.depth, loss.normal, loss.roughness, loss.f0})
+  for (float w : {loss.diffuse, loss.depth, loss.normal, loss.roughness, loss.f0, loss.specular})
     require(w >= 0, source, "loss weights must be non-negative");
   for (float r : {lr.positionInit, lr.positionFinal, lr.rotation, lr.scale, lr.opacity, lr.diffuse, lr.normal,
                   lr.roughness, lr.f0})

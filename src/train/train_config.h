@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "raytrace/trace_settings.h"
+#include "render/gaussian_path.h"
 #include "train/dense_init.h"
 
 namespace glint {
@@ -20,6 +21,7 @@ struct LossWeights {
   float normal = 2.5f;
   float roughness = 1.0f;
   float f0 = 1.0f;
+  float specular = 3.0f;  // L_r, on the specular buffer (reflected segments only)
 };
 
 // Adam learning rates per parameter group (defaults of the paper's code). The position
@@ -65,7 +67,10 @@ struct TrainConfig {
   int iters = 8000;
   uint64_t seed = 0;
   int threads = 0;   // 0 = all cores
-  int bounces = 0;   // 0 = first segment only (reflections come later)
+  int bounces = 0;   // reflected segments trained after the warm-up (0 = first segment only)
+  int reflectionWarmup = 750;  // steps of first-segment training before reflections start
+  float invalidNormalLength = 0.7f;  // paths end at shorter blended normals
+  float backfaceSkip = 0.1f;         // reflection rays ignore back faces this close
   int batchRays = 16384;
   int batchViews = 4;  // training views a batch's rays are drawn from
   int evalEvery = 1000;
@@ -84,6 +89,15 @@ struct TrainConfig {
     t.exactTail = true;  // the tail estimate of appendix A.2 needs the exact final T
     return t;
   }();
+
+  // The path settings of rendering and of the reflection loss.
+  PathSettings path() const {
+    PathSettings p;
+    p.bounces = bounces;
+    p.invalidNormalLength = invalidNormalLength;
+    p.backfaceSkip = backfaceSkip;
+    return p;
+  }
 
   // Throws Error(source, ...) for out-of-range values.
   void validate(const std::string& source) const;

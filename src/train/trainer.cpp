@@ -16,10 +16,12 @@ namespace glint {
 struct Trainer::Slot {
   GaussianGradients gradient;
   HitList hits;
+  std::vector<PathSegment> segments;  // of the current ray, once reflections are trained
   RayBackwardScratch<float> scratch;
   LossTerms terms;
   int64_t hitCount = 0;
   int64_t overflowed = 0;
+  int64_t reflected = 0;
 };
 
 namespace {
@@ -84,6 +86,9 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   const size_t n = scene_.size();
   const int64_t slotCount = int64_t(slots_.size());
   const int64_t rays = int64_t(batch.size());
+  const bool reflections = config_.bounces > 0 && step_ >= config_.reflectionWarmup;
+  PathSettings pathSettings = config_.path();
+  pathSettings.hitListCapacity = hitCapacityWithoutOverflow(config_.trace);
   parallelFor(slotCount, 1, [&](int64_t s) {
     Slot& slot = *slots_[s];
     if (slot.gradient.size() != n)
@@ -91,14 +96,20 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     else
       slot.gradient.zero(0, n);
     slot.terms = {};
-    slot.hitCount = slot.overflowed = 0;
+    slot.hitCount = slot.overflowed = slot.reflected = 0;
     auto sink = [&](uint32_t id, const HitGradient<float>& g) { slot.gradient.add(id, g); };
     for (int64_t r = rays * s / slotCount; r < rays * (s + 1) / slotCount; ++r) {
       const BatchRay& b = batch[r];
       const PixelTarget& target = views_.target(b.view, b.pixel);
-      RayResult result = tracer_->trace(b.ray, &slot.hits);
+      if (reflections) {
+        // The sample key is the step, so each step draws new reflection directions.
+        tracePath(*tracer_, b.ray, pathSettings, config_.seed, b.view, b.pixel, uint64_t(step_), &slot.segments);
+        std::swap(slot.hits, slot.segments[0].hits);
+      }
+      RayResult result = reflections ? slot.segments[0].result : tracer_->trace(b.ray, &slot.hits);
       slot.terms += rayLoss(result, target, norm);
       slot.hitCount += int64_t(slot.hits.hits.size());
+      if (reflections) reflectionLoss(slot, target, norm, backward, sink);
       if (!backward) continue;
       if (slot.hits.overflowed) {
         ++slot.overflowed;
@@ -117,8 +128,37 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     report->terms += slot->terms;
     report->hits += slot->hitCount;
     report->overflowedRays += slot->overflowed;
+    report->reflectedSegments += slot->reflected;
   }
   report->rays += rays;
+}
+
+template <typename Sink>
+void Trainer::reflectionLoss(Slot& slot, const PixelTarget& target, const LossNormalisation& norm, bool backward,
+                             Sink& sink) {
+  // Specular = sum over reflected segments of throughput x blended diffuse (equation 3).
+  const std::vector<PathSegment>& segments = slot.segments;
+  Rgb specular(0.0f);
+  for (size_t k = 1; k < segments.size(); ++k) specular += segments[k].throughput * segments[k].result.diffuse;
+  slot.terms.specular += specularLoss(specular, target, norm);
+  slot.reflected += int64_t(segments.size()) - 1;
+  if (!backward) return;
+  Rgb g = specularLoss_vjp(specular, target, norm, config_.loss);
+  for (size_t k = 1; k < segments.size(); ++k) {
+    const PathSegment& seg = segments[k];
+    if (seg.hits.overflowed) {
+      ++slot.overflowed;
+      continue;
+    }
+    // L_r reaches the Gaussians a reflected segment hits (their colour, opacity and shape)
+    // through its blended diffuse only: not normals, roughness or F0, nor the sampled
+    // direction. Its gradient is scaled by (1 - rho)^3 of the surface the segment leaves,
+    // which favours the low-variance gradients of sharp reflections (appendix B.5).
+    float rho = std::clamp(segments[k - 1].result.roughness, 0.0f, 1.0f);
+    RayResultAdjoint v;
+    v.v_diffuse = seg.throughput * g * ((1 - rho) * (1 - rho) * (1 - rho));
+    backwardRay<float>(scene_, config_.trace, seg.ray, seg.hits, seg.result, v, slot.scratch, sink);
+  }
 }
 
 StepReport Trainer::step() {

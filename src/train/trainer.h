@@ -29,6 +29,7 @@ struct StepReport {
   size_t gaussians = 0;      // after housekeeping
   int64_t rays = 0;
   int64_t hits = 0;          // composited hits over the batch
+  int64_t reflectedSegments = 0;  // traced after first segments (0 before reflections start)
   int64_t overflowedRays = 0;  // rays whose hit list overflowed (no gradient; never expected)
   size_t pruned = 0;         // removed this step (weight pruning and camera spheres)
   double seconds = 0;        // wall time of the step
@@ -64,6 +65,9 @@ class Trainer {
   struct Slot;  // per-thread scratch and gradient buffer
 
   void setUp(const std::string& tracerKind);
+  // L_r of the slot's current path (its segments) and, with backward, its gradients.
+  template <typename Sink>
+  void reflectionLoss(Slot& slot, const PixelTarget& target, const LossNormalisation& norm, bool backward, Sink& sink);
   size_t housekeeping();
 
   TrainConfig config_;
