@@ -12,17 +12,19 @@ namespace glint {
 PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, const PathSettings& settings,
                      uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample,
                      std::vector<PathSegment>* segments) {
-  // Traces one segment, recording it when asked.
+  // Traces one segment, recording it when asked. Recorded segments reuse the entries (and
+  // hit-list memory) of earlier paths: training records a path per ray.
+  size_t recorded = 0;
   auto traceSegment = [&](const TraceRay& ray, const Rgb& throughput) {
     if (!segments) return tracer.trace(ray);
-    PathSegment& s = segments->emplace_back();
+    if (recorded == segments->size()) segments->emplace_back();
+    PathSegment& s = (*segments)[recorded++];
     s.ray = ray;
     s.throughput = throughput;
     s.hits.capacity = settings.hitListCapacity;
     s.result = tracer.trace(ray, &s.hits);
     return s.result;
   };
-  if (segments) segments->clear();
   PathResult path;
   path.first = traceSegment(primary, Rgb(1.0f));
   path.specular = Rgb(0.0f);

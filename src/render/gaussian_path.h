@@ -41,7 +41,8 @@ struct PathSegment {
 
 // Random numbers of segment k come from Rng::forKeys({keys..., k}), so any path can be
 // re-run alone from its keys (seed, view, pixel, sample). With `segments`, every segment
-// is traced with its hit list and recorded there.
+// is traced with its hit list and recorded in the first PathResult::segments entries
+// (entries beyond them are left from earlier paths, so their memory is reused).
 PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, const PathSettings& settings,
                      uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample,
                      std::vector<PathSegment>* segments = nullptr);

@@ -30,8 +30,9 @@ std::vector<std::vector<PathSegment>> tracePixelPaths(const GaussianTracer& trac
   for (int s = 0; s < settings.spp; ++s) {
     Vec2f offset = samples.next();
     Ray ray = camera.generateRay(x + offset.x, y + offset.y);
-    tracePath(tracer, {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f}, settings.path, settings.seed, viewKey, pixel,
-              uint64_t(s), &paths[size_t(s)]);
+    PathResult path = tracePath(tracer, {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f}, settings.path,
+                                settings.seed, viewKey, pixel, uint64_t(s), &paths[size_t(s)]);
+    paths[size_t(s)].resize(size_t(path.segments));
   }
   return paths;
 }

@@ -17,6 +17,7 @@ struct Trainer::Slot {
   GaussianGradients gradient;
   HitList hits;
   std::vector<PathSegment> segments;  // of the current ray, once reflections are trained
+  size_t segmentCount = 0;            // entries of segments that belong to it
   RayBackwardScratch<float> scratch;
   LossTerms terms;
   int64_t hitCount = 0;
@@ -103,7 +104,9 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
       const PixelTarget& target = views_.target(b.view, b.pixel);
       if (reflections) {
         // The sample key is the step, so each step draws new reflection directions.
-        tracePath(*tracer_, b.ray, pathSettings, config_.seed, b.view, b.pixel, uint64_t(step_), &slot.segments);
+        slot.segmentCount = size_t(
+            tracePath(*tracer_, b.ray, pathSettings, config_.seed, b.view, b.pixel, uint64_t(step_), &slot.segments)
+                .segments);
         std::swap(slot.hits, slot.segments[0].hits);
       }
       RayResult result = reflections ? slot.segments[0].result : tracer_->trace(b.ray, &slot.hits);
@@ -138,13 +141,14 @@ void Trainer::reflectionLoss(Slot& slot, const PixelTarget& target, const LossNo
                              Sink& sink) {
   // Specular = sum over reflected segments of throughput x blended diffuse (equation 3).
   const std::vector<PathSegment>& segments = slot.segments;
+  const size_t count = slot.segmentCount;
   Rgb specular(0.0f);
-  for (size_t k = 1; k < segments.size(); ++k) specular += segments[k].throughput * segments[k].result.diffuse;
+  for (size_t k = 1; k < count; ++k) specular += segments[k].throughput * segments[k].result.diffuse;
   slot.terms.specular += specularLoss(specular, target, norm);
-  slot.reflected += int64_t(segments.size()) - 1;
+  slot.reflected += int64_t(count) - 1;
   if (!backward) return;
   Rgb g = specularLoss_vjp(specular, target, norm, config_.loss);
-  for (size_t k = 1; k < segments.size(); ++k) {
+  for (size_t k = 1; k < count; ++k) {
     const PathSegment& seg = segments[k];
     if (seg.hits.overflowed) {
       ++slot.overflowed;
