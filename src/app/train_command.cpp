@@ -134,6 +134,14 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
     if (given("--eval-every")) config.evalEvery = o.config.evalEvery;
     if (given("--save-every")) config.saveEvery = o.config.saveEvery;
     if (given("--init")) config.initSource = o.config.initSource;
+    if (given("--baseline") && o.config.baseline == "rgb") {
+      if (given("--bounces") && o.config.bounces != 0)
+        throw Error("command line", "--baseline rgb trains no reflections: leave out --bounces");
+      config.baseline = "rgb";
+      config.bounces = 0;
+      config.loss = LossWeights{.diffuse = config.loss.diffuse, .depth = 0, .normal = 0, .roughness = 0, .f0 = 0,
+                                .specular = 0};
+    }
     config.dataset = fs::absolute(o.dataset).lexically_normal().string();
     config.validate("command line");
     fs::create_directories(run);
@@ -145,7 +153,8 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
 
   ThreadLimit threads(config.threads);
   Dataset dataset = Dataset::open(config.dataset);
-  TrainingViews views = TrainingViews::load(dataset, dataset.train());
+  TrainingViews views = TrainingViews::load(dataset, dataset.train(),
+                                            config.baseline == "rgb" ? ColourTarget::Render : ColourTarget::Diffuse);
   std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);
   TestViews testViews = TestViews::load(dataset, dataset.test(), o.evalViews);
 
@@ -204,6 +213,9 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
                   std::isnan(lastPsnr) ? "" : (" | test " + std::to_string(lastPsnr).substr(0, 5) + " dB").c_str());
     progress.setStatus(status);
     progress.advance();
+    if (r.farFieldAdded > 0)
+      progress.note("reflections on at step " + std::to_string(r.step - 1) + ": " +
+                    formatCount(double(r.farFieldAdded)) + " far-field Gaussians added");
     if (r.overflowedRays > 0)
       std::fprintf(stderr, "glint train: warning: %lld rays overflowed their hit list at step %lld\n",
                    (long long)r.overflowedRays, (long long)r.step);
@@ -227,7 +239,9 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
 void addTrainCommand(CLI::App& app) {
   auto o = std::make_shared<TrainOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "train", "Learn a Gaussian scene from a dataset (diffuse and G-buffer supervision). Writes RUN/config.json, "
+      "train", "Learn a Gaussian scene from a dataset: diffuse and G-buffer supervision of the first segment, then "
+               "(after reflection_warmup steps, with --bounces > 0) specular supervision of reflections path-traced "
+               "through the Gaussians, with far-field Gaussians added. Writes RUN/config.json, "
                "RUN/log.csv, RUN/scene.ply and a resumable RUN/checkpoint/; Ctrl-C saves and stops.");
   const TrainConfig defaults;
   cmd->add_option("dataset", o->dataset, "Dataset folder (transforms_train.json, train/...); optional with --resume");
@@ -244,6 +258,12 @@ void addTrainCommand(CLI::App& app) {
                                                   "(reflection_warmup steps); 0 = first segment only")
       ->check(CLI::Range(0, 8))
       ->default_val(defaults.bounces);
+  cmd->add_option("--baseline", o->config.baseline,
+                  "rgb: the ray-traced RGB-only baseline, for comparison: the same tracer and schedule, the colours "
+                  "fitted to the render buffer alone (no G-buffer losses, no reflections); its diffuse pass is its "
+                  "output. none: the method")
+      ->check(CLI::IsMember({"none", "rgb"}))
+      ->default_val(defaults.baseline);
   cmd->add_option("--batch-rays", o->config.batchRays, "Rays per step")
       ->check(CLI::Range(1, 1 << 24))
       ->default_val(defaults.batchRays);

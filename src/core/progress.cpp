@@ -52,6 +52,18 @@ void ProgressBar::setStatus(const std::string& status) {
   status_ = status;
 }
 
+void ProgressBar::note(const std::string& message) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (quiet_) return;
+  if (interactive_) {
+    std::fprintf(stderr, "\r\033[2K%s: %s\n", label_.c_str(), message.c_str());
+    if (!finished_) draw(false);
+  } else {
+    std::fprintf(stderr, "%s: %s\n", label_.c_str(), message.c_str());
+  }
+  std::fflush(stderr);
+}
+
 void ProgressBar::advance(int64_t n) {
   done_.fetch_add(n, std::memory_order_relaxed);
   if (quiet_) return;

@@ -23,6 +23,9 @@ class ProgressBar {
   void finish();
   // Extra text shown after the bar (e.g. current loss); thread-safe.
   void setStatus(const std::string& status);
+  // Prints a message on its own line above the bar (an event worth keeping in the log);
+  // printed even when the bar itself is silent, except under GLINT_QUIET.
+  void note(const std::string& message);
 
   // Progress bars are silent when GLINT_QUIET is set or stderr is not a terminal
   // (in which case one line is printed every ~10 s so logs still show progress).

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 
+#include "core/error.h"
+
 namespace glint {
 
 void GaussianGradients::reset(size_t n) {
@@ -15,6 +17,21 @@ void GaussianGradients::reset(size_t n) {
   roughness.assign(n, 0.0f);
   f0.assign(n, Rgb(0.0f));
   weight.assign(n, 0.0f);
+}
+
+void GaussianGradients::grow(size_t n) {
+  GLINT_CHECK(n >= size(), "GaussianGradients::grow cannot shrink");
+  const size_t old = size();
+  position.resize(n);
+  rotation.resize(n);
+  logScale.resize(n);
+  opacityLogit.resize(n);
+  diffuse.resize(n);
+  normal.resize(n);
+  roughness.resize(n);
+  f0.resize(n);
+  weight.resize(n);
+  zero(old, n);
 }
 
 void GaussianGradients::zero(size_t begin, size_t end) {

@@ -38,6 +38,8 @@ struct GaussianGradients {
   size_t size() const { return position.size(); }
   // Resizes to n Gaussians and zeroes everything.
   void reset(size_t n);
+  // Resizes to n >= size() Gaussians, keeping the existing entries; new entries are zero.
+  void grow(size_t n);
   // Zeroes the entries [begin, end) (so that parallel loops can clear their own ranges).
   void zero(size_t begin, size_t end);
 

@@ -87,6 +87,11 @@ void AdamOptimizer::filter(const std::vector<bool>& keep) {
   filterGradients(&v_, keep);
 }
 
+void AdamOptimizer::grow(size_t n) {
+  m_.grow(n);
+  v_.grow(n);
+}
+
 void filterGradients(GaussianGradients* g, const std::vector<bool>& keep) {
   GLINT_CHECK(keep.size() == g->size(), "keep mask must match the gradient arrays");
   keepEntries(&g->position, keep);

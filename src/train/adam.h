@@ -30,6 +30,8 @@ class AdamOptimizer {
   void step(GaussianScene* scene, const GaussianGradients& gradient, const StepLearningRates& rates);
   // Keeps the moments of the Gaussians whose keep[i] is true (after pruning).
   void filter(const std::vector<bool>& keep);
+  // Appends zero moments for Gaussians added at the end of the scene (n >= the current size).
+  void grow(size_t n);
 
   int64_t stepCount() const { return step_; }
   // The moments, for checkpoints (`weight` is unused).

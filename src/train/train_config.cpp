@@ -20,6 +20,7 @@ void forEachField(Config& c, F&& f) {
   f("", "seed", c.seed);
   f("", "threads", c.threads);
   f("", "bounces", c.bounces);
+  f("", "baseline", c.baseline);
   f("", "reflection_warmup", c.reflectionWarmup);
   f("", "invalid_normal_length", c.invalidNormalLength);
   f("", "backface_skip", c.backfaceSkip);
@@ -61,6 +62,12 @@ void forEachField(Config& c, F&& f) {
   f("init", "opacity", c.init.opacity);
   f("init", "roughness", c.init.roughness);
   f("init", "f0", c.init.f0);
+  f("far_field", "count", c.farField.count);
+  f("far_field", "sigma_factor", c.farField.sigmaFactor);
+  f("far_field", "truncation", c.farField.truncation);
+  f("far_field", "opacity", c.farField.opacity);
+  f("far_field", "diffuse", c.farField.diffuse);
+  f("far_field", "neighbours", c.farField.neighbours);
   f("trace", "kernel_power", c.trace.kernelPower);
   f("trace", "alpha_min", c.trace.alphaMin);
   f("trace", "min_transmittance", c.trace.minTransmittance);
@@ -136,6 +143,13 @@ void TrainConfig::validate(const std::string& source) const {
   positive(saveEvery, "save_every");
   require(threads >= 0 && threads <= 1024, source, "threads must be in [0, 1024]");
   require(bounces >= 0 && bounces <= 8, source, "bounces must be in [0, 8]");
+  require(baseline == "none" || baseline == "rgb", source, "baseline must be \"none\" or \"rgb\"");
+  if (baseline == "rgb")
+    require(bounces == 0 && loss.depth == 0 && loss.normal == 0 && loss.roughness == 0 && loss.f0 == 0 &&
+                loss.specular == 0,
+            source, "baseline \"rgb\" trains on the render buffer alone: bounces and the G-buffer and specular "
+                    "loss weights must be 0");
+  checkFarFieldSettings(farField, source);
   require(reflectionWarmup >= 0, source, "reflection_warmup must be non-negative");
   require(invalidNormalLength >= 0 && invalidNormalLength <= 1, source, "invalid_normal_length must be in [0, 1]");
   require(backfaceSkip >= 0, source, "backface_skip must be non-negative");

@@ -11,6 +11,7 @@
 #include "raytrace/trace_settings.h"
 #include "render/gaussian_path.h"
 #include "train/dense_init.h"
+#include "train/far_field.h"
 
 namespace glint {
 
@@ -67,7 +68,10 @@ struct TrainConfig {
   int iters = 8000;
   uint64_t seed = 0;
   int threads = 0;   // 0 = all cores
-  int bounces = 0;   // reflected segments trained after the warm-up (0 = first segment only)
+  int bounces = 2;   // reflected segments trained after the warm-up (0 = first segment only)
+  // "none" trains the method; "rgb" is the ray-traced RGB-only baseline: the first
+  // segment's colour is fitted to the render buffer alone (no G-buffers, no reflections).
+  std::string baseline = "none";
   int reflectionWarmup = 750;  // steps of first-segment training before reflections start
   float invalidNormalLength = 0.7f;  // paths end at shorter blended normals
   float backfaceSkip = 0.1f;         // reflection rays ignore back faces this close
@@ -84,6 +88,7 @@ struct TrainConfig {
   // the depth buffers), "depth" or "point-cloud", and the settings of either.
   std::string initSource = "auto";
   DenseInitSettings init;
+  FarFieldSettings farField;  // added when reflections start (bounces > 0)
   TraceSettings trace = [] {
     TraceSettings t;
     t.exactTail = true;  // the tail estimate of appendix A.2 needs the exact final T
@@ -93,7 +98,7 @@ struct TrainConfig {
   // The path settings of rendering and of the reflection loss.
   PathSettings path() const {
     PathSettings p;
-    p.bounces = bounces;
+    p.bounces = baseline == "rgb" ? 0 : bounces;
     p.invalidNormalLength = invalidNormalLength;
     p.backfaceSkip = backfaceSkip;
     return p;

@@ -10,6 +10,8 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "train/far_field.h"
+#include "train/reflection_loss.h"
 
 namespace glint {
 
@@ -139,35 +141,19 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
 template <typename Sink>
 void Trainer::reflectionLoss(Slot& slot, const PixelTarget& target, const LossNormalisation& norm, bool backward,
                              Sink& sink) {
-  // Specular = sum over reflected segments of throughput x blended diffuse (equation 3).
-  const std::vector<PathSegment>& segments = slot.segments;
-  const size_t count = slot.segmentCount;
-  Rgb specular(0.0f);
-  for (size_t k = 1; k < count; ++k) specular += segments[k].throughput * segments[k].result.diffuse;
+  std::span<const PathSegment> path(slot.segments.data(), slot.segmentCount);
+  Rgb specular = pathSpecular(path);
   slot.terms.specular += specularLoss(specular, target, norm);
-  slot.reflected += int64_t(count) - 1;
+  slot.reflected += int64_t(path.size()) - 1;
   if (!backward) return;
   Rgb g = specularLoss_vjp(specular, target, norm, config_.loss);
-  for (size_t k = 1; k < count; ++k) {
-    const PathSegment& seg = segments[k];
-    if (seg.hits.overflowed) {
-      ++slot.overflowed;
-      continue;
-    }
-    // L_r reaches the Gaussians a reflected segment hits (their colour, opacity and shape)
-    // through its blended diffuse only: not normals, roughness or F0, nor the sampled
-    // direction. Its gradient is scaled by (1 - rho)^3 of the surface the segment leaves,
-    // which favours the low-variance gradients of sharp reflections (appendix B.5).
-    float rho = std::clamp(segments[k - 1].result.roughness, 0.0f, 1.0f);
-    RayResultAdjoint v;
-    v.v_diffuse = seg.throughput * g * ((1 - rho) * (1 - rho) * (1 - rho));
-    backwardRay<float>(scene_, config_.trace, seg.ray, seg.hits, seg.result, v, slot.scratch, sink);
-  }
+  slot.overflowed += reflectionLoss_vjp<float>(scene_, config_.trace, path, g, slot.scratch, sink);
 }
 
 StepReport Trainer::step() {
   auto start = std::chrono::steady_clock::now();
   StepReport report;
+  if (config_.bounces > 0 && step_ == config_.reflectionWarmup) report.farFieldAdded = addFarField();
   views_.drawBatch(config_.seed, step_, config_.batchRays, config_.batchViews, &batch_);
   forwardBackward(batch_, /*backward=*/true, &report);
   const GaussianGradients& gradient = slots_[0]->gradient;
@@ -194,6 +180,27 @@ StepReport Trainer::step() {
   report.loss = report.terms.weighted(config_.loss);
   report.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
+}
+
+size_t Trainer::addFarField() {
+  if (config_.farField.count == 0) return 0;
+  Vec3d sum(0.0);
+  for (size_t v = 0; v < views_.viewCount(); ++v) sum += views_.camera(v).position();
+  const Vec3f centre = Vec3f(sum / double(views_.viewCount()));
+  GaussianScene far = farFieldGaussians(config_.farField, centre, extent_, config_.seed);
+  // All of each camera sphere: a random Gaussian behind a camera is a floater in the
+  // reflections of every other view.
+  std::vector<bool> keep = outsideCameraSpheres(far, spheres_, CullRegion::WholeSphere);
+  size_t added = 0;
+  for (size_t i = 0; i < far.size(); ++i)
+    if (keep[i]) {
+      scene_.append(far, i);
+      ++added;
+    }
+  adam_.grow(scene_.size());
+  pruneWeight_.resize(scene_.size(), 0.0f);
+  tracer_->build(scene_, config_.trace);
+  return added;
 }
 
 size_t Trainer::housekeeping() {

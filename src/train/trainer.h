@@ -32,6 +32,7 @@ struct StepReport {
   int64_t reflectedSegments = 0;  // traced after first segments (0 before reflections start)
   int64_t overflowedRays = 0;  // rays whose hit list overflowed (no gradient; never expected)
   size_t pruned = 0;         // removed this step (weight pruning and camera spheres)
+  size_t farFieldAdded = 0;  // far-field Gaussians added before this step (when reflections start)
   double seconds = 0;        // wall time of the step
 };
 
@@ -69,6 +70,8 @@ class Trainer {
   template <typename Sink>
   void reflectionLoss(Slot& slot, const PixelTarget& target, const LossNormalisation& norm, bool backward, Sink& sink);
   size_t housekeeping();
+  // Appends the far-field Gaussians outside the camera spheres; returns how many.
+  size_t addFarField();
 
   TrainConfig config_;
   const TrainingViews& views_;

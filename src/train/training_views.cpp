@@ -15,7 +15,7 @@ namespace {
 constexpr uint64_t kBatchStream = 0x62617463682d7279;  // "batch-ry": keys batch draws apart from other streams
 }
 
-TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& split) {
+TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& split, ColourTarget colour) {
   if (split.views.empty()) throw Error(dataset.root().string(), "has no " + split.name + " views to train on");
   TrainingViews tv;
   tv.width_ = split.width;
@@ -30,7 +30,8 @@ TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& sp
   // Views load in parallel: decoding EXR dominates and is independent per file.
   parallelFor(int64_t(split.views.size()), 1, [&](int64_t v) {
     tv.cameras_[v] = split.camera(size_t(v));
-    Image diffuse = dataset.loadBuffer(split, size_t(v), Buffer::Diffuse);
+    Image diffuse =
+        dataset.loadBuffer(split, size_t(v), colour == ColourTarget::Render ? Buffer::Render : Buffer::Diffuse);
     Image depth = dataset.loadBuffer(split, size_t(v), Buffer::Depth);
     Image normal = dataset.loadBuffer(split, size_t(v), Buffer::Normal);
     Image roughness = dataset.loadBuffer(split, size_t(v), Buffer::Roughness);

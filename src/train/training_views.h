@@ -19,12 +19,18 @@ struct BatchRay {
   uint32_t pixel;
 };
 
+// What the first segment's colour is fitted to: the diffuse buffer (the method), or the
+// render buffer (the RGB-only baseline, which bakes reflections into the colours).
+enum class ColourTarget { Diffuse, Render };
+
 class TrainingViews {
  public:
   // Loads the diffuse, specular (when present), depth, normal, roughness and F0 buffers
   // of every view of the split, with a progress bar. Throws Error naming the file for
   // missing buffers, wrong sizes or non-finite values (Dataset::loadBuffer's checks).
-  static TrainingViews load(const Dataset& dataset, const DatasetSplit& split);
+  // With ColourTarget::Render, PixelTarget::diffuse holds the render buffer.
+  static TrainingViews load(const Dataset& dataset, const DatasetSplit& split,
+                            ColourTarget colour = ColourTarget::Diffuse);
 
   size_t viewCount() const { return cameras_.size(); }
   int width() const { return width_; }

@@ -11,6 +11,8 @@
 #include <sstream>
 #include <thread>
 
+#include <nlohmann/json.hpp>
+
 #include "app/run_glint.h"
 
 namespace glint {
@@ -50,14 +52,18 @@ fs::path* TrainCliTest::root_ = nullptr;
 const char* kTrainFlags = " --iters 1500 --batch-rays 512 --save-every 100 --eval-every 500 --threads 2 --seed 3";
 
 TEST_F(TrainCliTest, KilledAndResumedRunMatchesTheUninterruptedOne) {
-  Outcome straight = runGlint("train " + path("D") + " -o " + path("A") + kTrainFlags);
+  // Reflections and the far-field Gaussians (fewer, for a 32x24 dataset) start at step
+  // 750, after the kill.
+  std::ofstream(path("small.json")) << R"({"far_field": {"count": 3000}})";
+  const std::string flags = std::string(kTrainFlags) + " --config " + path("small.json");
+  Outcome straight = runGlint("train " + path("D") + " -o " + path("A") + flags);
   ASSERT_EQ(straight.status, 0) << straight.output;
   ASSERT_TRUE(fs::exists(path("A") + "/scene.ply"));
   for (const char* file : {"config.json", "log.csv", "checkpoint/state.bin"})
     EXPECT_TRUE(fs::exists(path("A") + "/" + file)) << file;
 
   // Start the same run in the background and SIGKILL it once its first checkpoint exists.
-  std::string command = std::string(GLINT_BINARY) + " train " + path("D") + " -o " + path("B") + kTrainFlags +
+  std::string command = std::string(GLINT_BINARY) + " train " + path("D") + " -o " + path("B") + flags +
                         " > " + path("B.log") + " 2>&1 & echo $! > " + path("B.pid");
   ASSERT_EQ(std::system(command.c_str()), 0);
   fs::path checkpoint = path("B") + "/checkpoint/state.bin";
@@ -89,6 +95,24 @@ TEST_F(TrainCliTest, KilledAndResumedRunMatchesTheUninterruptedOne) {
   Outcome outside = runGlint("render " + path("A") + " --debug-pixel 32,0");
   EXPECT_NE(outside.status, 0);
   EXPECT_NE(outside.output.find("outside the 32x24 image"), std::string::npos) << outside.output;
+}
+
+// --baseline rgb fits the first segment's colour to the render buffer, with no G-buffer
+// losses and no reflections, and says so in its config.
+TEST_F(TrainCliTest, RgbBaselineTrainsOnTheRenderBufferAlone) {
+  Outcome run = runGlint("train " + path("D") + " -o " + path("rgb") + " --baseline rgb --iters 20 --batch-rays 512");
+  ASSERT_EQ(run.status, 0) << run.output;
+  nlohmann::json config = nlohmann::json::parse(readBytes(path("rgb") + "/config.json"));
+  EXPECT_EQ(config["baseline"], "rgb");
+  EXPECT_EQ(config["bounces"], 0);
+  for (const char* term : {"depth", "normal", "roughness", "f0", "specular"}) EXPECT_EQ(config["loss"][term], 0.0) << term;
+  EXPECT_GT(config["loss"]["diffuse"].get<double>(), 0.0);
+  std::string log = readBytes(path("rgb") + "/log.csv");
+  EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 21);
+
+  Outcome mixed = runGlint("train " + path("D") + " -o " + path("rgb2") + " --baseline rgb --bounces 2 --iters 5");
+  EXPECT_NE(mixed.status, 0);
+  EXPECT_NE(mixed.output.find("--bounces"), std::string::npos) << mixed.output;
 }
 
 TEST_F(TrainCliTest, RefusesBadInput) {

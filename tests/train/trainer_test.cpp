@@ -46,6 +46,8 @@ class TrainerTest : public ::testing::Test {
     c.batchViews = 2;
     c.prune.start = 100;
     c.prune.every = 50;
+    c.bounces = 0;
+    c.farField.count = 2000;  // the paper's 75,000 is for scenes of millions of pixels
     return c;
   }
   static std::unique_ptr<Trainer> makeTrainer(const TrainConfig& c, bool black = false) {
@@ -122,8 +124,54 @@ bool sameBytes(const std::vector<V>& a, const std::vector<V>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(V)) == 0;
 }
 
+// The RGB-only baseline's colour target is the render buffer.
+TEST_F(TrainerTest, RenderColourTargetHoldsTheRenderBuffer) {
+  TrainingViews rgb = TrainingViews::load(*dataset_, dataset_->train(), ColourTarget::Render);
+  Image render = dataset_->loadBuffer(dataset_->train(), 3, Buffer::Render);
+  Image diffuse = dataset_->loadBuffer(dataset_->train(), 3, Buffer::Diffuse);
+  double renderError = 0, diffuseError = 0;
+  for (int y = 0; y < render.height; ++y)
+    for (int x = 0; x < render.width; ++x) {
+      size_t pixel = size_t(y) * size_t(render.width) + size_t(x);
+      renderError += length(rgb.target(3, pixel).diffuse - render.rgb(x, y));
+      diffuseError += length(views_->target(3, pixel).diffuse - diffuse.rgb(x, y));
+    }
+  EXPECT_EQ(renderError, 0.0);
+  EXPECT_EQ(diffuseError, 0.0);
+}
+
+// When reflections start, the far-field Gaussians join the scene (outside every camera
+// sphere) and the optimiser's state grows with them; training continues over them.
+TEST_F(TrainerTest, FarFieldGaussiansJoinWhenReflectionsStart) {
+  TrainConfig c = smallConfig();
+  c.bounces = 1;
+  c.reflectionWarmup = 5;
+  std::unique_ptr<Trainer> trainer = makeTrainer(c);
+  for (int i = 0; i < 5; ++i) EXPECT_EQ(trainer->step().farFieldAdded, 0u);
+  const size_t before = trainer->scene().size();
+  StepReport r = trainer->step();
+  EXPECT_GT(r.farFieldAdded, size_t(c.farField.count) / 2);
+  EXPECT_LE(r.farFieldAdded, size_t(c.farField.count));
+  ASSERT_EQ(trainer->scene().size(), before + r.farFieldAdded);
+  GaussianScene added;
+  for (size_t i = before; i < trainer->scene().size(); ++i) added.append(trainer->scene(), i);
+  std::vector<bool> outside = outsideCameraSpheres(added, cameraSpheres(*dataset_, dataset_->train()),
+                                                   CullRegion::WholeSphere);
+  EXPECT_EQ(size_t(std::count(outside.begin(), outside.end(), true)), added.size())
+      << "far-field Gaussians near a camera must be culled";
+  for (int i = 0; i < 3; ++i) {
+    StepReport later = trainer->step();
+    EXPECT_EQ(later.farFieldAdded, 0u);
+    EXPECT_TRUE(std::isfinite(later.loss));
+    EXPECT_EQ(later.overflowedRays, 0);
+  }
+}
+
 TEST_F(TrainerTest, ResumedRunIsBitExact) {
   TrainConfig c = smallConfig();
+  c.bounces = 1;  // reflections and the far-field Gaussians start after the resume
+  c.reflectionWarmup = 30;
+  c.farField.count = 500;
   c.prune.start = 20;  // prunes (and rebuilds the tracer) on both sides of the resume
   c.prune.every = 10;
   c.prune.weightThreshold = 0.5f;

@@ -1,0 +1,59 @@
+// Far-field Gaussians: a truncated normal cloud around the scene centre.
+#include "train/far_field.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+#include "math/rng.h"
+#include "math/sampling.h"
+#include "train/nearest_neighbours.h"
+
+namespace glint {
+
+void checkFarFieldSettings(const FarFieldSettings& s, const std::string& where) {
+  if (s.count < 0) throw Error(where, "far_field.count must be 0 or more");
+  if (!(s.sigmaFactor > 0.0f && std::isfinite(s.sigmaFactor))) throw Error(where, "far_field.sigma_factor must be positive");
+  if (!(s.truncation > 0.0f && std::isfinite(s.truncation))) throw Error(where, "far_field.truncation must be positive");
+  if (!(s.opacity > 0.0f && s.opacity < 1.0f)) throw Error(where, "far_field.opacity must lie in (0, 1)");
+  if (!(s.diffuse >= 0.0f && std::isfinite(s.diffuse))) throw Error(where, "far_field.diffuse must be 0 or more");
+  if (s.neighbours < 1) throw Error(where, "far_field.neighbours must be at least 1");
+}
+
+GaussianScene farFieldGaussians(const FarFieldSettings& s, const Vec3f& centre, float sceneRadius, uint64_t seed) {
+  GLINT_CHECK(sceneRadius > 0.0f, "farFieldGaussians: the scene radius must be positive");
+  const float sigma = s.sigmaFactor * sceneRadius;
+  const float limit2 = s.truncation * s.truncation;
+  // A Gaussian stream of its own, so that the cloud does not depend on anything else the
+  // run draws.
+  Rng rng = Rng::forKeys({seed, 0x6661722d6669656cull});  // "far-fiel"
+  std::vector<Vec3f> points;
+  points.reserve(size_t(s.count));
+  while (points.size() < size_t(s.count)) {
+    // Box-Muller pairs; rejection of the tail beyond the truncation radius.
+    Vec3f z;
+    for (int axis = 0; axis < 3; ++axis) {
+      float u1 = std::max(rng.uniform(), 1e-12f), u2 = rng.uniform();
+      z[axis] = std::sqrt(-2.0f * std::log(u1)) * std::cos(2.0f * kPi * u2);
+    }
+    if (dot(z, z) > limit2) continue;
+    points.push_back(centre + z * sigma);
+  }
+  std::vector<float> spacing = meanNeighbourDistances(points, s.neighbours);
+  GaussianScene scene;
+  scene.resize(points.size());
+  for (size_t i = 0; i < points.size(); ++i) {
+    scene.position[i] = points[i];
+    scene.rotation[i] = Quatf{};
+    scene.logScale[i] = Vec3f(std::log(std::max(spacing[i], 1e-4f * sceneRadius)));
+    scene.opacityLogit[i] = logit(s.opacity);
+    scene.diffuse[i] = Rgb(s.diffuse);
+    scene.normal[i] = Vec3f(0.0f);
+    scene.roughness[i] = 0.0f;
+    scene.f0[i] = Rgb(0.04f);
+  }
+  return scene;
+}
+
+}  // namespace glint
