@@ -16,4 +16,14 @@ Ray Camera::generateRay(double px, double py) const {
   return ray;
 }
 
+bool Camera::project(const Mat4& worldToCamera, const Vec3d& p, Vec2d* pixel) const {
+  // The camera-space direction of the ray through (px, py) is ((px - W/2)/f, -(py - H/2)/f, -1).
+  Vec3d local = worldToCamera.transformPoint(p);
+  double ahead = -local.z;
+  if (!(ahead > 0.0)) return false;
+  double f = focal();
+  *pixel = {0.5 * width + f * local.x / ahead, 0.5 * height - f * local.y / ahead};
+  return true;
+}
+
 }  // namespace glint

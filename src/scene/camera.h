@@ -25,6 +25,10 @@ struct Camera {
   // In camera space the direction is ((px - W/2)/f, -(py - H/2)/f, -1), normalised.
   Ray generateRay(double px, double py) const;
   Vec3d position() const { return cameraToWorld.column(3); }
+  // generateRay inverted: the continuous pixel position p projects to, given the inverse of
+  // cameraToWorld; false when p is not in front of the camera. The position may lie outside
+  // the image.
+  bool project(const Mat4& worldToCamera, const Vec3d& p, Vec2d* pixel) const;
   Vec3d forward() const { return normalize(-cameraToWorld.column(2)); }
 };
 

@@ -42,15 +42,9 @@ bool insideRegion(const CameraSphere& sphere, const Mat4& worldToCamera, const V
   Vec3d d = p - camera.position();
   if (!(dot(d, d) < sphere.radius * sphere.radius)) return false;
   if (region == CullRegion::WholeSphere) return true;
-  // Camera::generateRay inverted: the ray through (px, py) has the camera-space direction
-  // ((px - W/2)/f, -(py - H/2)/f, -1), so p projects to the pixel position below.
-  Vec3d local = worldToCamera.transformPoint(p);
-  double ahead = -local.z;
-  if (!(ahead > 0.0)) return false;
-  double f = camera.focal();
-  double px = 0.5 * camera.width + f * local.x / ahead;
-  double py = 0.5 * camera.height - f * local.y / ahead;
-  return px >= 0.0 && px < double(camera.width) && py >= 0.0 && py < double(camera.height);
+  Vec2d pixel;
+  return camera.project(worldToCamera, p, &pixel) && pixel.x >= 0.0 && pixel.x < double(camera.width) &&
+         pixel.y >= 0.0 && pixel.y < double(camera.height);
 }
 
 }  // namespace

@@ -6,9 +6,12 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel.h"
+#include "raytrace/gaussian_kernel.h"
 #include "math/rng.h"
 #include "math/sampling.h"
 #include "train/nearest_neighbours.h"
+#include "train/training_views.h"
 
 namespace glint {
 
@@ -54,6 +57,42 @@ GaussianScene farFieldGaussians(const FarFieldSettings& s, const Vec3f& centre, 
     scene.f0[i] = Rgb(0.04f);
   }
   return scene;
+}
+
+size_t carveObservedFreeSpace(GaussianScene* farField, const TrainingViews& views, const TraceSettings& trace) {
+  GaussianScene& g = *farField;
+  std::vector<Mat4> worldToCamera;
+  for (size_t v = 0; v < views.viewCount(); ++v) worldToCamera.push_back(views.camera(v).cameraToWorld.inverse());
+  std::vector<bool> keep(g.size(), true);
+  parallelFor(int64_t(g.size()), 256, [&](int64_t i) {
+    const Vec3d p(g.position[i]);
+    // The smallest distance, over the views, by which the centre lies behind the surface
+    // recorded in its direction.
+    double gap = INFINITY;
+    for (size_t v = 0; v < views.viewCount() && gap > 0.0; ++v) {
+      const Camera& camera = views.camera(v);
+      Vec2d pixel;
+      if (!camera.project(worldToCamera[v], p, &pixel)) continue;
+      if (!(pixel.x >= 0.0 && pixel.x < camera.width && pixel.y >= 0.0 && pixel.y < camera.height)) continue;
+      const PixelTarget& t = views.target(v, size_t(pixel.y) * size_t(camera.width) + size_t(pixel.x));
+      if (!t.surface) continue;
+      gap = std::min(gap, length(p - camera.position()) - double(t.depth));
+    }
+    if (!(gap > 0.0)) {
+      keep[i] = false;
+      return;
+    }
+    if (std::isinf(gap)) return;
+    // Proxy radius in units of the scale: the support ends at proxyRadius x scale.
+    const double support = proxyRadius(double(g.opacity(size_t(i))), trace);
+    if (!(support > 0.0)) return;  // never reaches alpha_min: invisible at any size
+    const float maxLogScale = float(std::log(gap / support));
+    Vec3f& s = g.logScale[i];
+    s = {std::min(s.x, maxLogScale), std::min(s.y, maxLogScale), std::min(s.z, maxLogScale)};
+  });
+  const size_t before = g.size();
+  g.filter(keep);
+  return before - g.size();
 }
 
 }  // namespace glint

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "math/vec.h"
+#include "raytrace/trace_settings.h"
 #include "scene/gaussians.h"
 
 namespace glint {
@@ -30,5 +31,16 @@ void checkFarFieldSettings(const FarFieldSettings& s, const std::string& where);
 // initialisation sizes its points); normal 0, so paths reaching them end; roughness 0
 // and F0 0.04 as the other initial Gaussians. Deterministic in `seed`.
 GaussianScene farFieldGaussians(const FarFieldSettings& s, const Vec3f& centre, float sceneRadius, uint64_t seed);
+
+class TrainingViews;
+
+// Appendix B culls far-field Gaussians near the cameras only. Glint also removes those a
+// training view sees to lie in empty space (closer than the surface its pixel records),
+// and shrinks the others so that their support (the proxy radius of `trace`) stays behind
+// every surface a view records in their direction. Far-field Gaussians stand for what no
+// camera sees directly; on builtin:spheres, without this, the ones floating inside the
+// room raised the depth error 27-fold when they were added and hid the warm-up's work.
+// Pixels without a surface (the sky) carve nothing. Returns how many were removed.
+size_t carveObservedFreeSpace(GaussianScene* farField, const TrainingViews& views, const TraceSettings& trace);
 
 }  // namespace glint

@@ -190,6 +190,7 @@ size_t Trainer::addFarField() {
   GaussianScene far = farFieldGaussians(config_.farField, centre, extent_, config_.seed);
   // All of each camera sphere: a random Gaussian behind a camera is a floater in the
   // reflections of every other view.
+  carveObservedFreeSpace(&far, views_, config_.trace);
   std::vector<bool> keep = outsideCameraSpheres(far, spheres_, CullRegion::WholeSphere);
   size_t added = 0;
   for (size_t i = 0; i < far.size(); ++i)

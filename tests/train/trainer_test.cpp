@@ -12,6 +12,8 @@
 #include "synth/dataset_generator.h"
 #include "train/camera_culling.h"
 #include "train/dense_init.h"
+#include "train/far_field.h"
+#include "raytrace/gaussian_kernel.h"
 #include "train/scene_extent.h"
 #include "train/training_eval.h"
 
@@ -138,6 +140,35 @@ TEST_F(TrainerTest, RenderColourTargetHoldsTheRenderBuffer) {
     }
   EXPECT_EQ(renderError, 0.0);
   EXPECT_EQ(diffuseError, 0.0);
+}
+
+// Carving keeps far-field Gaussians only where no training view records free space, with
+// their support behind every recorded surface.
+TEST_F(TrainerTest, FarFieldIsCarvedOutOfObservedFreeSpace) {
+  TrainConfig c = smallConfig();
+  SceneSphere sphere = sceneSphere(dataset_->train());
+  GaussianScene far = farFieldGaussians(c.farField, Vec3f(sphere.centre), sphere.radius, 5);
+  const size_t before = far.size();
+  size_t removed = carveObservedFreeSpace(&far, *views_, c.trace);
+  EXPECT_EQ(far.size(), before - removed);
+  EXPECT_GT(removed, 0u);
+  EXPECT_GT(far.size(), 0u);
+  size_t checked = 0;
+  for (size_t i = 0; i < far.size(); ++i) {
+    const double support = proxyRadius(double(far.opacity(i)), c.trace) * double(far.scale(i).x);
+    for (size_t v = 0; v < views_->viewCount(); ++v) {
+      const Camera& camera = views_->camera(v);
+      Vec2d pixel;
+      if (!camera.project(camera.cameraToWorld.inverse(), Vec3d(far.position[i]), &pixel)) continue;
+      if (pixel.x < 0 || pixel.x >= camera.width || pixel.y < 0 || pixel.y >= camera.height) continue;
+      const PixelTarget& t = views_->target(v, size_t(pixel.y) * size_t(camera.width) + size_t(pixel.x));
+      if (!t.surface) continue;
+      double distance = length(Vec3d(far.position[i]) - camera.position());
+      EXPECT_GE(distance - support, double(t.depth) * (1 - 1e-5)) << "Gaussian " << i << " view " << v;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 100u);
 }
 
 // When reflections start, the far-field Gaussians join the scene (outside every camera
