@@ -1,6 +1,7 @@
 // Flag value parsing with messages that name the flag.
 #include "app/cli_parsing.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -68,6 +69,18 @@ Vec2i parsePixel(const std::string& text, const std::string& flag) {
   if (xy.size() != 2 || xy[0] > 1u << 20 || xy[1] > 1u << 20)
     throw Error(flag, "expects a pixel position X,Y (e.g. 80,60), got '" + text + "'");
   return {int(xy[0]), int(xy[1])};
+}
+
+WorldBox parseBox(const std::string& text, const std::string& flag) {
+  std::vector<std::string> parts = split(text, ',');
+  float v[6];
+  bool ok = parts.size() == 6;
+  for (size_t i = 0; ok && i < 6; ++i) ok = parseFloat(parts[i], &v[i]) && std::isfinite(v[i]);
+  if (!ok) throw Error(flag + " expects six numbers X0,Y0,Z0,X1,Y1,Z1 (two opposite corners), got '" + text + "'");
+  WorldBox box;
+  box.lo = {std::min(v[0], v[3]), std::min(v[1], v[4]), std::min(v[2], v[5])};
+  box.hi = {std::max(v[0], v[3]), std::max(v[1], v[4]), std::max(v[2], v[5])};
+  return box;
 }
 
 }  // namespace glint

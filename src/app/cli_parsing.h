@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "eval/region_metrics.h"
 #include "math/vec.h"
 
 namespace glint {
@@ -17,5 +18,7 @@ Rgb parseColor(const std::string& text, const std::string& flag);
 std::vector<size_t> parseIndexList(const std::string& text, const std::string& flag);
 // "12,34" -> (12, 34), a pixel position. Throws Error naming the flag.
 Vec2i parsePixel(const std::string& text, const std::string& flag);
+// "X0,Y0,Z0,X1,Y1,Z1": a world-space box, corners in any order.
+WorldBox parseBox(const std::string& text, const std::string& flag);
 
 }  // namespace glint

@@ -323,6 +323,8 @@ TEST_F(CliTest, RunFoldersWithoutASceneOrWithABadConfigAreRejected) {
       {"eval " + path("lost_run"), "--dataset"},
       {"render " + path("lost_run") + " -o " + path("R"), "--dataset"},
       {"eval " + path("lost_run") + " --dataset " + path("nowhere"), "nowhere"},
+      {"eval " + path("lost_run") + " --region 1,2,3", "--region expects six numbers"},
+      {"eval " + path("lost_run") + " --region 0,0,0,1,1,nan", "--region expects six numbers"},
   };
   expectEachRejected(cases);
   EXPECT_FALSE(fs::exists(root_ / "R"));
