@@ -22,12 +22,15 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.prune.start = 17;
   c.initSource = "depth";
   c.trace.kernelPower = 2.0f;
-  c.trace.exactTail = false;
+  c.trace.exactTail = true;
+  c.farField.count = 1234;
+  c.baseline = "none";
   TrainConfig back;
   applyJson(toJson(c), &back, "test");
   EXPECT_EQ(toJson(back), toJson(c));
   EXPECT_EQ(back.batchRays, 777);
-  EXPECT_EQ(back.trace.exactTail, false);
+  EXPECT_EQ(back.trace.exactTail, true);
+  EXPECT_EQ(back.farField.count, 1234);
 }
 
 TEST(TrainConfig, DefaultsAreThePapers) {
@@ -39,7 +42,15 @@ TEST(TrainConfig, DefaultsAreThePapers) {
   EXPECT_EQ(c.scaleDecay, 0.9999f);
   EXPECT_EQ(c.prune.every, 125);
   EXPECT_EQ(c.prune.start, 1250);
-  EXPECT_TRUE(c.trace.exactTail);
+  EXPECT_FALSE(c.trace.exactTail);  // Glint's choice, see train_config.h
+  EXPECT_EQ(c.bounces, 2);
+  EXPECT_EQ(c.reflectionWarmup, 750);
+  EXPECT_EQ(c.loss.specular, 3.0f);
+  EXPECT_EQ(c.farField.count, 75000);
+  EXPECT_EQ(c.farField.sigmaFactor, 4.0f);
+  EXPECT_EQ(c.farField.truncation, 3.0f);
+  EXPECT_EQ(c.farField.opacity, 0.1f);
+  EXPECT_EQ(c.farField.diffuse, 0.2f);
   nlohmann::json j = toJson(c);
   EXPECT_EQ(j["trace"]["kernel_power"], 3.0);
   EXPECT_EQ(j["batch_rays"], 16384);
@@ -64,6 +75,9 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   expectRejected("{\"init\": {\"source\": \"magic\"}}", "init.source");
   expectRejected("{\"adam\": {\"beta1\": 1.0}}", "beta1");
   expectRejected("{\"lr\": {\"position_final\": 1.0}}", "position_final");
+  expectRejected("{\"far_field\": {\"count\": -5}}", "far_field.count");
+  expectRejected("{\"baseline\": \"rgbd\"}", "baseline");
+  expectRejected("{\"baseline\": \"rgb\"}", "G-buffer");  // bounces and G-buffer weights left on
 }
 
 }  // namespace
