@@ -8,33 +8,20 @@
 #include <cmath>
 
 #include "raytrace/gaussian_tracer.h"
+#include "render/gaussian_layers.h"
 #include "render/gaussian_renderer.h"
 
 namespace glint {
 namespace {
 
-// A 4 x 4 m layer of flat, nearly opaque Gaussians at height z, facing `normal`.
-void addLayer(GaussianScene* scene, float z, Vec3f normal, Rgb diffuse, Rgb f0, float roughness) {
-  for (int i = -20; i <= 20; ++i)
-    for (int j = -20; j <= 20; ++j) {
-      size_t k = scene->size();
-      scene->resize(k + 1);
-      scene->position[k] = Vec3f(0.1f * float(i), 0.1f * float(j), z);
-      scene->logScale[k] = Vec3f(std::log(0.08f), std::log(0.08f), std::log(0.004f));
-      scene->opacityLogit[k] = logit(0.98f);
-      scene->diffuse[k] = diffuse;
-      scene->normal[k] = normal;
-      scene->roughness[k] = roughness;
-      scene->f0[k] = f0;
-    }
-}
-
 struct MirrorScene {
   GaussianScene scene;
   std::unique_ptr<GaussianTracer> tracer;
   MirrorScene(float floorRoughness, Vec3f floorNormal) {
-    addLayer(&scene, 0.0f, floorNormal, Rgb(0.0f), Rgb(0.5f, 0.6f, 0.7f), floorRoughness);
-    addLayer(&scene, 3.0f, Vec3f(0, 0, -1), Rgb(1.0f, 0.2f, 0.1f), Rgb(0.0f), 1.0f);
+    // 4 x 4 m layers of flat, nearly opaque Gaussians: the floor and the ceiling.
+    test::addLayer(&scene, 0.0f, 0.0f, 0.0f, 41, 41, 0.1f,
+                   {Rgb(0.0f), floorNormal, floorRoughness, Rgb(0.5f, 0.6f, 0.7f)});
+    test::addLayer(&scene, 0.0f, 0.0f, 3.0f, 41, 41, 0.1f, {Rgb(1.0f, 0.2f, 0.1f), Vec3f(0, 0, -1), 1.0f, Rgb(0.0f)});
     tracer = makeGaussianTracer("fast");
     tracer->build(scene, TraceSettings());
   }

@@ -1,0 +1,44 @@
+// Horizontal layers of flat Gaussians for the render tests: a regular grid of nearly opaque
+// discs standing in for a plane (mirror floors, emitting ceilings, small patterns).
+#pragma once
+
+#include <cmath>
+
+#include "scene/gaussians.h"
+
+namespace glint::test {
+
+// Material and shape of every Gaussian of a layer.
+struct LayerLook {
+  Rgb diffuse{0.0f};
+  Vec3f normal{0, 0, 1};
+  float roughness = 1.0f;
+  Rgb f0{0.0f};
+  float opacity = 0.98f;
+  // Standard deviation in the plane, as a fraction of the grid spacing: 0.8 overlaps the
+  // neighbours enough for the layer to be opaque between centres.
+  float sigmaPerSpacing = 0.8f;
+  float thickness = 0.004f;  // standard deviation along z
+};
+
+// Adds countX x countY Gaussians at height z on a grid of the given spacing, centred on
+// (centreX, centreY): the layer's nominal extent is countX x spacing by countY x spacing.
+inline void addLayer(GaussianScene* scene, float centreX, float centreY, float z, int countX, int countY,
+                     float spacing, const LayerLook& look) {
+  float sigma = look.sigmaPerSpacing * spacing;
+  for (int i = 0; i < countX; ++i)
+    for (int j = 0; j < countY; ++j) {
+      size_t k = scene->size();
+      scene->resize(k + 1);
+      scene->position[k] = Vec3f(centreX + spacing * (float(i) + 0.5f - 0.5f * float(countX)),
+                                 centreY + spacing * (float(j) + 0.5f - 0.5f * float(countY)), z);
+      scene->logScale[k] = Vec3f(std::log(sigma), std::log(sigma), std::log(look.thickness));
+      scene->opacityLogit[k] = logit(look.opacity);
+      scene->diffuse[k] = look.diffuse;
+      scene->normal[k] = look.normal;
+      scene->roughness[k] = look.roughness;
+      scene->f0[k] = look.f0;
+    }
+}
+
+}  // namespace glint::test
