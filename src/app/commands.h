@@ -12,5 +12,6 @@ void addExportCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);
 void addTrainCommand(CLI::App& app);
 void addEvalCommand(CLI::App& app);
+void addReportCommand(CLI::App& app);
 
 }  // namespace glint

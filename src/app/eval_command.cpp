@@ -54,15 +54,6 @@ fs::path metricsPath(const EvalOptions& o) {
   return fs::path(o.run) / "eval" / "metrics.json";
 }
 
-// "31.42", "inf" for an exact match, "-" for a metric without pixels.
-std::string formatMetric(double x, int decimals) {
-  if (std::isnan(x)) return "-";
-  if (std::isinf(x)) return "inf";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", decimals, x);
-  return text;
-}
-
 void printTable(const DatasetSplit& split, const std::vector<ViewMetrics>& views, const ViewMetrics& mean) {
   std::printf("%-32s %12s %12s %12s %12s %10s %10s\n", "view", "diffuse dB", "diffuse 8b", "final dB", "final 8b",
               "depth RMSE", "normal deg");

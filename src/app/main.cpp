@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   glint::addTrainCommand(app);
   glint::addRenderCommand(app);
   glint::addEvalCommand(app);
+  glint::addReportCommand(app);
   glint::addExportCommand(app);
   if (argc == 1) {
     std::fputs(app.help().c_str(), stdout);

@@ -2,8 +2,10 @@
 #include "eval/view_metrics.h"
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
+#include "core/error.h"
 #include "eval/image_metrics.h"
 
 namespace glint {
@@ -47,6 +49,26 @@ nlohmann::json passJson(const PassMetrics& m) {
           {"ssim_tonemapped", number(m.ssimTonemapped)}};
 }
 
+// A number, or NaN for null (how toJson stores NaN and infinity).
+double numberAt(const nlohmann::json& j, const char* key, const std::string& file, const std::string& where) {
+  if (!j.is_object() || !j.contains(key))
+    throw Error(file, "key \"" + where + "." + key + "\" is missing");
+  const nlohmann::json& v = j[key];
+  if (v.is_null()) return std::numeric_limits<double>::quiet_NaN();
+  if (!v.is_number()) throw Error(file, "key \"" + where + "." + key + "\" is not a number");
+  return v.get<double>();
+}
+
+PassMetrics passFromJson(const nlohmann::json& j, const char* pass, const std::string& file,
+                         const std::string& where) {
+  if (!j.contains(pass) || !j[pass].is_object())
+    throw Error(file, "key \"" + where + "." + pass + "\" is missing or not an object");
+  const nlohmann::json& p = j[pass];
+  const std::string at = where + "." + pass;
+  return {numberAt(p, "psnr", file, at), numberAt(p, "ssim", file, at), numberAt(p, "psnr_tonemapped", file, at),
+          numberAt(p, "ssim_tonemapped", file, at)};
+}
+
 }  // namespace
 
 PassMetrics evaluatePass(const Image& predicted, const Image& truth) {
@@ -80,6 +102,25 @@ nlohmann::json toJson(const ViewMetrics& metrics) {
           {"final", passJson(metrics.final)},
           {"depth_rmse", number(metrics.depthRmse)},
           {"normal_angle_deg", number(metrics.normalAngleDegrees)}};
+}
+
+std::string formatMetric(double x, int decimals) {
+  if (std::isnan(x)) return "-";
+  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*f", decimals, x);
+  return text;
+}
+
+ViewMetrics viewMetricsFromJson(const nlohmann::json& j, const std::string& file, const std::string& where) {
+  if (!j.is_object()) throw Error(file, "key \"" + where + "\" is not an object");
+  ViewMetrics m;
+  m.diffuse = passFromJson(j, "diffuse", file, where);
+  m.specular = passFromJson(j, "specular", file, where);
+  m.final = passFromJson(j, "final", file, where);
+  m.depthRmse = numberAt(j, "depth_rmse", file, where);
+  m.normalAngleDegrees = numberAt(j, "normal_angle_deg", file, where);
+  return m;
 }
 
 }  // namespace glint

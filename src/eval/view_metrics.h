@@ -3,6 +3,7 @@
 #pragma once
 
 #include <span>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
@@ -40,5 +41,12 @@ ViewMetrics averageViewMetrics(std::span<const ViewMetrics> views);
 //  "final": {...}, "depth_rmse", "normal_angle_deg"}. JSON has no NaN or infinity: those
 // become null.
 nlohmann::json toJson(const ViewMetrics& metrics);
+
+// "31.42" (that many decimals), "inf" for an exact match, "-" for a metric without a value (NaN).
+std::string formatMetric(double x, int decimals);
+
+// The inverse of toJson, null becoming NaN. `where` names the object in errors (e.g.
+// "per_view[3]"); throws Error naming file and the key that is missing or not a number.
+ViewMetrics viewMetricsFromJson(const nlohmann::json& j, const std::string& file, const std::string& where);
 
 }  // namespace glint

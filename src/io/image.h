@@ -49,6 +49,11 @@ const char* imageFormatExtension(ImageFormat format);  // ".exr", ".tiff", ".png
 // the file and the problem (missing, truncated, unsupported layout, ...).
 Image readImage(const std::filesystem::path& path);
 
+// The bytes of an 8-bit PNG of the image (values clamped to [0,1] and rounded, as
+// writeImage does), encoded in memory: for embedding in a page as a data: URI. The image
+// must be non-empty with 1, 3 or 4 channels.
+std::string encodePng(const Image& image);
+
 // Writes an image atomically in the format of the extension: EXR float32, TIFF 16-bit
 // float (half), PNG 8-bit (values clamped to [0,1] and rounded). Images with 1 or 3
 // channels (PNG also 4). Throws Error naming the file.

@@ -1,4 +1,5 @@
-// PNG reading (8/16-bit grey, RGB, palette; alpha dropped) and 8-bit writing through libpng.
+// PNG reading (8/16-bit grey, RGB, palette; alpha dropped) and 8-bit writing, to a file or
+// to memory, through libpng.
 #include <png.h>
 
 #include <algorithm>
@@ -23,6 +24,7 @@ namespace {
 // destructible locals; everything with a destructor lives in this job, owned by the caller.
 struct PngJob {
   std::FILE* file = nullptr;
+  std::string* memory = nullptr;  // write: the encoded bytes go here when file is null
   std::string error;
   // Read: filled by decodePng. Write: filled by the caller.
   png_uint_32 width = 0, height = 0;
@@ -93,7 +95,23 @@ bool decodePng(PngJob& job) {
   return true;
 }
 
-// Encodes job.rows (8-bit, job.channels) into job.file. Returns false (job.error set) on failure.
+// Appends encoded bytes to job.memory; false if memory runs out. Kept apart from
+// appendToMemory so no exception ever has to pass through libpng's frames.
+bool appendBytes(PngJob& job, const png_byte* data, size_t length) {
+  try {
+    job.memory->append(reinterpret_cast<const char*>(data), length);
+  } catch (const std::bad_alloc&) {
+    return false;
+  }
+  return true;
+}
+
+void appendToMemory(png_structp png, png_bytep data, png_size_t length) {
+  if (!appendBytes(*static_cast<PngJob*>(png_get_io_ptr(png)), data, length)) png_error(png, "out of memory");
+}
+
+// Encodes job.rows (8-bit, job.channels) into job.file, or job.memory when there is no
+// file. Returns false (job.error set) on failure.
 bool encodePng(PngJob& job) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, onPngError, onPngWarning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -106,7 +124,10 @@ bool encodePng(PngJob& job) {
     png_destroy_write_struct(&png, &info);
     return false;
   }
-  png_init_io(png, job.file);
+  if (job.file)
+    png_init_io(png, job.file);
+  else
+    png_set_write_fn(png, &job, appendToMemory, nullptr);
   int colorType = job.channels == 1 ? PNG_COLOR_TYPE_GRAY
                   : job.channels == 3 ? PNG_COLOR_TYPE_RGB
                                       : PNG_COLOR_TYPE_RGB_ALPHA;
@@ -154,8 +175,10 @@ Image readPng(const std::string& path) {
   return image;
 }
 
-void writePng(const std::string& filePath, const std::string& displayPath, const Image& image) {
-  PngJob job;
+namespace {
+
+// Quantises the image into job.data and points job.rows at it.
+void fillRows(PngJob& job, const Image& image) {
   job.width = png_uint_32(image.width);
   job.height = png_uint_32(image.height);
   job.channels = image.channels;
@@ -163,7 +186,13 @@ void writePng(const std::string& filePath, const std::string& displayPath, const
   std::transform(image.pixels.begin(), image.pixels.end(), job.data.begin(), quantize8);
   job.rows.resize(job.height);
   for (png_uint_32 y = 0; y < job.height; ++y) job.rows[y] = job.data.data() + size_t(image.width) * image.channels * y;
+}
 
+}  // namespace
+
+void writePng(const std::string& filePath, const std::string& displayPath, const Image& image) {
+  PngJob job;
+  fillRows(job, image);
   job.file = std::fopen(filePath.c_str(), "wb");
   if (!job.file) throw Error(displayPath, std::string("cannot open for writing: ") + std::strerror(errno));
   bool ok = encodePng(job);
@@ -174,3 +203,20 @@ void writePng(const std::string& filePath, const std::string& displayPath, const
 }
 
 }  // namespace glint::detail
+
+namespace glint {
+
+std::string encodePng(const Image& image) {
+  GLINT_CHECK(image.width > 0 && image.height > 0 &&
+                  (image.channels == 1 || image.channels == 3 || image.channels == 4) &&
+                  image.pixels.size() == size_t(image.width) * image.height * image.channels,
+              "encodePng needs a non-empty image with 1, 3 or 4 channels");
+  std::string bytes;
+  detail::PngJob job;
+  detail::fillRows(job, image);
+  job.memory = &bytes;
+  if (!detail::encodePng(job)) throw Error("cannot encode a PNG in memory: " + job.error);
+  return bytes;
+}
+
+}  // namespace glint

@@ -7,6 +7,8 @@
 #include <limits>
 #include <vector>
 
+#include "common/expect_error.h"
+
 namespace glint {
 namespace {
 
@@ -56,6 +58,35 @@ TEST(ViewMetricsTest, AverageSkipsViewsWhereAMetricIsUndefined) {
   for (const char* key : {"psnr", "ssim", "psnr_tonemapped", "ssim_tonemapped"})
     EXPECT_TRUE(j["specular"].contains(key)) << key;
   EXPECT_TRUE(j.contains("depth_rmse"));
+}
+
+TEST(ViewMetricsTest, JsonRoundTripsAndNamesBadKeys) {
+  ViewMetrics m;
+  m.diffuse = {31.5, 0.91, 29.25, 0.875};
+  m.specular = {std::numeric_limits<double>::quiet_NaN(), 0.5, 20, 0.25};
+  m.final = {28, 0.8, 27, 0.7};
+  m.depthRmse = 0.125;
+  m.normalAngleDegrees = 3.5;
+  ViewMetrics back = viewMetricsFromJson(toJson(m), "m.json", "mean");
+  EXPECT_EQ(back.diffuse.psnrTonemapped, 29.25);
+  EXPECT_EQ(back.diffuse.ssimTonemapped, 0.875);
+  EXPECT_TRUE(std::isnan(back.specular.psnr));  // null
+  EXPECT_EQ(back.specular.ssim, 0.5);
+  EXPECT_EQ(back.final.psnr, 28);
+  EXPECT_EQ(back.depthRmse, 0.125);
+  EXPECT_EQ(back.normalAngleDegrees, 3.5);
+
+  nlohmann::json j = toJson(m);
+  j["final"].erase("ssim_tonemapped");
+  test::expectErrorNaming([&] { viewMetricsFromJson(j, "dir/m.json", "per_view[2]"); }, "dir/m.json",
+                          "per_view[2].final.ssim_tonemapped");
+  j = toJson(m);
+  j["depth_rmse"] = "deep";
+  test::expectErrorNaming([&] { viewMetricsFromJson(j, "m.json", "mean"); }, "m.json", {"mean.depth_rmse", "not a number"});
+
+  EXPECT_EQ(formatMetric(31.456, 2), "31.46");
+  EXPECT_EQ(formatMetric(std::numeric_limits<double>::infinity(), 2), "inf");
+  EXPECT_EQ(formatMetric(std::numeric_limits<double>::quiet_NaN(), 2), "-");
 }
 
 }  // namespace

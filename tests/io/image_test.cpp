@@ -10,6 +10,7 @@
 #include <png.h>
 #include <tiffio.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -230,6 +231,22 @@ TEST(ImagePng, RoundTripWithinHalfAnEightBitStep) {
       EXPECT_LE(std::abs(read.pixels[i] - image.pixels[i]), 0.5f / 255.0f + 1e-6f) << i;
     }
   }
+}
+
+TEST(ImagePng, EncodesInMemoryTheSameBytesAsTheFile) {
+  TempFolder folder;
+  Image image = makeImage(9, 4, 3, -0.2f, 1.2f, 11);
+  std::string bytes = encodePng(image);
+  ASSERT_GE(bytes.size(), 8u);
+  EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8));
+  writeImage(folder / "file.png", image);
+  EXPECT_EQ(bytes, test::readBytes(folder / "file.png"));
+  test::writeBytes(folder / "memory.png", bytes);
+  Image read = readImage(folder / "memory.png");
+  ASSERT_EQ(read.width, 9);
+  ASSERT_EQ(read.channels, 3);
+  for (size_t i = 0; i < image.pixels.size(); ++i)
+    EXPECT_NEAR(read.pixels[i], std::clamp(image.pixels[i], 0.0f, 1.0f), 0.5f / 255.0f + 1e-6f) << i;
 }
 
 TEST(ImagePng, ClampsOutOfRangeAndDropsAlpha) {

@@ -1,0 +1,244 @@
+// `glint report RUN`: gathers a training run's config, log, evaluation metrics and rendered
+// test views into one self-contained page, RUN/report.html.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/commands.h"
+#include "app/rendered_buffers.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/progress.h"
+#include "eval/html_report.h"
+#include "eval/training_curves.h"
+#include "eval/training_log.h"
+#include "eval/view_metrics.h"
+#include "io/image.h"
+#include "scene/dataset.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct ReportOptions {
+  std::string run;
+  std::string output;
+  std::string dataset;
+  int views = -1;  // -1: every evaluated view
+  bool force = false;
+};
+
+// Throws the "not found" error of an input, saying which command makes it.
+void requireInput(const fs::path& file, const std::string& makeIt) {
+  if (!fs::exists(file)) throw Error(file.string(), "not found; " + makeIt);
+}
+
+nlohmann::json readJsonFile(const fs::path& file) {
+  try {
+    return nlohmann::json::parse(readTextFile(file));
+  } catch (const nlohmann::json::parse_error& e) {
+    throw Error(file.string(), std::string("is not valid JSON: ") + e.what());
+  }
+}
+
+// The metrics of `glint eval`, per view in the order of the split.
+struct EvalMetrics {
+  std::string split = "test";
+  ViewMetrics mean;
+  std::vector<std::pair<std::string, ViewMetrics>> perView;
+  nlohmann::json all;  // the whole file, for the header (spp, tracer, seconds)
+};
+
+EvalMetrics readEvalMetrics(const fs::path& file) {
+  EvalMetrics m;
+  m.all = readJsonFile(file);
+  const std::string name = file.string();
+  if (!m.all.is_object()) throw Error(name, "is not a JSON object");
+  if (m.all.contains("split") && m.all["split"].is_string()) m.split = m.all["split"].get<std::string>();
+  if (!m.all.contains("mean")) throw Error(name, "key \"mean\" is missing");
+  m.mean = viewMetricsFromJson(m.all["mean"], name, "mean");
+  if (!m.all.contains("per_view") || !m.all["per_view"].is_array())
+    throw Error(name, "key \"per_view\" is missing or not an array");
+  for (size_t v = 0; v < m.all["per_view"].size(); ++v) {
+    const nlohmann::json& entry = m.all["per_view"][v];
+    std::string where = "per_view[" + std::to_string(v) + "]";
+    if (!entry.is_object() || !entry.contains("view") || !entry["view"].is_string())
+      throw Error(name, "key \"" + where + ".view\" is missing or not a string");
+    m.perView.emplace_back(entry["view"].get<std::string>(), viewMetricsFromJson(entry, name, where));
+  }
+  return m;
+}
+
+// The dataset: --dataset, else the "dataset" of RUN/config.json (written by glint train).
+fs::path datasetFolder(const ReportOptions& o, const fs::path& configFile, const nlohmann::json& config) {
+  if (!o.dataset.empty()) return o.dataset;
+  if (!config.contains("dataset") || !config["dataset"].is_string())
+    throw Error(configFile.string(), "key \"dataset\" is missing or not a string; pass --dataset");
+  return config["dataset"].get<std::string>();
+}
+
+// The ground truth and our rendering of one view's radiance passes.
+ReportView loadViewImages(const Dataset& dataset, const DatasetSplit& split, size_t v, const fs::path& imagesFolder,
+                          const ViewMetrics& metrics, const std::string& run) {
+  ReportView view{split.views[v].filePath, {}};
+  const std::pair<const char*, Buffer> passes[] = {
+      {"diffuse", Buffer::Diffuse}, {"specular", Buffer::Specular}, {"final", Buffer::Render}};
+  for (const auto& [name, buffer] : passes) {
+    fs::path oursFile = renderedBufferPath(imagesFolder, split.views[v].filePath, buffer);
+    requireInput(oursFile, "run `glint eval " + run + " --save-images` first (it writes the rendered views)");
+    ReportPass pass{name, dataset.loadBuffer(split, v, buffer), readImage(oursFile), {}};
+    if (pass.ours.width != pass.truth.width || pass.ours.height != pass.truth.height)
+      throw Error(oursFile.string(), "is " + std::to_string(pass.ours.width) + "x" + std::to_string(pass.ours.height) +
+                                         " but the ground truth is " + std::to_string(pass.truth.width) + "x" +
+                                         std::to_string(pass.truth.height) + "; re-run `glint eval` on this dataset");
+    pass.metrics = buffer == Buffer::Diffuse ? metrics.diffuse : buffer == Buffer::Specular ? metrics.specular
+                                                                                          : metrics.final;
+    view.passes.push_back(std::move(pass));
+  }
+  return view;
+}
+
+std::string formatSeconds(double seconds) {
+  if (!std::isfinite(seconds)) return "-";
+  char text[64];
+  if (seconds >= 60)
+    std::snprintf(text, sizeof text, "%s (%.0f s)", formatDuration(seconds).c_str(), seconds);
+  else
+    std::snprintf(text, sizeof text, "%.1f s", seconds);
+  return text;
+}
+
+// The value of a log column in the last row, NaN for an empty log.
+double lastValue(const TrainingLog& log, const char* column) {
+  return log.rows() == 0 ? std::nan("") : log.column(column).back();
+}
+
+std::vector<std::pair<std::string, std::string>> headerFacts(const ReportOptions& o, const fs::path& datasetPath,
+                                                             const DatasetSplit& split, const nlohmann::json& config,
+                                                             const TrainingLog& log, const EvalMetrics& metrics) {
+  std::vector<std::pair<std::string, std::string>> facts;
+  facts.emplace_back("run", o.run);
+  facts.emplace_back("dataset", datasetPath.string() + " (" + split.name + " split: " +
+                                    std::to_string(split.views.size()) + " views, " + std::to_string(split.width) +
+                                    "x" + std::to_string(split.height) + ")");
+  std::string steps = log.rows() == 0 ? "none logged" : formatMetric(lastValue(log, "step"), 0);
+  if (config.contains("iters") && config["iters"].is_number_integer())
+    steps += " of " + std::to_string(config["iters"].get<int64_t>());
+  if (config.contains("bounces") && config["bounces"].is_number_integer())
+    steps += ", bounces " + std::to_string(config["bounces"].get<int>());
+  facts.emplace_back("training steps", steps);
+  facts.emplace_back("Gaussians at the end", formatMetric(lastValue(log, "gaussians"), 0));
+  facts.emplace_back("training wall time", formatSeconds(lastValue(log, "wall_s")));
+  const nlohmann::json& m = metrics.all;
+  std::string evaluation;
+  if (m.contains("spp") && m["spp"].is_number()) evaluation += std::to_string(m["spp"].get<int>()) + " spp";
+  if (m.contains("tracer") && m["tracer"].is_string())
+    evaluation += (evaluation.empty() ? "" : ", ") + m["tracer"].get<std::string>() + " tracer";
+  if (m.contains("seconds") && m["seconds"].is_number())
+    evaluation += (evaluation.empty() ? "" : ", ") + formatSeconds(m["seconds"].get<double>());
+  if (!evaluation.empty()) facts.emplace_back("evaluation", evaluation);
+  return facts;
+}
+
+void runReport(const ReportOptions& o) {
+  const fs::path run = o.run;
+  if (!fs::is_directory(run)) throw Error(o.run, "is not a training run folder");
+  const fs::path configFile = run / "config.json", logFile = run / "log.csv",
+                 metricsFile = run / "eval" / "metrics.json";
+  const std::string trainHint = "it is written by `glint train DATASET -o " + o.run + "`";
+
+  // The report is derived from the run, so RUN/report.html is simply rewritten; a file
+  // elsewhere may be the user's own.
+  const fs::path defaultOutput = run / "report.html";
+  const fs::path output = o.output.empty() ? defaultOutput : fs::path(o.output);
+  if (!o.output.empty() && fs::exists(output) && !o.force &&
+      fs::weakly_canonical(output) != fs::weakly_canonical(defaultOutput))
+    throw Error(o.output, "exists; pass --force to overwrite it");
+
+  nlohmann::json config = nlohmann::json::object();
+  if (o.dataset.empty() || fs::exists(configFile)) {
+    requireInput(configFile, trainHint);
+    config = readJsonFile(configFile);
+  }
+  requireInput(logFile, trainHint);
+  TrainingLog log = readTrainingLog(logFile, {"step", "loss", "gaussians", "wall_s"});
+  requireInput(metricsFile, "run `glint eval " + o.run + " --save-images` first");
+  EvalMetrics metrics = readEvalMetrics(metricsFile);
+  std::error_code noTime;
+  if (fs::exists(run / "scene.ply") &&
+      fs::last_write_time(run / "scene.ply", noTime) > fs::last_write_time(metricsFile, noTime))
+    std::fprintf(stderr, "glint report: warning: %s is older than scene.ply; re-run `glint eval %s --save-images`\n",
+                 metricsFile.string().c_str(), o.run.c_str());
+
+  const fs::path datasetPath = datasetFolder(o, configFile, config);
+  Dataset dataset = Dataset::open(datasetPath);
+  const DatasetSplit& split = dataset.split(metrics.split);
+  if (metrics.perView.size() != split.views.size())
+    throw Error(metricsFile.string(), "has " + std::to_string(metrics.perView.size()) + " views but the " +
+                                          split.name + " split of " + datasetPath.string() + " has " +
+                                          std::to_string(split.views.size()) + "; was it evaluated on another dataset?");
+  for (size_t v = 0; v < split.views.size(); ++v)
+    if (metrics.perView[v].first != split.views[v].filePath)
+      throw Error(metricsFile.string(), "key \"per_view[" + std::to_string(v) + "].view\" is " +
+                                            metrics.perView[v].first + " but the dataset has " +
+                                            split.views[v].filePath + "; was it evaluated on another dataset?");
+
+  HtmlReportContent content;
+  content.title = "Glint report: " + run.lexically_normal().filename().string();
+  if (content.title == "Glint report: ") content.title += o.run;
+  content.facts = headerFacts(o, datasetPath, split, config, log, metrics);
+  content.mean = metrics.mean;
+  content.perView = metrics.perView;
+  size_t shown = o.views < 0 ? split.views.size() : std::min(split.views.size(), size_t(o.views));
+  {
+    ProgressBar progress("report", int64_t(shown), "views");
+    for (size_t v = 0; v < shown; ++v) {
+      content.views.push_back(
+          loadViewImages(dataset, split, v, metricsFile.parent_path() / split.name, metrics.perView[v].second, o.run));
+      progress.advance();
+    }
+  }
+  content.charts = trainingCharts(log);
+  content.chartNote = "Lines are running means over " + std::to_string(kSmoothingSteps) +
+                      " steps, drawn over the faint per-step values. The test PSNR during training is 8-bit (tonemapped), on "
+                      "train's --eval-views views at --eval-spp samples, not scored as by `glint eval`.";
+  content.note = "Written by `glint report` from " + configFile.string() + ", " + logFile.string() + ", " +
+                 metricsFile.string() + " and the images under " + (metricsFile.parent_path() / split.name).string() +
+                 ". Self-contained: no network access, no other files.";
+
+  std::string html = renderHtmlReport(content);
+  writeTextAtomically(output, html);
+  double kb = double(html.size()) / 1024;
+  char size[32];
+  std::snprintf(size, sizeof size, kb < 1024 ? "%.0f KB" : "%.1f MB", kb < 1024 ? kb : kb / 1024);
+  std::printf("report: %s (%zu views shown, %s)\n", output.string().c_str(), shown, size);
+}
+
+}  // namespace
+
+void addReportCommand(CLI::App& app) {
+  auto o = std::make_shared<ReportOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "report",
+      "Write RUN/report.html, one self-contained page (no network, no other files) of a training run: its "
+      "settings, the mean and per-view metrics of `glint eval`, ground truth against ours for the diffuse, specular "
+      "and final passes of each test view, and the training curves. Needs RUN/config.json and RUN/log.csv (from "
+      "`glint train`) and RUN/eval/ (from `glint eval RUN --save-images`).");
+  cmd->add_option("run", o->run, "Training run folder")->required();
+  cmd->add_option("-o,--output", o->output, "Page to write (default RUN/report.html, rewritten each time), atomically");
+  cmd->add_option("--dataset", o->dataset, "Dataset with the ground truth; default: the dataset of RUN/config.json");
+  cmd->add_option("--views", o->views, "Show the images of the first N views only (default: every evaluated view)")
+      ->check(CLI::Range(0, 1 << 20));
+  cmd->add_flag("--force", o->force, "Overwrite an existing -o FILE (RUN/report.html is always rewritten)");
+  cmd->callback([o]() { runReport(*o); });
+}
+
+}  // namespace glint

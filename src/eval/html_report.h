@@ -1,0 +1,46 @@
+// The page of `glint report`: one self-contained HTML file (images as data: URIs of PNGs,
+// charts as inline SVG, inline CSS) with a run's metrics, test views and training curves.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "eval/svg_chart.h"
+#include "eval/view_metrics.h"
+#include "io/image.h"
+
+namespace glint {
+
+// One radiance pass of one view: ground truth and ours, both linear (shown through the
+// filmic tonemap of io/tonemap.h, as the 8-bit metrics see them).
+struct ReportPass {
+  std::string name;  // "diffuse", "specular", "final"
+  Image truth;
+  Image ours;
+  PassMetrics metrics;
+};
+
+struct ReportView {
+  std::string name;  // the view's file_path
+  std::vector<ReportPass> passes;
+};
+
+struct HtmlReportContent {
+  std::string title;
+  std::vector<std::pair<std::string, std::string>> facts;  // header lines: label, value
+  ViewMetrics mean;
+  std::vector<std::pair<std::string, ViewMetrics>> perView;  // view name, its metrics
+  std::vector<ReportView> views;                             // the views shown as images
+  std::vector<LineChart> charts;
+  std::string chartNote;  // a line under the charts (how to read them)
+  std::string note;  // a closing line under the page (how it was made)
+};
+
+// The whole page. Every text is escaped; NaN metrics show as "-", infinite ones as "inf".
+std::string renderHtmlReport(const HtmlReportContent& content);
+
+// "data:image/png;base64,..." of the image tonemapped with tonemapFilmic and quantised to 8 bits.
+std::string tonemappedPngDataUri(const Image& linear);
+
+}  // namespace glint
