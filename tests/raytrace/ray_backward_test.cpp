@@ -14,143 +14,21 @@
 #include <optional>
 #include <vector>
 
+#include "common/double_compositor.h"
 #include "common/finite_difference.h"
 #include "math/rng.h"
 
 namespace glint {
 namespace {
 
-// Per Gaussian: mean (3), rotation (4), log-scale (3), opacity logit, diffuse (3),
-// normal (3), roughness, F0 (3).
-constexpr int kParams = 21;
-using Outputs = std::array<double, 11>;  // diffuse, depth, normal, roughness, f0
-
-struct DoubleGaussian {
-  KernelParams<double> kernel;
-  Vec3d diffuse, normal, f0;
-  double roughness;
-};
-
-DoubleGaussian unpack(const std::vector<double>& x, size_t i) {
-  const double* p = x.data() + i * kParams;
-  DoubleGaussian g;
-  g.kernel = {{p[0], p[1], p[2]}, Quatd{p[3], p[4], p[5], p[6]}, {p[7], p[8], p[9]}, p[10]};
-  g.diffuse = {p[11], p[12], p[13]};
-  g.normal = {p[14], p[15], p[16]};
-  g.roughness = p[17];
-  g.f0 = {p[18], p[19], p[20]};
-  return g;
-}
-
-std::vector<double> flatten(const HitGradient<double>& g) {
-  return {g.v_position.x, g.v_position.y, g.v_position.z, g.v_rotation.w, g.v_rotation.x, g.v_rotation.y,
-          g.v_rotation.z, g.v_logScale.x, g.v_logScale.y, g.v_logScale.z, g.v_opacityLogit, g.v_diffuse.x,
-          g.v_diffuse.y, g.v_diffuse.z, g.v_normal.x, g.v_normal.y, g.v_normal.z, g.v_roughness,
-          g.v_f0.x, g.v_f0.y, g.v_f0.z};
-}
-
-GaussianScene toScene(const std::vector<double>& x) {
-  GaussianScene s;
-  s.resize(x.size() / kParams);
-  for (size_t i = 0; i < s.size(); ++i) {
-    DoubleGaussian g = unpack(x, i);
-    s.position[i] = Vec3f(g.kernel.mean);
-    const Quatd& q = g.kernel.rotation;
-    s.rotation[i] = Quatf{float(q.w), float(q.x), float(q.y), float(q.z)};
-    s.logScale[i] = Vec3f(g.kernel.logScale);
-    s.opacityLogit[i] = float(g.kernel.opacityLogit);
-    s.diffuse[i] = Rgb(g.diffuse);
-    s.normal[i] = Vec3f(g.normal);
-    s.roughness[i] = float(g.roughness);
-    s.f0[i] = Rgb(g.f0);
-  }
-  return s;
-}
-
-struct Hit {
-  uint32_t id;
-  KernelHit<double> kernel;
-};
-
-// The tail of a truncated ray with its colour and ratio held fixed (what the backward
-// pass differentiates, D12): out = C + tau_n * background.
-struct DetachedTail {
-  std::vector<uint32_t> order;  // the composited hits, front to back
-  Outputs background{};
-};
-
-// The obviously-correct forward in double precision: every Gaussian against the ray,
-// a full sort by (key, id), compositing until minTransmittance, the exact tail. With
-// `detached`, the hits and their order are those given and the tail is the fixed one.
-struct Forward {
-  Outputs out{};
-  std::vector<Hit> composited;
-  double tauN = 1, finalT = 1;
-  bool truncated = false;
-  double minKeyGap = 1e30;        // between consecutive composited keys (ties at tMin excepted)
-  double minBoundaryMargin = 1e30;  // relative distance of any Gaussian to its proxy / alphaMin cut
-};
-
-Forward traceDouble(const std::vector<double>& x, const TraceRay& ray, const TraceSettings& s,
-                    const DetachedTail* detached = nullptr) {
-  Forward f;
-  Vec3d o(ray.origin), d(ray.direction);
-  size_t n = x.size() / kParams;
-  std::vector<Hit> hits;
-  for (size_t i = 0; i < n; ++i) {
-    GaussianFrame<double> frame = gaussianFrame(unpack(x, i).kernel, s);
-    // Margins: how far the closest approach is from the proxy boundary, relatively.
-    LocalRay<double> local = localRay(frame.worldToLocal, frame.mean, o, d, dot(frame.mean - o, d));
-    double r2 = closestApproach(local).r2, R2 = frame.proxyRadius * frame.proxyRadius;
-    f.minBoundaryMargin = std::min(f.minBoundaryMargin, std::abs(r2 - R2) / R2);
-    KernelHit<double> h;
-    if (evaluateGaussian(frame, o, d, double(ray.tMin), s, &h)) {
-      f.minBoundaryMargin = std::min(f.minBoundaryMargin, std::abs(h.tExit - ray.tMin));
-      hits.push_back({uint32_t(i), h});
-    }
-  }
-  std::sort(hits.begin(), hits.end(), [](const Hit& a, const Hit& b) {
-    return a.kernel.key != b.kernel.key ? a.kernel.key < b.kernel.key : a.id < b.id;
-  });
-  if (detached) {
-    std::vector<Hit> ordered;
-    for (uint32_t id : detached->order)
-      for (const Hit& h : hits)
-        if (h.id == id) ordered.push_back(h);
-    EXPECT_EQ(ordered.size(), detached->order.size()) << "a hit vanished under a finite-difference step";
-    hits = ordered;
-  }
-  double T = 1;
-  for (const Hit& h : hits) {
-    if (f.truncated && !detached) {
-      f.finalT *= 1 - h.kernel.alpha;
-      continue;
-    }
-    DoubleGaussian g = unpack(x, h.id);
-    double w = T * h.kernel.alpha;
-    Outputs a = {g.diffuse.x, g.diffuse.y, g.diffuse.z, h.kernel.key, g.normal.x, g.normal.y, g.normal.z,
-                 g.roughness, g.f0.x, g.f0.y, g.f0.z};
-    for (int k = 0; k < 11; ++k) f.out[k] += w * a[k];
-    if (!f.composited.empty()) {
-      double gap = h.kernel.key - f.composited.back().kernel.key;
-      if (!(h.kernel.key == ray.tMin && gap == 0)) f.minKeyGap = std::min(f.minKeyGap, gap);
-    }
-    f.composited.push_back(h);
-    T *= 1 - h.kernel.alpha;
-    if (!detached && T < s.minTransmittance) {
-      f.truncated = true;
-      f.tauN = f.finalT = T;
-    }
-  }
-  if (detached) {
-    for (int k = 0; k < 11; ++k) f.out[k] += T * detached->background[k];
-  } else if (s.exactTail && f.truncated) {
-    double scale = (f.tauN - f.finalT) / (1 - f.tauN);
-    for (double& v : f.out) v *= 1 + scale;
-  }
-  if (!f.truncated) f.tauN = f.finalT = T;
-  return f;
-}
+using test::DetachedTail;
+using test::Forward;
+using test::Hit;
+using test::kParams;
+using test::Outputs;
+using test::toScene;
+using test::traceDouble;
+using test::unpack;
 
 double lossOf(const Outputs& out, const RayResultAdjoint& v) {
   return v.v_diffuse.x * out[0] + v.v_diffuse.y * out[1] + v.v_diffuse.z * out[2] + v.v_depth * out[3] +
@@ -192,10 +70,7 @@ RayResultAdjoint randomAdjoint(Rng& rng) {
 std::vector<double> analyticGradient(const std::vector<double>& x, const TraceRay& ray, const TraceSettings& s,
                                      const Forward& f, const RayResultAdjoint& v) {
   GaussianScene scene = toScene(x);
-  HitList hits;
-  for (const Hit& h : f.composited)
-    hits.hits.push_back({h.id, float(h.kernel.key), float(h.kernel.alpha), float(h.kernel.response),
-                         Vec3f(h.kernel.localPoint)});
+  HitList hits = test::hitListOf(f);
   RayResult result;
   result.truncated = f.truncated;
   result.transmittance = float(f.finalT);
@@ -203,8 +78,7 @@ std::vector<double> analyticGradient(const std::vector<double>& x, const TraceRa
   RayBackwardScratch<double> scratch;
   int calls = 0;
   backwardRay<double>(scene, s, ray, hits, result, v, scratch, [&](uint32_t id, const HitGradient<double>& g) {
-    std::vector<double> flat = flatten(g);
-    for (int k = 0; k < kParams; ++k) gradient[id * kParams + k] += flat[k];
+    test::accumulate(&gradient, id, g);
     ++calls;
   });
   EXPECT_EQ(calls, int(f.composited.size()));
@@ -293,28 +167,14 @@ TEST(RayBackward, FloatRecordsAgreeWithDouble) {
   RayResultAdjoint v = randomAdjoint(rng);
   std::vector<double> reference = analyticGradient(c.x, c.ray, s, c.forward, v);
   GaussianScene scene = toScene(c.x);
-  HitList hits;
-  for (const Hit& h : c.forward.composited)
-    hits.hits.push_back({h.id, float(h.kernel.key), float(h.kernel.alpha), float(h.kernel.response),
-                         Vec3f(h.kernel.localPoint)});
+  HitList hits = test::hitListOf(c.forward);
   RayResult result;
   result.truncated = true;
   result.transmittance = float(c.forward.finalT);
   RayBackwardScratch<float> scratch;
   std::vector<double> single(c.x.size(), 0.0);
-  backwardRay<float>(scene, s, c.ray, hits, result, v, scratch, [&](uint32_t id, const HitGradient<float>& g) {
-    HitGradient<double> gd;
-    gd.v_position = Vec3d(g.v_position);
-    gd.v_rotation = Quatd{g.v_rotation.w, g.v_rotation.x, g.v_rotation.y, g.v_rotation.z};
-    gd.v_logScale = Vec3d(g.v_logScale);
-    gd.v_opacityLogit = g.v_opacityLogit;
-    gd.v_diffuse = Vec3d(g.v_diffuse);
-    gd.v_normal = Vec3d(g.v_normal);
-    gd.v_roughness = g.v_roughness;
-    gd.v_f0 = Vec3d(g.v_f0);
-    std::vector<double> flat = flatten(gd);
-    for (int k = 0; k < kParams; ++k) single[id * kParams + k] += flat[k];
-  });
+  backwardRay<float>(scene, s, c.ray, hits, result, v, scratch,
+                     [&](uint32_t id, const HitGradient<float>& g) { test::accumulate(&single, id, g); });
   test::expectGradientNear(single, reference, 1e-3, "float backward");
 }
 
