@@ -55,16 +55,24 @@ class Compositor {
   }
 
   bool terminated() const { return terminated_; }
+  T finalTransmittanceEstimate() const {
+    if (!terminated_) return transmittance_;
+    return settings_.exactTail ? tailTransmittance_ : T(0);
+  }
   T transmittance() const { return transmittance_; }
 
-  // The ray's result. With exactTail, the light of the truncated hits is estimated as the
-  // mean of the composited part, (T_i - T_f) * c_front / (1 - T_i) (appendix A.2; the
-  // estimate is detached in the backward pass), and the reported transmittance is T_f.
+  // The ray's result. A truncated ray's light behind the termination point is estimated
+  // as the mean of the composited part, (T_i - T_f) * c_front / (1 - T_i) (appendix A.2;
+  // the estimate is detached in the backward pass). T_f, the final transmittance, is exact
+  // with exactTail; otherwise the tail is taken as opaque (T_f = 0), its limit behind any
+  // solid surface. Without an estimate, training fails as the paper warns: front Gaussians
+  // grow to mask a background that truncation removed. The reported transmittance is T_f.
   RayResult finish() const {
     RayResult r;
+    const T finalTransmittance = finalTransmittanceEstimate();
     T tailWeight = 0;
-    if (settings_.exactTail && terminated_ && transmittance_ < T(1))
-      tailWeight = (transmittance_ - tailTransmittance_) / (T(1) - transmittance_);
+    if (terminated_ && transmittance_ < T(1))
+      tailWeight = (transmittance_ - finalTransmittance) / (T(1) - transmittance_);
     T scale = T(1) + tailWeight;
     r.diffuse = Rgb(diffuse_ * scale);
     r.depth = float(depth_ * scale);
@@ -72,7 +80,7 @@ class Compositor {
     r.normalLength = length(r.normal);
     r.roughness = float(roughness_ * scale);
     r.f0 = Rgb(f0_ * scale);
-    r.transmittance = float(settings_.exactTail && terminated_ ? tailTransmittance_ : transmittance_);
+    r.transmittance = float(finalTransmittance);
     r.hitCount = count_;
     r.truncated = terminated_;
     return r;

@@ -68,8 +68,8 @@ size_t hitCapacityWithoutOverflow(const TraceSettings& settings);
 // Back-propagates v (dL/d result) through the compositing of `hits` and through each
 // hit's kernel, calling sink(id, HitGradient<T>) once per hit (back to front). `result`
 // is what the trace returned for the same ray and hit list; the hit list must not have
-// overflowed. With exactTail and a truncated ray, the tail estimate's colour is detached
-// and its final-transmittance ratio is held fixed (D12).
+// overflowed. For a truncated ray, the tail estimate's colour is detached and its
+// final-transmittance ratio T_f / tau_n is held fixed (D12; 0 for the opaque tail).
 template <typename T, typename Sink>
 void backwardRay(const GaussianScene& scene, const TraceSettings& settings, const TraceRay& ray, const HitList& hits,
                  const RayResult& result, const RayResultAdjoint& v, RayBackwardScratch<T>& scratch, Sink&& sink) {
@@ -110,7 +110,7 @@ void backwardRay(const GaussianScene& scene, const TraceSettings& settings, cons
   // Truncation tail (D12): out = C + tau_n * b with the background b = (1 - T_f / tau_n)
   // C / (1 - tau_n) detached, so that alpha gradients see the tail as a background.
   T behind = 0;  // S = sum_{j > i} w_j (g . a_j) + tau_n (g . b), built back to front
-  if (settings.exactTail && result.truncated && tauN < T(1)) {
+  if (result.truncated && tauN < T(1)) {
     T remaining = T(result.transmittance) / tauN;  // product of (1 - alpha) over the tail
     T scale = (T(1) - remaining) / (T(1) - tauN);
     behind = tauN * scale * composited.dot(v);

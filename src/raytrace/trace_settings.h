@@ -12,9 +12,9 @@ struct TraceSettings {
   float alphaMin = 0.005f;
   // Compositing stops once the transmittance falls below this.
   float minTransmittance = 0.01f;
-  // After termination, keep traversing to get the exact final transmittance of all hits
-  // (needed by the truncation tail estimate of appendix A.2 during training); when false,
-  // traversal stops at termination (fastest, for rendering).
+  // After termination, keep traversing to get the exact final transmittance T_f of all
+  // hits for the truncation tail estimate of appendix A.2; when false, traversal stops at
+  // termination (fastest) and the estimate takes the tail as opaque (T_f = 0).
   bool exactTail = false;
 };
 

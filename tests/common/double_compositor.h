@@ -109,7 +109,7 @@ struct Forward {
 };
 
 // Every Gaussian against the ray, a full sort by (key, id), compositing until
-// minTransmittance, the exact tail; back-facing hits closer than ray.backfaceSkip are
+// minTransmittance, the tail estimate (exact T_f, or opaque); back-facing hits closer than ray.backfaceSkip are
 // ignored as the tracers do. With `detached`, the hits and their order are those given
 // and the tail is the fixed one.
 inline Forward traceDouble(const std::vector<double>& x, const TraceRay& ray, const TraceSettings& s,
@@ -174,7 +174,8 @@ inline Forward traceDouble(const std::vector<double>& x, const TraceRay& ray, co
   }
   if (detached) {
     for (int k = 0; k < 11; ++k) f.out[k] += T * detached->background[k];
-  } else if (s.exactTail && f.truncated) {
+  } else if (f.truncated) {
+    if (!s.exactTail) f.finalT = 0;  // the opaque-tail estimate of early termination
     double scale = (f.tauN - f.finalT) / (1 - f.tauN);
     for (double& v : f.out) v *= 1 + scale;
   }

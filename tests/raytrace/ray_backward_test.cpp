@@ -118,12 +118,12 @@ Case drawCase(Rng& rng, const TraceSettings& s, size_t minHits, bool wantTruncat
   return {};
 }
 
-void expectBackwardMatches(double power, bool truncated, bool startInside, uint64_t seed) {
+void expectBackwardMatches(double power, bool truncated, bool startInside, uint64_t seed, bool exactTail = true) {
   Rng rng(seed);
   TraceSettings s;
   s.kernelPower = float(power);
   s.alphaMin = 0.01f;
-  s.exactTail = true;
+  s.exactTail = exactTail;
   s.minTransmittance = truncated ? 0.2f : 1e-4f;
   for (int trial = 0; trial < 6; ++trial) {
     Case c = drawCase(rng, s, truncated ? 2 : 3, truncated, startInside);
@@ -146,6 +146,7 @@ void expectBackwardMatches(double power, bool truncated, bool startInside, uint6
     std::vector<double> numeric = test::centralGradient(loss, c.x);
     test::expectGradientNear(analytic, numeric, 2e-5,
                              "p = " + std::to_string(power) + (truncated ? ", truncated" : "") +
+                                 (exactTail ? "" : ", opaque tail") +
                                  (startInside ? ", starting inside" : "") + ", trial " + std::to_string(trial));
   }
 }
@@ -154,6 +155,8 @@ TEST(RayBackward, MatchesFiniteDifferencesGaussianKernel) { expectBackwardMatche
 TEST(RayBackward, MatchesFiniteDifferencesPowerThree) { expectBackwardMatches(3.0, false, false, 12); }
 TEST(RayBackward, MatchesFiniteDifferencesTruncatedGaussianKernel) { expectBackwardMatches(1.0, true, false, 13); }
 TEST(RayBackward, MatchesFiniteDifferencesTruncatedPowerThree) { expectBackwardMatches(3.0, true, false, 14); }
+// Early termination: the tail estimate takes T_f = 0 (an opaque tail).
+TEST(RayBackward, MatchesFiniteDifferencesTruncatedOpaqueTail) { expectBackwardMatches(3.0, true, false, 17, false); }
 TEST(RayBackward, MatchesFiniteDifferencesStartingInside) { expectBackwardMatches(3.0, false, true, 15); }
 
 // In float, from the records a fast trace leaves, the gradient agrees with the double one.
