@@ -22,6 +22,14 @@ void checkFarFieldSettings(const FarFieldSettings& s, const std::string& where) 
   if (!(s.opacity > 0.0f && s.opacity < 1.0f)) throw Error(where, "far_field.opacity must lie in (0, 1)");
   if (!(s.diffuse >= 0.0f && std::isfinite(s.diffuse))) throw Error(where, "far_field.diffuse must be 0 or more");
   if (s.neighbours < 1) throw Error(where, "far_field.neighbours must be at least 1");
+  for (size_t b = 0; b < s.boxes.size(); ++b) {
+    const FarFieldBox& box = s.boxes[b];
+    const std::string name = "far_field.boxes[" + std::to_string(b) + "]";
+    for (int axis = 0; axis < 3; ++axis)
+      if (!(std::isfinite(box.min[axis]) && std::isfinite(box.max[axis]) && box.min[axis] < box.max[axis]))
+        throw Error(where, name + ": min must be below max on every axis, and both finite");
+    if (box.count < 1) throw Error(where, name + ": count must be at least 1");
+  }
 }
 
 GaussianScene farFieldGaussians(const FarFieldSettings& s, const Vec3f& centre, float sceneRadius, uint64_t seed) {
@@ -32,7 +40,9 @@ GaussianScene farFieldGaussians(const FarFieldSettings& s, const Vec3f& centre, 
   // run draws.
   Rng rng = Rng::forKeys({seed, 0x6661722d6669656cull});  // "far-fiel"
   std::vector<Vec3f> points;
-  points.reserve(size_t(s.count));
+  size_t total = size_t(s.count);
+  for (const FarFieldBox& box : s.boxes) total += size_t(box.count);
+  points.reserve(total);
   while (points.size() < size_t(s.count)) {
     // Box-Muller pairs; rejection of the tail beyond the truncation radius.
     Vec3f z;
@@ -43,6 +53,9 @@ GaussianScene farFieldGaussians(const FarFieldSettings& s, const Vec3f& centre, 
     if (dot(z, z) > limit2) continue;
     points.push_back(centre + z * sigma);
   }
+  for (const FarFieldBox& box : s.boxes)
+    for (int i = 0; i < box.count; ++i)
+      points.push_back(box.min + Vec3f(rng.uniform(), rng.uniform(), rng.uniform()) * (box.max - box.min));
   std::vector<float> spacing = meanNeighbourDistances(points, s.neighbours);
   GaussianScene scene;
   scene.resize(points.size());

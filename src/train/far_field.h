@@ -6,12 +6,21 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "math/vec.h"
 #include "raytrace/trace_settings.h"
 #include "scene/gaussians.h"
 
 namespace glint {
+
+// A box of extra far-field Gaussians spread uniformly inside it. The cloud is thin near any
+// one spot (about 30 per cubic metre around builtin:room), too thin for an object seen only
+// in reflections; the paper seeds 5000 small Gaussians around such an object by hand.
+struct FarFieldBox {
+  Vec3f min{0.0f}, max{0.0f};  // world-space corners
+  int count = 0;
+};
 
 struct FarFieldSettings {
   int count = 75000;          // M; 0 adds none
@@ -20,13 +29,15 @@ struct FarFieldSettings {
   float opacity = 0.1f;
   float diffuse = 0.2f;
   int neighbours = 3;         // initial scale = mean distance to this many nearest far-field points
+  std::vector<FarFieldBox> boxes;  // added to the cloud, with the same attributes
 };
 
 // Throws Error(where, ...) for settings out of range.
 void checkFarFieldSettings(const FarFieldSettings& s, const std::string& where);
 
 // M Gaussians around `centre` at the scale S = `sceneRadius` (3DGS's camera-sphere radius):
-// positions from a normal distribution truncated by rejection to `truncation` sigma;
+// positions from a normal distribution truncated by rejection to `truncation` sigma, then
+// those of the boxes, uniform in each;
 // isotropic scales from the nearest-neighbour distances of the cloud (as the dense
 // initialisation sizes its points); normal 0, so paths reaching them end; roughness 0
 // and F0 0.04 as the other initial Gaussians. Deterministic in `seed`.

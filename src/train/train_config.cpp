@@ -2,15 +2,42 @@
 // unknown-key check, so a new hyper-parameter is added in one place.
 #include "train/train_config.h"
 
+#include <array>
 #include <fstream>
 #include <set>
+#include <stdexcept>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
 
 namespace glint {
 
+// {"min": [x, y, z], "max": [x, y, z], "count": n}; nlohmann's exceptions name what is wrong.
+void to_json(nlohmann::json& j, const FarFieldBox& b) {
+  j = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}, {"count", b.count}};
+}
+
+void from_json(const nlohmann::json& j, FarFieldBox& b) {
+  for (auto it = j.begin(); it != j.end(); ++it)
+    if (it.key() != "min" && it.key() != "max" && it.key() != "count")
+      throw std::invalid_argument("unknown key \"" + it.key() + "\" (a box has min, max and count)");
+  auto corner = [&](const char* key) {
+    if (!j.at(key).is_array() || j.at(key).size() != 3)
+      throw std::invalid_argument(std::string("\"") + key + "\" must be an array of 3 numbers");
+    auto v = j.at(key).get<std::array<float, 3>>();
+    return Vec3f(v[0], v[1], v[2]);
+  };
+  b.min = corner("min");
+  b.max = corner("max");
+  b.count = j.at("count").get<int>();
+}
+
 namespace {
+
+template <typename T>
+constexpr bool kIsVector = false;
+template <typename T>
+constexpr bool kIsVector<std::vector<T>> = true;
 
 // Calls f(section, key, field) for every field; section "" is the top level.
 template <typename Config, typename F>
@@ -68,6 +95,7 @@ void forEachField(Config& c, F&& f) {
   f("far_field", "opacity", c.farField.opacity);
   f("far_field", "diffuse", c.farField.diffuse);
   f("far_field", "neighbours", c.farField.neighbours);
+  f("far_field", "boxes", c.farField.boxes);
   f("trace", "kernel_power", c.trace.kernelPower);
   f("trace", "alpha_min", c.trace.alphaMin);
   f("trace", "min_transmittance", c.trace.minTransmittance);
@@ -110,7 +138,8 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
     auto v = node->find(key);
     if (v == node->end()) return;
     using Field = std::decay_t<decltype(field)>;
-    bool typeOk = std::is_same_v<Field, std::string> ? v->is_string()
+    bool typeOk = kIsVector<Field>                    ? v->is_array()
+                  : std::is_same_v<Field, std::string> ? v->is_string()
                   : std::is_same_v<Field, bool>      ? v->is_boolean()
                   : std::is_integral_v<Field>        ? v->is_number_integer()
                                                      : v->is_number();
@@ -120,7 +149,11 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
       problem.append(keyName(section, key)).append("\" has the wrong type (").append(v->type_name()).append(")");
       throw Error(source, problem);
     }
-    field = v->get<Field>();
+    try {
+      field = v->get<Field>();
+    } catch (const std::exception& e) {  // malformed elements of an array setting
+      throw Error(source, "\"" + keyName(section, key) + "\": " + e.what());
+    }
   });
   for (auto it = json.begin(); it != json.end(); ++it) {
     if (it->is_object()) {

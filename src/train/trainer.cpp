@@ -183,21 +183,20 @@ StepReport Trainer::step() {
 }
 
 size_t Trainer::addFarField() {
-  if (config_.farField.count == 0) return 0;
+  if (config_.farField.count == 0 && config_.farField.boxes.empty()) return 0;
   Vec3d sum(0.0);
   for (size_t v = 0; v < views_.viewCount(); ++v) sum += views_.camera(v).position();
   const Vec3f centre = Vec3f(sum / double(views_.viewCount()));
   GaussianScene far = farFieldGaussians(config_.farField, centre, extent_, config_.seed);
-  // All of each camera sphere: a random Gaussian behind a camera is a floater in the
-  // reflections of every other view.
-  carveObservedFreeSpace(&far, views_, config_.trace);
+  // The cloud loses all of each camera sphere: a random Gaussian behind a camera is a
+  // floater in the reflections of every other view. Boxes are placed by the user, often
+  // around what lies behind the cameras (builtin:room's hidden box), and keep theirs.
   std::vector<bool> keep = outsideCameraSpheres(far, spheres_, CullRegion::WholeSphere);
-  size_t added = 0;
-  for (size_t i = 0; i < far.size(); ++i)
-    if (keep[i]) {
-      scene_.append(far, i);
-      ++added;
-    }
+  std::fill(keep.begin() + config_.farField.count, keep.end(), true);
+  far.filter(keep);
+  carveObservedFreeSpace(&far, views_, config_.trace);
+  for (size_t i = 0; i < far.size(); ++i) scene_.append(far, i);
+  const size_t added = far.size();
   adam_.grow(scene_.size());
   pruneWeight_.resize(scene_.size(), 0.0f);
   tracer_->build(scene_, config_.trace);

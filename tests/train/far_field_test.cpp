@@ -73,6 +73,30 @@ TEST(FarField, AttributesEndPathsAndScalesFollowTheSpacing) {
   EXPECT_EQ(g.scale(0).x, g.scale(0).y);
 }
 
+// Boxes follow the cloud, uniformly filled: a chi-square test of 10 bins per axis.
+TEST(FarField, BoxesAreFilledUniformly) {
+  FarFieldSettings s;
+  s.count = 100;
+  const Vec3f lo(-1.0f, 0.0f, 2.0f), hi(1.0f, 0.5f, 3.0f);
+  s.boxes.push_back({lo, hi, 20000});
+  GaussianScene g = farFieldGaussians(s, Vec3f(0.0f), 1.0f, 5);
+  ASSERT_EQ(g.size(), 20100u);
+  for (int axis = 0; axis < 3; ++axis) {
+    std::vector<double> bins(10, 0.0);
+    for (size_t i = 100; i < g.size(); ++i) {
+      float u = (g.position[i][axis] - lo[axis]) / (hi[axis] - lo[axis]);
+      ASSERT_TRUE(u >= 0.0f && u <= 1.0f) << "Gaussian " << i << " outside its box";
+      bins[std::min(9, int(u * 10))] += 1;
+    }
+    double chi2 = 0;
+    for (double b : bins) chi2 += (b - 2000) * (b - 2000) / 2000;
+    EXPECT_LT(chi2, 27.88) << "axis " << axis;  // 9 degrees of freedom, p = 0.001
+  }
+  // Box Gaussians are sized by their own, denser spacing: (volume / count)^(1/3) = 0.037.
+  EXPECT_LT(g.scale(100).x, 0.1f);
+  EXPECT_EQ(g.normal[20099], Vec3f(0.0f));
+}
+
 TEST(FarField, DependsOnlyOnTheSeed) {
   FarFieldSettings s;
   s.count = 500;
@@ -106,6 +130,12 @@ TEST(FarField, RejectsBadSettingsNamingTheSource) {
   s = {};
   s.truncation = NAN;
   rejects(s, "truncation");
+  s = {};
+  s.boxes.push_back({Vec3f(0.0f), Vec3f(1.0f, 1.0f, 0.0f), 10});
+  rejects(s, "far_field.boxes[0]: min must be below max");
+  s.boxes[0].max.z = 1.0f;
+  s.boxes[0].count = 0;
+  rejects(s, "far_field.boxes[0]: count");
 }
 
 }  // namespace

@@ -24,6 +24,7 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.trace.kernelPower = 2.0f;
   c.trace.exactTail = true;
   c.farField.count = 1234;
+  c.farField.boxes.push_back({Vec3f(-0.5f, 0.9f, 2.4f), Vec3f(0.5f, 1.75f, 2.8f), 5000});
   c.baseline = "none";
   TrainConfig back;
   applyJson(toJson(c), &back, "test");
@@ -31,6 +32,9 @@ TEST(TrainConfig, RoundTripsEveryField) {
   EXPECT_EQ(back.batchRays, 777);
   EXPECT_EQ(back.trace.exactTail, true);
   EXPECT_EQ(back.farField.count, 1234);
+  ASSERT_EQ(back.farField.boxes.size(), 1u);
+  EXPECT_EQ(back.farField.boxes[0].max, Vec3f(0.5f, 1.75f, 2.8f));
+  EXPECT_EQ(back.farField.boxes[0].count, 5000);
 }
 
 TEST(TrainConfig, DefaultsAreThePapers) {
@@ -76,6 +80,15 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   expectRejected("{\"adam\": {\"beta1\": 1.0}}", "beta1");
   expectRejected("{\"lr\": {\"position_final\": 1.0}}", "position_final");
   expectRejected("{\"far_field\": {\"count\": -5}}", "far_field.count");
+  expectRejected("{\"far_field\": {\"boxes\": {\"count\": 5}}}", "\"far_field.boxes\" has the wrong type");
+  expectRejected("{\"far_field\": {\"boxes\": [{\"min\": [0, 0], \"max\": [1, 1, 1], \"count\": 5}]}}",
+                 "\"far_field.boxes\":");
+  expectRejected("{\"far_field\": {\"boxes\": [{\"min\": [0, 0, 0], \"max\": [1, 1, 1]}]}}", "count");
+  expectRejected("{\"far_field\": {\"boxes\": [{\"min\": [0, 0, 0], \"max\": [1, 1, 1], \"count\": 5, "
+                 "\"colour\": 1}]}}",
+                 "unknown key \"colour\"");
+  expectRejected("{\"far_field\": {\"boxes\": [{\"min\": [0, 2, 0], \"max\": [1, 1, 1], \"count\": 5}]}}",
+                 "min must be below max");
   expectRejected("{\"baseline\": \"rgbd\"}", "baseline");
   expectRejected("{\"baseline\": \"rgb\"}", "G-buffer");  // bounces and G-buffer weights left on
 }
