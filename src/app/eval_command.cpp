@@ -76,7 +76,8 @@ void printTable(const DatasetSplit& split, const std::vector<ViewMetrics>& views
   pass("final", mean.final);
 }
 
-void printRegionTable(const DatasetSplit& split, const std::vector<RegionMetrics>& regions) {
+void printRegionTable(const DatasetSplit& split, const std::vector<RegionMetrics>& regions,
+                      const RegionMetrics& pooled) {
   std::printf("\n%-32s %8s %12s %12s %12s %12s   (pixels whose true surface lies in --region)\n", "view", "pixels",
               "diffuse dB", "diffuse 8b", "final dB", "final 8b");
   auto row = [](const std::string& name, const RegionMetrics& r) {
@@ -84,11 +85,8 @@ void printRegionTable(const DatasetSplit& split, const std::vector<RegionMetrics
                 formatMetric(r.diffuseTonemapped.psnr(), 2).c_str(), formatMetric(r.final.psnr(), 2).c_str(),
                 formatMetric(r.finalTonemapped.psnr(), 2).c_str());
   };
-  RegionMetrics pooled;
-  for (size_t v = 0; v < regions.size(); ++v) {
-    pooled += regions[v];
+  for (size_t v = 0; v < regions.size(); ++v)
     if (regions[v].pixels > 0) row(split.views[v].filePath, regions[v]);
-  }
   row("pooled over views", pooled);
 }
 
@@ -170,16 +168,16 @@ void runEval(const EvalOptions& o) {
     perView.push_back(entry);
   }
   report["per_view"] = perView;
+  RegionMetrics pooled;
+  for (const RegionMetrics& r : regions) pooled += r;
   if (region) {
-    RegionMetrics pooled;
-    for (const RegionMetrics& r : regions) pooled += r;
     report["region"] = {{"box", {region->lo.x, region->lo.y, region->lo.z, region->hi.x, region->hi.y, region->hi.z}},
                         {"pooled", toJson(pooled)}};
   }
   writeTextAtomically(output, report.dump(2) + "\n");
 
   printTable(split, views, mean);
-  if (region) printRegionTable(split, regions);
+  if (region) printRegionTable(split, regions, pooled);
   std::printf("\nmetrics: %s%s\n", output.string().c_str(),
               o.saveImages ? (", images: " + imagesFolder.string()).c_str() : "");
 }

@@ -20,6 +20,7 @@
 #include "eval/training_log.h"
 #include "eval/view_metrics.h"
 #include "io/image.h"
+#include "io/json_file.h"
 #include "scene/dataset.h"
 
 namespace glint {
@@ -39,14 +40,6 @@ struct ReportOptions {
 // Throws the "not found" error of an input, saying which command makes it.
 void requireInput(const fs::path& file, const std::string& makeIt) {
   if (!fs::exists(file)) throw Error(file.string(), "not found; " + makeIt);
-}
-
-nlohmann::json readJsonFile(const fs::path& file) {
-  try {
-    return nlohmann::json::parse(readTextFile(file));
-  } catch (const nlohmann::json::parse_error& e) {
-    throw Error(file.string(), std::string("is not valid JSON: ") + e.what());
-  }
 }
 
 // The metrics of `glint eval`, per view in the order of the split.

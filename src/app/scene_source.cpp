@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/atomic_file.h"
+#include "io/json_file.h"
 #include "core/error.h"
 #include "scene/gaussian_ply.h"
 
@@ -41,12 +41,7 @@ void readTraceValue(const Json& trace, const char* key, double low, double high,
 // Reads the parts of a run's config.json that rendering needs; other keys belong to the
 // trainer and are ignored here.
 void readRunConfig(const fs::path& file, SceneSource& source) {
-  Json config;
-  try {
-    config = Json::parse(readTextFile(file));
-  } catch (const Json::parse_error& e) {
-    throw Error(file.string(), std::string("is not valid JSON: ") + e.what());
-  }
+  Json config = readJsonFile(file);
   if (!config.is_object()) throw Error(file.string(), "must hold a JSON object");
   if (config.contains("dataset")) {
     if (!config["dataset"].is_string())

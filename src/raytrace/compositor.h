@@ -55,10 +55,6 @@ class Compositor {
   }
 
   bool terminated() const { return terminated_; }
-  T finalTransmittanceEstimate() const {
-    if (!terminated_) return transmittance_;
-    return settings_.exactTail ? tailTransmittance_ : T(0);
-  }
   T transmittance() const { return transmittance_; }
 
   // The ray's result. A truncated ray's light behind the termination point is estimated
@@ -87,6 +83,11 @@ class Compositor {
   }
 
  private:
+  T finalTransmittanceEstimate() const {
+    if (!terminated_) return transmittance_;
+    return settings_.exactTail ? tailTransmittance_ : T(0);
+  }
+
   const GaussianScene& scene_;
   const TraceSettings& settings_;
   HitList* hits_;

@@ -23,7 +23,7 @@ bool Camera::project(const Mat4& worldToCamera, const Vec3d& p, Vec2d* pixel) co
   if (!(ahead > 0.0)) return false;
   double f = focal();
   *pixel = {0.5 * width + f * local.x / ahead, 0.5 * height - f * local.y / ahead};
-  return true;
+  return pixel->x >= 0.0 && pixel->x < double(width) && pixel->y >= 0.0 && pixel->y < double(height);
 }
 
 }  // namespace glint

@@ -26,8 +26,8 @@ struct Camera {
   Ray generateRay(double px, double py) const;
   Vec3d position() const { return cameraToWorld.column(3); }
   // generateRay inverted: the continuous pixel position p projects to, given the inverse of
-  // cameraToWorld; false when p is not in front of the camera. The position may lie outside
-  // the image.
+  // cameraToWorld; false when p is not in front of the camera or projects outside the image
+  // (every caller wants a pixel of the image).
   bool project(const Mat4& worldToCamera, const Vec3d& p, Vec2d* pixel) const;
   Vec3d forward() const { return normalize(-cameraToWorld.column(2)); }
 };

@@ -43,8 +43,7 @@ bool insideRegion(const CameraSphere& sphere, const Mat4& worldToCamera, const V
   if (!(dot(d, d) < sphere.radius * sphere.radius)) return false;
   if (region == CullRegion::WholeSphere) return true;
   Vec2d pixel;
-  return camera.project(worldToCamera, p, &pixel) && pixel.x >= 0.0 && pixel.x < double(camera.width) &&
-         pixel.y >= 0.0 && pixel.y < double(camera.height);
+  return camera.project(worldToCamera, p, &pixel);
 }
 
 }  // namespace

@@ -86,7 +86,6 @@ size_t carveObservedFreeSpace(GaussianScene* farField, const TrainingViews& view
       const Camera& camera = views.camera(v);
       Vec2d pixel;
       if (!camera.project(worldToCamera[v], p, &pixel)) continue;
-      if (!(pixel.x >= 0.0 && pixel.x < camera.width && pixel.y >= 0.0 && pixel.y < camera.height)) continue;
       const PixelTarget& t = views.target(v, size_t(pixel.y) * size_t(camera.width) + size_t(pixel.x));
       if (!t.surface) continue;
       gap = std::min(gap, length(p - camera.position()) - double(t.depth));

@@ -3,12 +3,11 @@
 #include "train/train_config.h"
 
 #include <array>
-#include <fstream>
 #include <set>
 #include <stdexcept>
 
-#include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/json_file.h"
 
 namespace glint {
 
@@ -221,15 +220,8 @@ void TrainConfig::validate(const std::string& source) const {
 }
 
 TrainConfig readTrainConfig(const std::filesystem::path& path) {
-  std::string text = readTextFile(path);
-  nlohmann::json json;
-  try {
-    json = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error(path.string(), std::string("is not valid JSON: ") + e.what());
-  }
   TrainConfig config;
-  applyJson(json, &config, path.string());
+  applyJson(readJsonFile(path), &config, path.string());
   return config;
 }
 

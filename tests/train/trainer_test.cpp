@@ -160,7 +160,6 @@ TEST_F(TrainerTest, FarFieldIsCarvedOutOfObservedFreeSpace) {
       const Camera& camera = views_->camera(v);
       Vec2d pixel;
       if (!camera.project(camera.cameraToWorld.inverse(), Vec3d(far.position[i]), &pixel)) continue;
-      if (pixel.x < 0 || pixel.x >= camera.width || pixel.y < 0 || pixel.y >= camera.height) continue;
       const PixelTarget& t = views_->target(v, size_t(pixel.y) * size_t(camera.width) + size_t(pixel.x));
       if (!t.surface) continue;
       double distance = length(Vec3d(far.position[i]) - camera.position());
