@@ -1,0 +1,33 @@
+#include "edit/shape.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace glint {
+
+bool shapeContains(const Shape& shape, const Vec3f& p) {
+  // Into the shape's local frame: the rotation's columns are the local axes in world space.
+  Vec3f local = quatToRotation(shape.rotation).transposeTimes(p - shape.center);
+  switch (shape.kind) {
+    case Shape::Kind::Box:
+      return std::abs(local.x) <= shape.halfExtent.x && std::abs(local.y) <= shape.halfExtent.y &&
+             std::abs(local.z) <= shape.halfExtent.z;
+    case Shape::Kind::Sphere:
+      return dot(local, local) <= shape.radius * shape.radius;
+    case Shape::Kind::Cylinder: {
+      if (std::abs(local.y) > shape.halfHeight) return false;
+      float u = local.x / shape.radii.x, v = local.z / shape.radii.y;
+      return u * u + v * v <= 1.0f;
+    }
+  }
+  return false;
+}
+
+float derivedMetalness(float meanDiffuse, float meanF0) {
+  float specular = std::max(meanF0 - 0.04f, 0.0f);
+  float denominator = specular + std::max(meanDiffuse, 0.0f);
+  if (denominator <= 0.0f) return 0.0f;
+  return std::clamp(specular / denominator, 0.0f, 1.0f);
+}
+
+}  // namespace glint
