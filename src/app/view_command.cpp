@@ -1,0 +1,69 @@
+// `glint view RUN|SCENE.ply`: the interactive viewer and editor. Serves a page on
+// 127.0.0.1 that shows the scene rendered progressively on the CPU, with camera, display
+// and edit controls (see README "Viewer"); Ctrl-C stops it.
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+
+#include "app/commands.h"
+#include "app/scene_source.h"
+#include "app/viewer/viewer_setup.h"
+#include "core/error.h"
+
+namespace glint {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct ViewOptions {
+  std::string scene;
+  std::string dataset;
+  ViewerFlags viewer;
+};
+
+void runView(const ViewOptions& o) {
+  SceneSource source = loadSceneSource(o.scene);
+  fs::path datasetPath = o.dataset.empty() ? source.dataset : fs::path(o.dataset);
+  std::optional<Dataset> dataset;
+  if (!datasetPath.empty()) dataset = Dataset::open(datasetPath, /*requireBuffers=*/false);
+  // Saved edits and exports go beside what was opened: into the run folder, or the .ply's folder.
+  fs::path output = fs::is_directory(o.scene) ? fs::path(o.scene) : fs::absolute(o.scene).parent_path();
+  ViewerOptions options = makeViewerOptions(o.viewer, dataset, source.scene, output);
+  std::fprintf(stderr, "glint view: %zu Gaussians at %dx%d; saving edits into %s\n", source.scene.size(),
+               options.width, options.height, output.string().c_str());
+  ViewerServer server(std::move(options), std::move(source.scene), source.trace);
+  server.bind();
+  server.start();
+  std::printf("glint view: open %s (Ctrl-C stops)\n", server.url().c_str());
+  std::fflush(stdout);
+  waitForInterrupt();
+  std::fprintf(stderr, "glint view: stopping\n");
+  server.stop();
+}
+
+}  // namespace
+
+void addViewCommand(CLI::App& app) {
+  auto o = std::make_shared<ViewOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "view", "Interactive viewer and editor in the browser: serves a page (default http://127.0.0.1:PORT/) that "
+              "renders the scene progressively, with camera, render mode, bounce, exposure and edit controls. "
+              "Edits are saved as an edit file and the edited scene exported as PLY into the run folder.");
+  cmd->add_option("scene", o->scene, "Gaussian scene (.ply) or training run folder")->required();
+  cmd->add_option("--dataset", o->dataset, "Dataset whose cameras to offer (default: the run's dataset)");
+  cmd->add_option("--port", o->viewer.port, "Port to listen on (0 = any free port, printed)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  cmd->add_option("--host", o->viewer.host, "Address to listen on; anything but loopback exposes the scene and "
+                                            "its edits to the network (a warning is printed)")
+      ->capture_default_str();
+  cmd->add_option("--res", o->viewer.resolution, "Full image size WIDTHxHEIGHT (default: the dataset's, at most 640 "
+                                                 "wide, else 480x360)");
+  cmd->add_option("--max-samples", o->viewer.maxSamples, "Samples per pixel after which accumulation stops")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  cmd->callback([o]() { runView(*o); });
+}
+
+}  // namespace glint

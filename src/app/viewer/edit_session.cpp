@@ -1,0 +1,175 @@
+// The viewer's undoable edit stack over an edit document.
+#include "app/viewer/edit_session.h"
+
+#include <algorithm>
+#include <optional>
+
+#include "app/viewer/request_json.h"
+#include "core/error.h"
+#include "edit/edit_file.h"
+#include "edit/gaussian_edits.h"
+#include "edit/gaussian_selection.h"
+#include "edit/shape.h"
+
+namespace glint {
+
+namespace {
+
+// The request's selection and operation as a one-operation edit document, parsed by the
+// edit file reader so the page speaks exactly the edit file format.
+EditDocument parseSingleOperation(const nlohmann::json& request, bool needsOperation) {
+  if (needsOperation)
+    requireOnlyFields(request, {"selection", "operation"});
+  if (!request.contains("selection")) throw RequestError(400, "missing field \"selection\"");
+  nlohmann::json document = {{"glint_edits", EditDocument::kVersion},
+                             {"selections", {{"s", request["selection"]}}},
+                             {"operations", nlohmann::json::array()}};
+  if (needsOperation) {
+    if (!request.contains("operation") || !request["operation"].is_object())
+      throw RequestError(400, "\"operation\" must be an object");
+    nlohmann::json op = request["operation"];
+    if (op.contains("selection")) throw RequestError(400, "\"operation\" must not name a selection");
+    op["selection"] = "s";
+    document["operations"].push_back(op);
+  }
+  try {
+    return parseEditDocument(document, "request");
+  } catch (const Error& e) {
+    throw RequestError(400, e.what());
+  }
+}
+
+std::optional<Attribute> attributeFromName(const std::string& name) {
+  if (name == "roughness") return Attribute::Roughness;
+  if (name == "f0") return Attribute::F0;
+  if (name == "diffuse") return Attribute::Diffuse;
+  if (name == "metalness") return Attribute::Metalness;
+  return std::nullopt;
+}
+
+float attributeValue(const GaussianScene& scene, size_t i, Attribute attribute) {
+  auto mean = [](const Rgb& c) { return (c.x + c.y + c.z) / 3.0f; };
+  switch (attribute) {
+    case Attribute::Roughness: return scene.roughness[i];
+    case Attribute::F0: return mean(scene.f0[i]);
+    case Attribute::Diffuse: return mean(scene.diffuse[i]);
+    case Attribute::Metalness: return derivedMetalness(mean(scene.diffuse[i]), mean(scene.f0[i]));
+  }
+  return 0;
+}
+
+}  // namespace
+
+EditSession::EditSession(GaussianScene pristine, const TraceSettings& trace)
+    : pristine_(std::make_shared<const GaussianScene>(std::move(pristine))), trace_(trace) {
+  current_ = traceScene(pristine_, trace_);
+}
+
+std::shared_ptr<const TracedScene> EditSession::current() const {
+  std::lock_guard lock(mutex_);
+  return current_;
+}
+
+void EditSession::rebuild() {
+  EditDocument document;
+  for (const Step& step : steps_) {
+    document.selections[step.selectionName] = step.selection;
+    document.operations.push_back(step.operation);
+  }
+  if (document.operations.empty()) {
+    current_ = traceScene(pristine_, trace_);
+    return;
+  }
+  auto edited = std::make_shared<GaussianScene>(*pristine_);
+  applyEdits(document, *edited);
+  current_ = traceScene(std::move(edited), trace_);
+}
+
+std::shared_ptr<const TracedScene> EditSession::apply(const nlohmann::json& request) {
+  EditDocument single = parseSingleOperation(request, true);
+  std::lock_guard lock(mutex_);
+  if (steps_.size() >= kMaxOperations)
+    throw RequestError(409, "the edit stack holds " + std::to_string(kMaxOperations) + " operations; save and restart");
+  Step step{"selection_" + std::to_string(nextSelectionId_++), single.selections.at("s"), single.operations[0]};
+  step.operation.selection = step.selectionName;
+  std::vector<Step> previous = steps_;
+  steps_.push_back(std::move(step));
+  try {
+    rebuild();
+  } catch (const Error& e) {  // the operation cannot apply (e.g. a rotation without pivot)
+    steps_ = std::move(previous);
+    throw RequestError(400, e.what());
+  }
+  redo_.clear();
+  return current_;
+}
+
+std::shared_ptr<const TracedScene> EditSession::undo() {
+  std::lock_guard lock(mutex_);
+  if (steps_.empty()) throw RequestError(409, "nothing to undo");
+  redo_.push_back(std::move(steps_.back()));
+  steps_.pop_back();
+  rebuild();
+  return current_;
+}
+
+std::shared_ptr<const TracedScene> EditSession::redo() {
+  std::lock_guard lock(mutex_);
+  if (redo_.empty()) throw RequestError(409, "nothing to redo");
+  steps_.push_back(std::move(redo_.back()));
+  redo_.pop_back();
+  rebuild();
+  return current_;
+}
+
+nlohmann::json EditSession::status() const {
+  std::lock_guard lock(mutex_);
+  return {{"operations", steps_.size()}, {"redoable", redo_.size()}, {"gaussians", current_->scene->size()}};
+}
+
+EditDocument EditSession::document() const {
+  std::lock_guard lock(mutex_);
+  EditDocument document;
+  for (const Step& step : steps_) {
+    document.selections[step.selectionName] = step.selection;
+    document.operations.push_back(step.operation);
+  }
+  return document;
+}
+
+nlohmann::json EditSession::preview(const nlohmann::json& request) const {
+  requireOnlyFields(request, {"selection", "attribute", "bins"});
+  EditDocument single = parseSingleOperation(request, false);
+  std::string name = request.contains("attribute") ? readString(request, "attribute", 16) : "roughness";
+  std::optional<Attribute> attribute = attributeFromName(name);
+  if (!attribute) throw RequestError(400, "\"attribute\" must be one of f0, roughness, diffuse, metalness");
+  int bins = request.contains("bins") ? readInteger(request, "bins", 1, 256) : 32;
+
+  std::shared_ptr<const TracedScene> scene = current();
+  std::vector<bool> selected;
+  try {
+    selected = selectGaussians(single, "s", *scene->scene);
+  } catch (const Error& e) {
+    throw RequestError(400, e.what());
+  }
+  // Attributes lie in [0, 1] except diffuse, whose histogram spans the selection's range.
+  float lo = 0, hi = 1;
+  if (*attribute == Attribute::Diffuse) {
+    hi = 0;
+    for (size_t i = 0; i < selected.size(); ++i)
+      if (selected[i]) hi = std::max(hi, attributeValue(*scene->scene, i, *attribute));
+    hi = std::max(hi, 1e-6f);
+  }
+  std::vector<int64_t> histogram(size_t(bins), 0);
+  int64_t count = 0;
+  for (size_t i = 0; i < selected.size(); ++i) {
+    if (!selected[i]) continue;
+    ++count;
+    float t = (attributeValue(*scene->scene, i, *attribute) - lo) / (hi - lo);
+    histogram[size_t(std::clamp(int(t * float(bins)), 0, bins - 1))]++;
+  }
+  return {{"count", count}, {"total", selected.size()}, {"attribute", name}, {"histogram", histogram},
+          {"range", {lo, hi}}};
+}
+
+}  // namespace glint

@@ -1,0 +1,69 @@
+// Sums of progressive samples and their display mapping.
+#include "app/viewer/frame_accumulator.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "core/error.h"
+#include "io/tonemap.h"
+
+namespace glint {
+
+void FrameAccumulator::reset(int width, int height) {
+  sums_ = ViewBuffers::allocate(width, height);
+  samples_ = 0;
+}
+
+void FrameAccumulator::add(const ViewBuffers& sample) {
+  for (Buffer b : kAllBuffers) {
+    Image& sum = sums_[b];
+    const Image& add = sample[b];
+    GLINT_CHECK(add.width == sum.width && add.height == sum.height && add.channels == sum.channels,
+                "accumulated sample differs in size");
+    for (size_t i = 0; i < sum.pixels.size(); ++i) sum.pixels[i] += add.pixels[i];
+  }
+  ++samples_;
+}
+
+Image FrameAccumulator::mean(Buffer buffer) const {
+  Image out = sums_[buffer];
+  float scale = samples_ > 0 ? 1.0f / float(samples_) : 0.0f;
+  for (float& v : out.pixels) v *= scale;
+  if (buffer == Buffer::Normal)  // a mean of unit normals is shorter than 1 at edges
+    for (int y = 0; y < out.height; ++y)
+      for (int x = 0; x < out.width; ++x) out.setRgb(x, y, normalize(out.rgb(x, y)));
+  return out;
+}
+
+Image FrameAccumulator::display(const DisplaySettings& settings) const {
+  Image m = mean(settings.mode);
+  Image out(m.width, m.height, 3);
+  if (isRadianceBuffer(settings.mode)) {
+    float gain = float(std::exp2(settings.exposure));
+    for (int y = 0; y < m.height; ++y)
+      for (int x = 0; x < m.width; ++x) out.setRgb(x, y, tonemapFilmic(m.rgb(x, y) * gain));
+  } else if (settings.mode == Buffer::Normal) {
+    for (int y = 0; y < m.height; ++y)
+      for (int x = 0; x < m.width; ++x) {
+        Rgb n = m.rgb(x, y);
+        out.setRgb(x, y, dot(n, n) > 0 ? n * 0.5f + Rgb(0.5f) : Rgb(0.0f));
+      }
+  } else if (settings.mode == Buffer::Depth) {
+    float nearest = std::numeric_limits<float>::max(), farthest = 0;
+    for (float d : m.pixels)
+      if (hasSurface(d)) nearest = std::min(nearest, d), farthest = std::max(farthest, d);
+    float range = std::max(farthest - nearest, 1e-6f);
+    for (int y = 0; y < m.height; ++y)
+      for (int x = 0; x < m.width; ++x) {
+        float d = m.at(x, y);
+        out.setRgb(x, y, Rgb(hasSurface(d) ? 1.0f - 0.8f * (d - nearest) / range : 0.0f));
+      }
+  } else {  // roughness (grey) and F0
+    for (int y = 0; y < m.height; ++y)
+      for (int x = 0; x < m.width; ++x) out.setRgb(x, y, m.rgb(x, y));
+  }
+  return out;
+}
+
+}  // namespace glint

@@ -1,0 +1,32 @@
+// Progressive accumulation of a view's buffers: sums of single-sample renders, and the
+// 8-bit-ready display image of one of them (tonemapped radiance, mapped G-buffers).
+#pragma once
+
+#include "app/viewer/display_settings.h"
+#include "io/image.h"
+#include "scene/buffers.h"
+
+namespace glint {
+
+class FrameAccumulator {
+ public:
+  void reset(int width, int height);
+  // Adds one render of the view (all buffers, same size).
+  void add(const ViewBuffers& sample);
+  int samples() const { return samples_; }
+  int width() const { return sums_[Buffer::Render].width; }
+  int height() const { return sums_[Buffer::Render].height; }
+  // The mean of the chosen buffer as an RGB image with values in [0, 1]: radiance times
+  // 2^exposure through the filmic tonemap (as 8-bit dataset images), normals as n/2 + 1/2,
+  // depth as grey from near (white) to far (dark) over the frame's surfaces, roughness as
+  // grey, F0 as is. Zero samples give a black image.
+  Image display(const DisplaySettings& settings) const;
+  // The mean of one buffer (linear values).
+  Image mean(Buffer buffer) const;
+
+ private:
+  ViewBuffers sums_;
+  int samples_ = 0;
+};
+
+}  // namespace glint

@@ -1,0 +1,74 @@
+// The viewer's HTTP server (cpp-httplib): the page's static files, frames from the
+// progressive renderer, and JSON endpoints for the camera, display settings, training
+// cameras and edits. Every request is validated; a bad one gets a 4xx JSON error
+// ({"error": "..."}) and changes nothing.
+#pragma once
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "app/viewer/viewer_camera.h"
+#include "raytrace/trace_settings.h"
+#include "scene/gaussians.h"
+
+namespace httplib {
+class Server;
+}
+
+namespace glint {
+
+class EditSession;
+class ProgressiveRenderer;
+
+struct TrainingCameraEntry {
+  std::string name;
+  ViewerCamera camera;
+};
+
+struct ViewerOptions {
+  std::string host = "127.0.0.1";
+  int port = 0;  // 0: any free port
+  int width = 480, height = 360;
+  int maxSamples = 1024;
+  std::filesystem::path webRoot;       // the page's files
+  std::filesystem::path outputFolder;  // where "save edits" and "export PLY" write
+  bool editable = true;                // false while training: the scene is the trainer's
+  std::vector<TrainingCameraEntry> trainingCameras;
+  ViewerCamera initialCamera;
+};
+
+// Request bodies above this are refused with 413 (edit operations are a few hundred bytes).
+constexpr size_t kMaxRequestBytes = 64 * 1024;
+
+class ViewerServer {
+ public:
+  ViewerServer(ViewerOptions options, GaussianScene scene, const TraceSettings& trace);
+  ~ViewerServer();  // stops serving
+
+  // Binds the socket; returns the port (the chosen one when options.port is 0). Throws Error.
+  int bind();
+  // Serves on a background thread until stop() (or destruction).
+  void start();
+  void stop();
+  std::string url() const;
+
+  // Replaces the scene shown (a training snapshot); only for servers that are not editable.
+  void showScene(GaussianScene scene);
+
+ private:
+  void addRoutes();
+  void addEditRoutes();
+
+  ViewerOptions options_;
+  TraceSettings trace_;
+  int port_ = 0;
+  std::unique_ptr<httplib::Server> http_;
+  std::unique_ptr<ProgressiveRenderer> renderer_;
+  std::unique_ptr<EditSession> edits_;
+  std::thread listener_;
+};
+
+}  // namespace glint
