@@ -90,4 +90,13 @@ struct EditDocument {
   std::vector<Operation> operations;
 };
 
+// The point a rotate or scale turns about: its pivot, or else the centre of its selection's
+// shape (parseEditDocument guarantees one of the two exists).
+inline Vec3f operationPivot(const EditDocument& document, const Operation& op) {
+  if (op.hasPivot) return op.pivot;
+  auto it = document.selections.find(op.selection);
+  return it != document.selections.end() && it->second.kind == Selection::Kind::Shape ? it->second.shape.center
+                                                                                       : Vec3f(0.0f);
+}
+
 }  // namespace glint

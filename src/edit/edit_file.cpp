@@ -29,6 +29,8 @@ const char* attributeName(Attribute a) {
   return "?";
 }
 
+}  // namespace
+
 const char* operationName(Operation::Kind k) {
   switch (k) {
     case Operation::Kind::Translate: return "translate";
@@ -42,6 +44,8 @@ const char* operationName(Operation::Kind k) {
   }
   return "?";
 }
+
+namespace {
 
 const char* combinationName(Selection::Kind k) {
   switch (k) {

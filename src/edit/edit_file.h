@@ -22,6 +22,9 @@ EditDocument parseEditDocument(const nlohmann::json& json, const std::string& so
 // "everything" as a string unless it has filters. parseEditDocument reads it back exactly.
 nlohmann::json editDocumentToJson(const EditDocument& document);
 
+// The name of an operation in edit files ("translate", "rotate", ...).
+const char* operationName(Operation::Kind kind);
+
 // Writes the document atomically (pretty-printed JSON).
 void writeEditFile(const std::filesystem::path& path, const EditDocument& document);
 

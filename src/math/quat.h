@@ -30,6 +30,21 @@ Mat3<T> quatToRotation(const Quat<T>& q) {
   return r;
 }
 
+// Hamilton product: rotating by b, then by a, is rotating by a * b.
+template <typename T>
+Quat<T> operator*(const Quat<T>& a, const Quat<T>& b) {
+  return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
+}
+
+// The unit quaternion of a right-handed rotation by `radians` about `axis` (any length > 0).
+template <typename T>
+Quat<T> quatFromAxisAngle(const Vec3<T>& axis, T radians) {
+  Vec3<T> u = normalize(axis);
+  T s = std::sin(radians / 2);
+  return {std::cos(radians / 2), u.x * s, u.y * s, u.z * s};
+}
+
 using Quatf = Quat<float>;
 using Quatd = Quat<double>;
 

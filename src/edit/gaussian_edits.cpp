@@ -1,0 +1,135 @@
+// Each operation changes the selected Gaussians' parameters in place (in parallel), or their
+// number (duplicate, delete). Geometry edits move the whole Gaussian: its mean, its
+// orientation and its attached normal, so the shading of a moved object moves with it.
+#include "edit/gaussian_edits.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "core/parallel.h"
+#include "edit/edit_file.h"
+#include "edit/gaussian_selection.h"
+#include "edit/hsv.h"
+
+namespace glint {
+
+namespace {
+
+constexpr int64_t kGrain = 4096;
+
+// Calls change(i) for every selected Gaussian.
+template <typename Change>
+void forSelected(const GaussianMask& mask, Change&& change) {
+  parallelFor(int64_t(mask.size()), kGrain, [&](int64_t i) {
+    if (mask[i]) change(size_t(i));
+  });
+}
+
+Rgb changeColor(const Rgb& c, const ColorChange& change) {
+  switch (change.mode) {
+    case ColorChange::Mode::Set: return lerp(c, change.value, change.blend);
+    case ColorChange::Mode::HsvShift: return hsvToRgb(rgbToHsv(c) + change.value);
+    case ColorChange::Mode::HsvMultiply: return hsvToRgb(rgbToHsv(c) * change.value);
+  }
+  return c;
+}
+
+float changeRoughness(float r, const Operation& op) {
+  switch (op.roughnessMode) {
+    case Operation::RoughnessMode::Set: r = op.amount; break;
+    case Operation::RoughnessMode::Shift: r += op.amount; break;
+    case Operation::RoughnessMode::Multiply: r *= op.amount; break;
+  }
+  return std::clamp(r, 0.0f, 1.0f);
+}
+
+}  // namespace
+
+void applyOperation(const EditDocument& document, const Operation& op, const GaussianMask& mask,
+                    GaussianScene& scene) {
+  switch (op.kind) {
+    case Operation::Kind::Translate:
+      forSelected(mask, [&](size_t i) { scene.position[i] += op.offset; });
+      break;
+    case Operation::Kind::Rotate: {
+      // The rotation r turns means about the pivot, and composes with each orientation
+      // (q' = r q: first the Gaussian's own rotation, then the edit's).
+      Quatf r = quatFromAxisAngle(op.axis, op.angleDegrees * std::numbers::pi_v<float> / 180.0f);
+      Mat3f rotation = quatToRotation(r);
+      Vec3f pivot = operationPivot(document, op);
+      forSelected(mask, [&](size_t i) {
+        scene.position[i] = pivot + rotation * (scene.position[i] - pivot);
+        scene.rotation[i] = r * scene.rotation[i];
+        scene.normal[i] = rotation * scene.normal[i];
+      });
+      break;
+    }
+    case Operation::Kind::Scale: {
+      Vec3f pivot = operationPivot(document, op);
+      float logFactor = std::log(op.factor);
+      forSelected(mask, [&](size_t i) {
+        scene.position[i] = pivot + (scene.position[i] - pivot) * op.factor;
+        scene.logScale[i] += Vec3f(logFactor);
+      });
+      break;
+    }
+    case Operation::Kind::Duplicate: {
+      size_t n = scene.size();
+      for (size_t i = 0; i < n; ++i) {
+        if (!mask[i]) continue;
+        scene.append(scene, i);
+        scene.position.back() += op.offset;
+      }
+      break;
+    }
+    case Operation::Kind::Delete: {
+      std::vector<bool> keep(mask.size());
+      for (size_t i = 0; i < mask.size(); ++i) keep[i] = !mask[i];
+      scene.filter(keep);
+      break;
+    }
+    case Operation::Kind::Roughness:
+      forSelected(mask, [&](size_t i) { scene.roughness[i] = changeRoughness(scene.roughness[i], op); });
+      break;
+    case Operation::Kind::F0:
+      forSelected(mask, [&](size_t i) {
+        Rgb c = changeColor(scene.f0[i], op.color);
+        scene.f0[i] = {std::clamp(c.x, 0.0f, 1.0f), std::clamp(c.y, 0.0f, 1.0f), std::clamp(c.z, 0.0f, 1.0f)};
+      });
+      break;
+    case Operation::Kind::Diffuse:
+      forSelected(mask, [&](size_t i) { scene.diffuse[i] = max(changeColor(scene.diffuse[i], op.color), Rgb(0.0f)); });
+      break;
+  }
+}
+
+EditReport applyEdits(const EditDocument& document, GaussianScene& scene) {
+  EditReport report;
+  report.countBefore = scene.size();
+  for (size_t k = 0; k < document.operations.size(); ++k) {
+    const Operation& op = document.operations[k];
+    GaussianMask mask = selectGaussians(document, op.selection, scene);
+    OperationReport entry;
+    entry.description =
+        "operations[" + std::to_string(k) + "] " + operationName(op.kind) + " \"" + op.selection + "\"";
+    entry.selected = countSelected(mask);
+    if (entry.selected == 0) report.warnings.push_back(entry.description + ": the selection holds no Gaussians");
+    applyOperation(document, op, mask, scene);
+    report.operations.push_back(entry);
+  }
+  report.countAfter = scene.size();
+  return report;
+}
+
+std::string formatEditReport(const EditReport& report) {
+  std::string text;
+  for (const OperationReport& op : report.operations)
+    text += op.description + ": " + std::to_string(op.selected) + " Gaussians\n";
+  for (const std::string& warning : report.warnings) text += "warning: " + warning + "\n";
+  text += "Gaussians: " + std::to_string(report.countBefore) + " -> " + std::to_string(report.countAfter) +
+          (report.countChanged() ? "" : " (unchanged)") + "\n";
+  return text;
+}
+
+}  // namespace glint
