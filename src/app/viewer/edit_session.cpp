@@ -146,7 +146,7 @@ nlohmann::json EditSession::preview(const nlohmann::json& request) const {
   int bins = request.contains("bins") ? readInteger(request, "bins", 1, 256) : 32;
 
   std::shared_ptr<const TracedScene> scene = current();
-  std::vector<bool> selected;
+  GaussianMask selected;
   try {
     selected = selectGaussians(single, "s", *scene->scene);
   } catch (const Error& e) {

@@ -46,6 +46,7 @@ ViewerServer::~ViewerServer() {
 
 int ViewerServer::bind() {
   http_->set_payload_max_length(kMaxRequestBytes);
+  http_->set_tcp_nodelay(true);  // headers and body go out in separate writes: no Nagle delay between them
   http_->set_read_timeout(5, 0);
   http_->set_write_timeout(5, 0);
   port_ = options_.port == 0 ? http_->bind_to_any_port(options_.host) : options_.port;

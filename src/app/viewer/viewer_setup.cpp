@@ -67,10 +67,14 @@ ViewerOptions makeViewerOptions(const ViewerFlags& flags, const std::optional<Da
   if (!flags.resolution.empty()) {
     Vec2i r = parseResolution(flags.resolution, "--res");
     options.width = r.x, options.height = r.y;
-  } else if (dataset && dataset->train().width > 0) {
-    const DatasetSplit& train = dataset->train();
-    int divisor = (train.width + kDefaultMaxWidth - 1) / kDefaultMaxWidth;
-    options.width = train.width / divisor, options.height = train.height / divisor;
+  } else if (dataset && !dataset->train().views.empty()) {
+    // The size of the first training image, when the dataset has its images.
+    std::optional<std::filesystem::path> first = dataset->findBufferFile(dataset->train().views[0], Buffer::Render);
+    if (first) {
+      Image image = readImage(*first);
+      int divisor = (image.width + kDefaultMaxWidth - 1) / kDefaultMaxWidth;
+      options.width = image.width / divisor, options.height = image.height / divisor;
+    }
   }
   return options;
 }
