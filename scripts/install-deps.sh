@@ -7,6 +7,7 @@ packages=(
   libembree-dev libtbb-dev libopenexr-dev libtiff-dev libpng-dev libstb-dev
   libtinygltf-dev nlohmann-json3-dev libcli11-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
+  chromium  # the viewer's end-to-end test drives it headless (tests/web)
 )
 
 missing=()

@@ -22,6 +22,7 @@ export class FrameLoop {
         this.context.imageSmoothingEnabled = bitmap.width < this.canvas.width;
         this.context.drawImage(bitmap, 0, 0, this.canvas.width, this.canvas.height);
         this.frameId = id;
+        this.frameType = response.headers.get('Content-Type');  // image/png or image/jpeg
         this.samples = Number(response.headers.get('X-Glint-Samples'));
         const now = performance.now();
         this.times.push(now);

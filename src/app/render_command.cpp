@@ -33,6 +33,7 @@ struct RenderOptions {
   uint64_t seed = 0;
   TraceFlags trace;
   bool force = false;
+  std::string format = "exr";
   std::string debugPixel;  // "x,y": print that pixel's paths instead of rendering
   int debugView = 0;
 };
@@ -130,7 +131,8 @@ void runRender(const RenderOptions& o) {
   for (size_t v = 0; v < split.views.size(); ++v) {
     Camera camera{split.views[v].cameraToWorld, split.cameraAngleX, width, height};
     ViewBuffers buffers = renderGaussianView(*tracer, camera, settings, uint64_t(v));
-    writeRenderedBuffers(o.output, split.views[v].filePath, buffers);
+    writeRenderedBuffers(o.output, split.views[v].filePath, buffers,
+                         o.format == "png" ? ImageFormat::Png : ImageFormat::Exr);
     progress.advance();
   }
 }
@@ -163,6 +165,10 @@ void addRenderCommand(CLI::App& app) {
                   "traced exactly as in the full render, and write nothing");
   cmd->add_option("--view", o->debugView, "View index (in the split) for --debug-pixel")->capture_default_str();
   cmd->add_flag("--force", o->force, "Write into a non-empty output folder");
+  cmd->add_option("--format", o->format, "exr: linear float buffers; png: 8-bit, encoded as datasets store them "
+                                         "(radiance through the filmic tonemap, as the viewer shows it; depth stays EXR)")
+      ->check(CLI::IsMember({"exr", "png"}))
+      ->capture_default_str();
   cmd->callback([o]() { runRender(*o); });
 }
 

@@ -2,19 +2,24 @@
 #include "app/rendered_buffers.h"
 
 #include "io/image.h"
+#include "scene/buffer_codec.h"
 #include "scene/dataset.h"
 
 namespace glint {
 
 std::filesystem::path renderedBufferPath(const std::filesystem::path& out, const std::string& renderFilePath,
-                                         Buffer buffer) {
+                                         Buffer buffer, ImageFormat format) {
   std::filesystem::path relative(bufferFilePath(renderFilePath, buffer));
-  return out / relative.parent_path().filename() / (relative.filename().string() + ".exr");
+  return out / relative.parent_path().filename() /
+         (relative.filename().string() + imageFormatExtension(bufferStorageFormat(buffer, format)));
 }
 
 void writeRenderedBuffers(const std::filesystem::path& out, const std::string& renderFilePath,
-                          const ViewBuffers& buffers) {
-  for (Buffer b : kRenderedBuffers) writeImage(renderedBufferPath(out, renderFilePath, b), buffers[b]);
+                          const ViewBuffers& buffers, ImageFormat format) {
+  for (Buffer b : kRenderedBuffers) {
+    ImageFormat stored = bufferStorageFormat(b, format);
+    writeImage(renderedBufferPath(out, renderFilePath, b, format), encodeBuffer(buffers[b], b, stored));
+  }
 }
 
 }  // namespace glint

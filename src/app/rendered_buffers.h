@@ -12,12 +12,14 @@ namespace glint {
 constexpr Buffer kRenderedBuffers[] = {Buffer::Render, Buffer::Diffuse, Buffer::Specular, Buffer::Depth,
                                        Buffer::Normal,  Buffer::Roughness, Buffer::F0};
 
-// "test/render/render_0007" -> "OUT/depth/depth_0007.exr".
+// "test/render/render_0007" -> "OUT/depth/depth_0007.exr" (with format Png: the extension
+// bufferStorageFormat gives, so depth stays .exr).
 std::filesystem::path renderedBufferPath(const std::filesystem::path& out, const std::string& renderFilePath,
-                                         Buffer buffer);
+                                         Buffer buffer, ImageFormat format = ImageFormat::Exr);
 
-// Writes kRenderedBuffers of one view as EXR files (each atomically).
+// Writes kRenderedBuffers of one view (each atomically): EXR files of linear values, or 8-bit
+// PNG encoded as datasets store them (radiance tonemapped, normals n/2 + 1/2; depth as EXR).
 void writeRenderedBuffers(const std::filesystem::path& out, const std::string& renderFilePath,
-                          const ViewBuffers& buffers);
+                          const ViewBuffers& buffers, ImageFormat format = ImageFormat::Exr);
 
 }  // namespace glint

@@ -48,6 +48,24 @@ class Rng {
     return (xorshifted >> rot) | (xorshifted << ((~rot + 1u) & 31));
   }
 
+  // Skips `delta` outputs in O(log delta) steps, as `delta` calls of nextUint would: the
+  // LCG step applied delta times is again an affine map, built by repeated squaring
+  // (F. Brown, "Random number generation with arbitrary strides", 1994).
+  void advance(uint64_t delta) {
+    uint64_t multiplier = 6364136223846793005ull, increment = increment_;
+    uint64_t totalMultiplier = 1, totalIncrement = 0;
+    while (delta > 0) {
+      if (delta & 1u) {
+        totalMultiplier *= multiplier;
+        totalIncrement = totalIncrement * multiplier + increment;
+      }
+      increment = (multiplier + 1) * increment;
+      multiplier *= multiplier;
+      delta >>= 1u;
+    }
+    state_ = totalMultiplier * state_ + totalIncrement;
+  }
+
   // Uniform in [0, 1), never 1: 24 random bits scaled exactly.
   float uniform() { return static_cast<float>(nextUint() >> 8) * 0x1p-24f; }
   double uniformDouble() {

@@ -12,7 +12,9 @@ namespace {
 class PixelSamples {
  public:
   PixelSamples(const RenderSettings& settings, uint64_t viewKey, uint64_t pixel)
-      : rng_(Rng::forKeys({settings.seed, viewKey, pixel})), jitter_(settings.jitter) {}
+      : rng_(Rng::forKeys({settings.seed, viewKey, pixel})), jitter_(settings.jitter) {
+    if (jitter_) rng_.advance(2 * uint64_t(settings.firstSample));  // the positions of earlier samples
+  }
   Vec2f next() { return jitter_ ? rng_.uniform2() : Vec2f(0.5f, 0.5f); }
 
  private:
@@ -31,7 +33,7 @@ std::vector<std::vector<PathSegment>> tracePixelPaths(const GaussianTracer& trac
     Vec2f offset = samples.next();
     Ray ray = camera.generateRay(x + offset.x, y + offset.y);
     PathResult path = tracePath(tracer, {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f}, settings.path,
-                                settings.seed, viewKey, pixel, uint64_t(s), &paths[size_t(s)]);
+                                settings.seed, viewKey, pixel, uint64_t(settings.firstSample + s), &paths[size_t(s)]);
     paths[size_t(s)].resize(size_t(path.segments));
   }
   return paths;
@@ -52,7 +54,7 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
           Vec2f offset = samples.next();
           Ray ray = camera.generateRay(x + offset.x, y + offset.y);
           PathResult path = tracePath(tracer, {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f}, settings.path,
-                                      settings.seed, viewKey, pixel, uint64_t(s));
+                                      settings.seed, viewKey, pixel, uint64_t(settings.firstSample + s));
           const RayResult& r = path.first;
           diffuse += r.diffuse;
           specular += path.specular;

@@ -18,6 +18,11 @@ struct RenderSettings {
   // jitter every sample goes through the pixel centre.
   bool jitter = true;
   uint64_t seed = 0;
+  // Index of the first sample: samples firstSample .. firstSample + spp - 1 are traced, with
+  // the random numbers they have in a render of firstSample + spp samples. So renders of
+  // one sample each with firstSample 0, 1, ..., N-1 average to exactly the render of N
+  // samples (the viewer accumulates that way).
+  int firstSample = 0;
   PathSettings path;  // bounces 0: first segment only (specular stays zero)
 };
 

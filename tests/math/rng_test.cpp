@@ -168,5 +168,15 @@ TEST(Rng, UniformIntStaysBelowNAndIsUniform) {
   EXPECT_NEAR(upperHalf, 50000, 5 * std::sqrt(100000 * 0.25));
 }
 
+TEST(Rng, AdvanceSkipsOutputsLikeDrawingThem) {
+  for (uint64_t delta : {0ull, 1ull, 2ull, 7ull, 64ull, 1000ull, 123457ull}) {
+    Rng drawn = Rng::forKeys({3, 1, 4}), skipped = drawn;
+    for (uint64_t i = 0; i < delta; ++i) drawn.nextUint();
+    skipped.advance(delta);
+    EXPECT_EQ(skipped.nextUint(), drawn.nextUint()) << delta;
+    EXPECT_EQ(skipped.state(), drawn.state()) << delta;
+  }
+}
+
 }  // namespace
 }  // namespace glint

@@ -127,10 +127,10 @@ void ProgressiveRenderer::run() {
     RenderSettings render;
     render.spp = 1;
     render.path.bounces = settings.bounces;
-    // Low-resolution frames go through pixel centres; full-resolution samples are jittered
-    // with a new seed each, so their mean converges like `glint render --spp N`.
+    // Low-resolution frames go through pixel centres; full-resolution sample k is sample k
+    // of `glint render` (seed 0, view 0), so N accumulated samples are its --spp N render.
     render.jitter = level == 2;
-    render.seed = uint64_t(sample);
+    render.firstSample = sample;
     lock.unlock();
     auto start = std::chrono::steady_clock::now();
     ViewBuffers buffers = renderGaussianView(*scene->tracer, camera, render, 0);

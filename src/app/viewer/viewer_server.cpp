@@ -37,6 +37,7 @@ ViewerServer::ViewerServer(ViewerOptions options, GaussianScene scene, const Tra
   renderer_->setCamera(options_.initialCamera);
   addRoutes();
   if (options_.editable) addEditRoutes();
+  addStaticRoute();  // last: its pattern matches every GET
 }
 
 ViewerServer::~ViewerServer() {
@@ -138,8 +139,11 @@ void ViewerServer::addRoutes() {
       res.set_content(encodeJpeg(frame->image), "image/jpeg");
   });
 
+}
+
+void ViewerServer::addStaticRoute() {
   // Everything else that is a GET is a file of the page, or 404.
-  http.Get(R"(/.*)", [this](const httplib::Request& req, httplib::Response& res) {
+  http_->Get(R"(/.*)", [this](const httplib::Request& req, httplib::Response& res) {
     if (req.path.rfind("/api/", 0) == 0) throw RequestError(404, "no such endpoint");
     std::optional<std::filesystem::path> file =
         options_.webRoot.empty() ? std::nullopt : resolveStaticFile(options_.webRoot, req.path);

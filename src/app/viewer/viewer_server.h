@@ -61,6 +61,7 @@ class ViewerServer {
  private:
   void addRoutes();
   void addEditRoutes();
+  void addStaticRoute();
 
   ViewerOptions options_;
   TraceSettings trace_;

@@ -1,0 +1,163 @@
+// End-to-end test of `glint view` with Debian's Chromium driven by playwright-core: trains
+// a tiny scene of chrome spheres, opens the viewer page, waits for an accumulated frame and
+// compares it with `glint render` of the same camera (PSNR >= 30 dB), makes the green
+// sphere rough through the page's controls and checks that the frame changes there and in
+// its reflections only, then undoes and checks the frame returns exactly.
+// Usage: node viewer_e2e.mjs GLINT_BINARY WORK_FOLDER. Exit 77 (CTest: skipped) without Chromium.
+import { spawn, execFileSync } from 'node:child_process';
+import { existsSync, mkdtempSync, readFileSync, readdirSync, rmSync } from 'node:fs';
+import { join } from 'node:path';
+
+const CHROMIUM = '/usr/bin/chromium';
+const SAMPLES = 64;  // accumulated by the viewer and rendered by glint render
+const [glint, workRoot] = process.argv.slice(2);
+
+if (!existsSync(CHROMIUM)) {
+  console.log(`SKIPPED: ${CHROMIUM} is not installed (apt-get install chromium, or run scripts/install-deps.sh)`);
+  process.exit(77);
+}
+const { chromium } = await import('playwright-core');
+
+function check(condition, message) {
+  if (!condition) throw new Error(`check failed: ${message}`);
+  console.log(`ok: ${message}`);
+}
+
+function run(args) {
+  execFileSync(glint, args, { stdio: ['ignore', 'ignore', 'inherit'] });
+}
+
+// Starts `glint view` and resolves with its URL once printed.
+function startViewer(args) {
+  const child = spawn(glint, ['view', ...args], { stdio: ['ignore', 'pipe', 'inherit'] });
+  return new Promise((resolve, reject) => {
+    let out = '';
+    child.stdout.on('data', (d) => {
+      out += d;
+      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
+      if (m) resolve({ child, url: m[0] });
+    });
+    child.on('exit', (code) => reject(new Error(`glint view exited with ${code}`)));
+  });
+}
+
+// 8-bit RGB PSNR over all pixels of two RGBA arrays.
+function psnr(a, b) {
+  let sum = 0, n = 0;
+  for (let i = 0; i < a.length; i += 4)
+    for (let c = 0; c < 3; ++c) { const d = a[i + c] - b[i + c]; sum += d * d; ++n; }
+  return 10 * Math.log10((255 * 255) / Math.max(sum / n, 1e-12));
+}
+
+// Per-pixel largest channel difference.
+function pixelDifferences(a, b) {
+  const out = [];
+  for (let i = 0; i < a.length; i += 4)
+    out.push(Math.max(Math.abs(a[i] - b[i]), Math.abs(a[i + 1] - b[i + 1]), Math.abs(a[i + 2] - b[i + 2])));
+  return out;
+}
+
+const work = mkdtempSync(join(workRoot, 'viewer_e2e_'));
+let viewer = null, browser = null;
+try {
+  // A tiny trained scene of chrome spheres (the quality does not matter: the viewer must show
+  // what glint render shows).
+  run(['synth', 'builtin:spheres', '-o', join(work, 'D'), '--train', '4', '--test', '1', '--res', '64x48', '--spp', '4']);
+  run(['train', join(work, 'D'), '-o', join(work, 'RUN'), '--iters', '250', '--eval-views', '0']);
+  run(['render', join(work, 'RUN'), '--split', 'train', '--spp', String(SAMPLES), '--res', '64x48', '--bounces', '2', '--format', 'png',
+       '-o', join(work, 'R')]);
+  const renderFiles = readdirSync(join(work, 'R', 'render')).filter((f) => f.endsWith('.png')).sort();
+  const reference = readFileSync(join(work, 'R', 'render', renderFiles[0])).toString('base64');
+
+  viewer = await startViewer([join(work, 'RUN'), '--port', '0', '--res', '64x48', '--max-samples', String(SAMPLES)]);
+  // A fresh profile folder (playwright passes it as --user-data-dir).
+  browser = await chromium.launchPersistentContext(join(work, 'chromium-profile'), {
+    executablePath: CHROMIUM,
+    headless: true,
+    args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+      '--disable-background-networking', '--disable-component-update', '--disable-sync'],
+  });
+  const page = await browser.newPage();
+  // Loopback only: any other request is a bug (the page must work offline).
+  await page.route('**/*', (route) => (route.request().url().startsWith(viewer.url) ? route.continue() : route.abort()));
+  page.on('pageerror', (e) => console.error(`page error: ${e.message}`));
+  await page.goto(viewer.url);
+  await page.waitForFunction(() => window.glintViewer !== undefined);
+  await page.selectOption('#format', 'png');
+  await page.selectOption('#training-camera', '0');
+  await page.click('#snap');
+
+  const frameId = () => page.evaluate(() => window.glintViewer.frames.frameId);
+  // Waits for a fully accumulated frame newer than `after`, returns the canvas's RGBA pixels.
+  async function accumulatedFrame(after) {
+    console.log(`waiting for a ${SAMPLES}-sample frame after frame ${after}`);
+    // PNG only: a frame requested before the format switch arrives as JPEG.
+    await page.waitForFunction(([n, id]) => window.glintViewer.frames.samples >= n && window.glintViewer.frames.frameId > id &&
+      window.glintViewer.frames.frameType === 'image/png',
+      [SAMPLES, after], { timeout: 120000 });
+    return page.evaluate(() => {
+      const c = document.getElementById('frame');
+      return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data);
+    });
+  }
+  const before = await accumulatedFrame(0);
+
+  // Not blank: bright enough and with contrast.
+  const values = before.filter((_, i) => i % 4 !== 3);
+  const mean = values.reduce((s, v) => s + v, 0) / values.length;
+  const spread = Math.sqrt(values.reduce((s, v) => s + (v - mean) * (v - mean), 0) / values.length);
+  check(mean > 10 && spread > 10, `frame is not blank (mean ${mean.toFixed(1)}, deviation ${spread.toFixed(1)})`);
+
+  const referencePixels = await page.evaluate(async (b64) => {
+    const bytes = Uint8Array.from(atob(b64), (c) => c.charCodeAt(0));
+    const bitmap = await createImageBitmap(new Blob([bytes], { type: 'image/png' }));
+    const canvas = new OffscreenCanvas(bitmap.width, bitmap.height);
+    const g = canvas.getContext('2d');
+    g.drawImage(bitmap, 0, 0);
+    return Array.from(g.getImageData(0, 0, bitmap.width, bitmap.height).data);
+  }, reference);
+  check(referencePixels.length === before.length, 'glint render and the viewer have the same size');
+  const match = psnr(before, referencePixels);
+  check(match >= 30, `viewer frame matches glint render at ${match.toFixed(2)} dB (>= 30)`);
+
+  // The roughness buffer shows where the green sphere is: edit it through the page.
+  const box = { 'box-min-x': -0.65, 'box-min-y': -0.05, 'box-min-z': -1.55, 'box-max-x': 0.65, 'box-max-y': 1.25, 'box-max-z': -0.25 };
+  for (const [id, v] of Object.entries(box)) await page.fill(`#${id}`, String(v));
+  await page.selectOption('#op-kind', 'roughness');
+  await page.selectOption('#op-roughness-mode', 'set');
+  await page.fill('#op-roughness', '1');
+  await page.click('#apply');
+  await page.waitForFunction(() => document.getElementById('message').textContent.startsWith('applied'));
+  const edited = await accumulatedFrame(await frameId());
+
+  // Where the sphere is: pixels whose roughness buffer changed (mode switch, no re-render).
+  await page.selectOption('#mode', 'roughness');
+  const roughAfter = await accumulatedFrame(await frameId());
+  await page.click('#undo');
+  await page.waitForFunction(() => document.getElementById('message').textContent.startsWith('undone'));
+  const roughBefore = await accumulatedFrame(await frameId());
+  await page.selectOption('#mode', 'final');
+  const restored = await accumulatedFrame(await frameId());
+
+  const objectMask = pixelDifferences(roughAfter, roughBefore).map((d) => d > 8);
+  const change = pixelDifferences(edited, before);
+  const objectPixels = objectMask.filter(Boolean).length;
+  let objectChange = 0, outsideChange = 0, changedOutside = 0;
+  change.forEach((d, i) => {
+    if (objectMask[i]) objectChange += d;
+    else outsideChange += d, changedOutside += d > 8 ? 1 : 0;
+  });
+  const objectMean = objectChange / objectPixels, outsideMean = outsideChange / (change.length - objectPixels);
+  check(objectPixels > 20, `the edited sphere covers ${objectPixels} pixels`);
+  check(objectMean > 8, `the frame changes on the sphere (mean ${objectMean.toFixed(1)} levels)`);
+  check(changedOutside > 0, `the frame changes outside it where it is reflected (${changedOutside} pixels)`);
+  // Paths that never meet the sphere keep their random numbers, so elsewhere change is small.
+  check(objectMean > 3 * outsideMean, `the change concentrates on the sphere (mean elsewhere ${outsideMean.toFixed(1)} levels)`);
+  const back = Math.max(...pixelDifferences(restored, before));
+  check(back <= 1, `undo restores the frame (largest difference ${back})`);
+  console.log('PASSED');
+} finally {
+  if (browser) await browser.close();
+  if (viewer) viewer.child.kill('SIGINT');
+  rmSync(work, { recursive: true, force: true });
+}
