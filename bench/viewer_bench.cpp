@@ -17,6 +17,7 @@
 #include "app/scene_source.h"
 #include "app/viewer/progressive_renderer.h"
 #include "core/parallel.h"
+#include "io/image.h"
 #include "math/rng.h"
 
 using namespace glint;
@@ -89,6 +90,8 @@ int main(int argc, char** argv) {
   app.add_option("--threads", threads, "Worker threads (0 = all)")->check(CLI::Range(0, 256))->capture_default_str();
   app.add_option("--seconds", seconds, "Duration of each measurement")->check(CLI::Range(0.5, 600.0))->capture_default_str();
   app.add_option("--json", jsonPath, "Also write the results to this JSON file");
+  std::string framePath;
+  app.add_option("--frame", framePath, "Also write the last still frame to this PNG (to see what was measured)");
   CLI11_PARSE(app, argc, argv);
 
   ThreadLimit limit(threads);
@@ -103,7 +106,7 @@ int main(int argc, char** argv) {
   Vec3f lo = source.scene.position[0], hi = lo;
   for (const Vec3f& p : source.scene.position) lo = min(lo, p), hi = max(hi, p);
   Vec3d center((lo + hi) * 0.5f);
-  double distance = 1.2 * double(length(hi - lo));
+  double distance = 0.6 * double(length(hi - lo));  // the scene fills most of the frame
 
   ProgressiveRenderer renderer(width, height, 1 << 20);
   DisplaySettings settings;
@@ -142,6 +145,7 @@ int main(int argc, char** argv) {
   double stillSeconds = std::chrono::duration<double>(Clock::now() - start).count();
   double samplesPerSecond = (frame->samples - firstSamples) / stillSeconds;
 
+  if (!framePath.empty()) writeImage(framePath, frame->image);
   std::printf("viewer_bench: %s (%zu Gaussians), %dx%d, %d bounces, %d threads, tracer built in %.2f s\n\n",
               sceneName.c_str(), source.scene.size(), width, height, bounces, maxThreads(), buildSeconds);
   std::printf("%-34s %10s\n", "measure", "value");

@@ -87,7 +87,10 @@ async function start() {
     edits.schedulePreview();
   } else {
     for (const id of ['selection-panel', 'operation-panel']) $(id).disabled = true;
-    $('gaussians').textContent = `${state.gaussians} Gaussians (training)`;
+    // The scene is the trainer's: show its size as snapshots arrive.
+    const showTraining = (s) => { $('gaussians').textContent = `${s.gaussians} Gaussians (training)`; };
+    showTraining(state);
+    setInterval(() => getJson('/api/state').then(showTraining).catch(() => {}), 2000);
   }
   window.glintViewer = { camera, frames, edits, state };
   frames.run();

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "app/commands.h"
+#include "app/viewer/viewer_setup.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -39,6 +40,9 @@ struct TrainOptions {
   std::string tracer = "fast";
   int evalViews = 20;
   int evalSpp = 4;
+  bool view = false;       // serve the viewer page showing the scene as it trains
+  ViewerFlags viewer;
+  double viewEvery = 2.0;  // seconds between the snapshots the viewer shows
   TrainConfig config;  // defaults, overridden by --config, then by explicit flags
 };
 
@@ -178,6 +182,21 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
     writeTextAtomically(run / "log.csv", kLogHeader);
   }
 
+  // The viewer gets a copy of the scene every viewEvery seconds, taken between steps, and
+  // builds its tracer on its own thread: the loop pays only for the copy.
+  std::unique_ptr<ViewerServer> viewer;
+  auto lastSnapshot = std::chrono::steady_clock::now();
+  if (o.view) {
+    ViewerOptions options = makeViewerOptions(o.viewer, std::optional<Dataset>(dataset), trainer->scene(), run);
+    options.editable = false;
+    options.maxSamples = 64;  // the scene changes every few seconds anyway; leave the cores to training
+    viewer = std::make_unique<ViewerServer>(std::move(options), trainer->scene(), config.trace);
+    viewer->bind();
+    viewer->start();
+    std::printf("glint train: viewer at %s\n", viewer->url().c_str());
+    std::fflush(stdout);
+  }
+
   std::signal(SIGINT, onInterrupt);
   std::signal(SIGTERM, onInterrupt);
   std::ofstream log(run / "log.csv", std::ios::app);
@@ -220,6 +239,11 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
       std::fprintf(stderr, "glint train: warning: %lld rays overflowed their hit list at step %lld\n",
                    (long long)r.overflowedRays, (long long)r.step);
     if (r.step % config.saveEvery == 0 || r.step == config.iters) saveRun(run, *trainer);
+    auto now = std::chrono::steady_clock::now();
+    if (viewer && (std::chrono::duration<double>(now - lastSnapshot).count() >= o.viewEvery || r.step == config.iters)) {
+      viewer->showScene(trainer->scene());
+      lastSnapshot = now;
+    }
     if (gInterrupted) {
       saveRun(run, *trainer);
       progress.finish();
@@ -232,6 +256,10 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
   if (trainer->stepCount() >= config.iters && !fs::exists(run / "scene.ply")) saveRun(run, *trainer);
   std::fprintf(stderr, "glint train: done; %zu Gaussians in %s\n", trainer->scene().size(),
                (run / "scene.ply").string().c_str());
+  if (viewer) {
+    std::fprintf(stderr, "glint train: still serving the final scene at %s (Ctrl-C stops)\n", viewer->url().c_str());
+    waitForInterrupt();
+  }
 }
 
 }  // namespace
@@ -288,6 +316,17 @@ void addTrainCommand(CLI::App& app) {
       ->check(CLI::IsMember({"auto", "depth", "point-cloud"}))
       ->default_val(defaults.initSource);
   cmd->add_option("--tracer", o->tracer, "Gaussian tracer (fast, embree-k16, reference)")->default_val(o->tracer);
+  cmd->add_flag("--view", o->view, "Serve the viewer page (as glint view, without editing) showing the scene as it "
+                                   "trains; the URL is printed");
+  cmd->add_option("--view-port", o->viewer.port, "Port of --view (0 = any free port)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  cmd->add_option("--view-host", o->viewer.host, "Address of --view (a warning unless loopback)")->capture_default_str();
+  cmd->add_option("--view-res", o->viewer.resolution, "Image size of --view WIDTHxHEIGHT (default: the dataset's, "
+                                                      "at most 640 wide)");
+  cmd->add_option("--view-every", o->viewEvery, "Seconds between the snapshots --view shows")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
   cmd->add_flag("--resume", o->resume, "Continue the run in -o from its checkpoint, exactly as if never stopped");
   cmd->add_flag("--force", o->force, "Start a new run in a non-empty -o folder (its files are overwritten)");
   cmd->callback([o, cmd]() {

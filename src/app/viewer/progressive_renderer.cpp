@@ -13,6 +13,8 @@ namespace {
 // quarter of it finer (the target is above 10 frames/s while interacting).
 constexpr double kMovingFrameBudget = 0.08;
 constexpr int kMaxMovingScale = 16;
+// Rendering pauses when no frame was requested for this long.
+constexpr std::chrono::seconds kIdleAfter{3};
 
 }  // namespace
 
@@ -25,7 +27,7 @@ std::shared_ptr<const TracedScene> traceScene(std::shared_ptr<const GaussianScen
 }
 
 ProgressiveRenderer::ProgressiveRenderer(int width, int height, int maxSamples)
-    : width_(width), height_(height), maxSamples_(maxSamples) {
+    : width_(width), height_(height), maxSamples_(maxSamples), lastRequest_(std::chrono::steady_clock::now()) {
   accumulator_.reset(width, height);
   thread_ = std::thread([this] { run(); });
 }
@@ -49,6 +51,13 @@ void ProgressiveRenderer::setScene(std::shared_ptr<const TracedScene> scene) {
   std::lock_guard lock(mutex_);
   scene_ = std::move(scene);
   restart();
+}
+
+void ProgressiveRenderer::setUntracedScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace) {
+  std::lock_guard lock(mutex_);
+  untraced_ = std::move(scene);
+  untracedTrace_ = trace;
+  wake_.notify_all();
 }
 
 std::shared_ptr<const TracedScene> ProgressiveRenderer::scene() const {
@@ -86,6 +95,9 @@ DisplaySettings ProgressiveRenderer::settings() const {
 
 std::shared_ptr<const Frame> ProgressiveRenderer::waitForFrame(uint64_t after, std::chrono::milliseconds timeout) const {
   std::unique_lock lock(mutex_);
+  bool wasIdle = std::chrono::steady_clock::now() - lastRequest_ > kIdleAfter;
+  lastRequest_ = std::chrono::steady_clock::now();
+  if (wasIdle) wake_.notify_all();
   frameReady_.wait_for(lock, timeout, [&] { return stop_ || (latest_ && latest_->id > after); });
   return latest_;
 }
@@ -103,10 +115,25 @@ void ProgressiveRenderer::publish(Image image, int samples, double seconds) {
 void ProgressiveRenderer::run() {
   std::unique_lock lock(mutex_);
   while (true) {
-    wake_.wait(lock, [&] {
-      return stop_ || redisplay_ || (scene_ && (level_ < 2 || accumulator_.samples() < maxSamples_));
+    // Woken by changes and frame requests; the timeout notices when requests stop.
+    bool work = wake_.wait_for(lock, kIdleAfter, [&] {
+      bool watched = std::chrono::steady_clock::now() - lastRequest_ <= kIdleAfter;
+      return stop_ || (watched && (redisplay_ || untraced_ ||
+                                   (scene_ && (level_ < 2 || accumulator_.samples() < maxSamples_))));
     });
     if (stop_) return;
+    if (!work) continue;
+    if (untraced_) {
+      std::shared_ptr<const GaussianScene> untraced = std::move(untraced_);
+      untraced_.reset();
+      TraceSettings trace = untracedTrace_;
+      lock.unlock();
+      std::shared_ptr<const TracedScene> traced = traceScene(std::move(untraced), trace);
+      lock.lock();
+      scene_ = std::move(traced);
+      restart();
+      continue;
+    }
     if (redisplay_ && (!scene_ || (level_ == 2 && accumulator_.samples() >= maxSamples_))) {
       // Only the display changed and no pass is coming to show it.
       redisplay_ = false;

@@ -1,7 +1,8 @@
 // The viewer's render thread (paper appendix B.1): while the camera moves it renders
 // low-resolution frames (a quarter of the size, then half), and once the camera rests it
 // accumulates jittered full-resolution samples, one per frame, until a sample budget.
-// Any change of camera, scene or bounces starts over.
+// Any change of camera, scene or bounces starts over. Nobody asking for frames for a few
+// seconds (the page closed) pauses rendering, so a forgotten viewer does not hold the cores.
 #pragma once
 
 #include <chrono>
@@ -47,6 +48,10 @@ class ProgressiveRenderer {
   ProgressiveRenderer& operator=(const ProgressiveRenderer&) = delete;
 
   void setScene(std::shared_ptr<const TracedScene> scene);
+  // Hands over a scene whose tracer the render thread builds itself before its next pass,
+  // so the caller (the training loop) does not wait for the build. A newer one replaces
+  // one not yet taken.
+  void setUntracedScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace);
   std::shared_ptr<const TracedScene> scene() const;
   void setCamera(const ViewerCamera& camera);
   ViewerCamera camera() const;
@@ -69,6 +74,8 @@ class ProgressiveRenderer {
   mutable std::condition_variable frameReady_;  // requests wait for frames
   bool stop_ = false;
   std::shared_ptr<const TracedScene> scene_;
+  std::shared_ptr<const GaussianScene> untraced_;
+  TraceSettings untracedTrace_;
   ViewerCamera camera_;
   DisplaySettings settings_;
   uint64_t epoch_ = 0;   // bumped by every change that invalidates the samples
@@ -77,6 +84,7 @@ class ProgressiveRenderer {
   bool redisplay_ = false;
   FrameAccumulator accumulator_;
   std::shared_ptr<const Frame> latest_;
+  mutable std::chrono::steady_clock::time_point lastRequest_;  // of a frame
   uint64_t nextId_ = 1;
   std::thread thread_;
 };

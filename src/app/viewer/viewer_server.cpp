@@ -76,7 +76,7 @@ std::string ViewerServer::url() const {
 
 void ViewerServer::showScene(GaussianScene scene) {
   GLINT_CHECK(!options_.editable, "an editable viewer's scene comes from its edits");
-  renderer_->setScene(traceScene(std::make_shared<const GaussianScene>(std::move(scene)), trace_));
+  renderer_->setUntracedScene(std::make_shared<const GaussianScene>(std::move(scene)), trace_);
 }
 
 void ViewerServer::addRoutes() {

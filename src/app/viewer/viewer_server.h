@@ -56,6 +56,7 @@ class ViewerServer {
   std::string url() const;
 
   // Replaces the scene shown (a training snapshot); only for servers that are not editable.
+  // Returns at once: the render thread builds the tracer.
   void showScene(GaussianScene scene);
 
  private:
