@@ -22,6 +22,10 @@ namespace glint {
 
 namespace {
 
+// Colour differences are relative to a pixel's brightness, but at least to this fraction of
+// the image's mean value, so that near-black pixels still smooth.
+constexpr float kBrightnessFloor = 0.1f;
+
 // B3-spline weights (1 4 6 4 1) / 16 of Dammertz et al.'s kernel, per axis.
 constexpr std::array<float, 5> kB3 = {1.0f / 16, 1.0f / 4, 3.0f / 8, 1.0f / 4, 1.0f / 16};
 
@@ -104,11 +108,10 @@ Guides makeGuides(const Image& albedo, const Image& normal, const Image& depth, 
 // What one pass reads: the planes of the colour being filtered and of the guides, in the
 // order of kPlane*, and how its taps are spread and weighted.
 enum Plane { kColourR, kColourG, kColourB, kAlbedoR, kAlbedoG, kAlbedoB, kNormalX, kNormalY, kNormalZ, kDepth,
-             kDepthScale, kPlaneCount };
+             kDepthScale, kColourScale, kPlaneCount };
 struct PassInput {
   std::array<const float*, kPlaneCount> plane;
   int width, height, step;
-  float colourWeight;  // divides squared colour differences
 };
 
 // The edge-stopping exponent between centre pixel p and tap q (plane indices), without the
@@ -121,7 +124,7 @@ inline float edgeExponent(const PassInput& in, size_t p, size_t q) {
   float colour = sq(kColourR) + sq(kColourG) + sq(kColourB);
   float rest = sq(kAlbedoR) + sq(kAlbedoG) + sq(kAlbedoB) + sq(kNormalX) + sq(kNormalY) + sq(kNormalZ);
   float dd = (in.plane[kDepth][p] - in.plane[kDepth][q]) * in.plane[kDepthScale][p];
-  return in.colourWeight * colour + rest + dd * dd;
+  return in.plane[kColourScale][p] * colour + rest + dd * dd;
 }
 
 // Filters pixel (x, y) into out (3 planes), skipping taps outside the image: they drop out
@@ -152,7 +155,6 @@ void filterEightPixels(const PassInput& in, int x0, int y, const std::array<floa
   size_t p = size_t(y) * size_t(in.width) + size_t(x0);
   __m256 centre[kPlaneCount];
   for (int k = 0; k < kPlaneCount; ++k) centre[k] = _mm256_loadu_ps(in.plane[size_t(k)] + p);
-  const __m256 colourWeight = _mm256_set1_ps(in.colourWeight);
   __m256 sumR = _mm256_setzero_ps(), sumG = sumR, sumB = sumR, weightSum = sumR;
   for (int j = 0; j < 5; ++j) {
     int qy = y + (j - 2) * in.step;
@@ -171,7 +173,7 @@ void filterEightPixels(const PassInput& in, int x0, int y, const std::array<floa
       __m256 dd = _mm256_mul_ps(_mm256_sub_ps(centre[kDepth], tap[kDepth]), centre[kDepthScale]);
       rest = _mm256_fmadd_ps(dd, dd, rest);
       __m256 w = _mm256_mul_ps(_mm256_set1_ps(kB3[size_t(i)] * kB3[size_t(j)]),
-                               fastExpNegative8(_mm256_fmadd_ps(colourWeight, colour, rest)));
+                               fastExpNegative8(_mm256_fmadd_ps(centre[kColourScale], colour, rest)));
       sumR = _mm256_fmadd_ps(w, tap[kColourR], sumR);
       sumG = _mm256_fmadd_ps(w, tap[kColourG], sumG);
       sumB = _mm256_fmadd_ps(w, tap[kColourB], sumB);
@@ -186,13 +188,22 @@ void filterEightPixels(const PassInput& in, int x0, int y, const std::array<floa
 #endif
 
 // One pass: out = the kernel with taps `step` pixels apart over in.c, weighted by the
-// edge-stopping function; colourWeight divides squared colour differences.
+// edge-stopping function. Colour differences are relative to the centre pixel's
+// brightness, the root mean square of its channels (Monte Carlo noise grows with the
+// signal), floored at brightnessFloor, and divided by sigmaColor.
 void atrousPass(const Planes3& in, Planes3* out, const Guides& g, int width, int height, int step,
-                float colourWeight) {
+                float sigmaColor, float brightnessFloor) {
+  std::vector<float> colourScale(in.c[0].size());
+  float floorSquared = brightnessFloor * brightnessFloor;
+  for (size_t i = 0; i < colourScale.size(); ++i) {
+    float r = in.c[0][i], gr = in.c[1][i], b = in.c[2][i];
+    float brightnessSquared = std::max((r * r + gr * gr + b * b) * (1.0f / 3.0f), floorSquared);
+    colourScale[i] = 1.0f / (sigmaColor * sigmaColor * brightnessSquared);
+  }
   PassInput input{{in.c[0].data(), in.c[1].data(), in.c[2].data(), g.albedo.c[0].data(), g.albedo.c[1].data(),
                    g.albedo.c[2].data(), g.normal.c[0].data(), g.normal.c[1].data(), g.normal.c[2].data(),
-                   g.depth.data(), g.depthScale.data()},
-                  width, height, step, colourWeight};
+                   g.depth.data(), g.depthScale.data(), colourScale.data()},
+                  width, height, step};
   std::array<float*, 3> outPlanes = {out->c[0].data(), out->c[1].data(), out->c[2].data()};
   // Pixels whose taps all lie inside the image columns: [interiorBegin, interiorEnd).
   const int interiorBegin = std::min(width, 2 * step), interiorEnd = std::max(interiorBegin, width - 2 * step);
@@ -225,16 +236,16 @@ Image atrousFilter(const Image& colour, const Image& albedo, const Image& normal
   checkGuide(normal, colour, 3, "normal");
   checkGuide(depth, colour, 1, "depth");
   const int width = colour.width, height = colour.height;
-  double luminanceSum = 0;
-  for (float v : colour.pixels) luminanceSum += double(v);
-  float meanLuminance = float(luminanceSum / std::max<double>(1.0, double(colour.pixels.size())));
-  if (!(meanLuminance > 0.0f) || settings.iterations <= 0) return colour;
+  double valueSum = 0;
+  for (float v : colour.pixels) valueSum += double(v);
+  float meanValue = float(valueSum / std::max<double>(1.0, double(colour.pixels.size())));
+  if (!(meanValue > 0.0f) || settings.iterations <= 0) return colour;
 
   Guides guides = makeGuides(albedo, normal, depth, settings);
   Planes3 current = toPlanes(colour, 1.0f), next(current.c[0].size());
-  float sigma = settings.sigmaColor * meanLuminance;
+  float sigma = settings.sigmaColor;
   for (int pass = 0; pass < settings.iterations; ++pass) {
-    atrousPass(current, &next, guides, width, height, 1 << pass, 1.0f / (sigma * sigma));
+    atrousPass(current, &next, guides, width, height, 1 << pass, sigma, kBrightnessFloor * meanValue);
     std::swap(current, next);
     sigma *= 0.5f;  // Dammertz et al.: the filtered colour is smoother after every pass
   }

@@ -8,27 +8,31 @@
 
 namespace glint {
 
-// Which part of the render the filter smooths (measured in README "Offline rendering").
+// Which part of the render the filter smooths. Measured on the glossy floor of
+// tests/render/denoise_test.cpp (16 spp against 1024 spp): filtering the whole render
+// gains 8.9 dB, the specular alone 7.0 dB. The diffuse buffer is not noise-free at 16 spp:
+// the jittered sub-pixel positions land on different Gaussians, and the specular-only
+// target keeps that noise; demodulating by F0 changes nothing for a uniform F0 (the colour
+// distance is relative) and only blurs less across F0 edges.
 enum class DenoiseTarget {
-  // The whole render buffer.
-  Render,
-  // The specular buffer only; the diffuse buffer, which comes from the first segment and
-  // so carries no path-tracing noise, is added back unfiltered. The default: it wins.
-  Specular,
+  Render,    // the whole render buffer: the default
+  Specular,  // the specular buffer only, the diffuse buffer added back unfiltered
   // The specular buffer divided by max(F0, kMinDemodulationF0) before filtering and
   // multiplied back after, so that the reflectance's texture is not blurred.
   SpecularDemodulated,
 };
 
 struct DenoiseSettings {
-  DenoiseTarget target = DenoiseTarget::Specular;
+  DenoiseTarget target = DenoiseTarget::Render;
   // Passes of the 5x5 B3-spline kernel; pass i spreads its taps 2^i pixels apart, so 5
   // passes reach 2 (1 + 2 + 4 + 8 + 16) = 62 pixels from the centre at 25 taps each.
   int iterations = 5;
   // Edge-stopping widths of exp(-|a - b|^2 / sigma^2). Colour differences are measured
-  // relative to the mean luminance of the filtered image, so the width does not depend on
-  // exposure; Dammertz halves it after every pass, as the filtered colour gets smoother.
-  float sigmaColor = 0.6f;
+  // relative to the centre pixel's brightness (root mean square of its channels, at least a
+  // tenth of the image's mean value), as
+  // Monte Carlo noise grows with the signal; Dammertz halves the width after every pass,
+  // as the filtered colour gets smoother.
+  float sigmaColor = 1.0f;
   float sigmaNormal = 0.3f;   // between unit normals (|a - b| = 0.3 is about 17 degrees)
   float sigmaDepth = 0.05f;   // relative depth difference |a - b| / a
   float sigmaAlbedo = 0.05f;  // between diffuse colours (absolute, they lie in [0, 1])
