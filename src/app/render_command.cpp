@@ -13,6 +13,7 @@
 #include "core/progress.h"
 #include "io/image.h"
 #include "raytrace/gaussian_tracer.h"
+#include "render/denoise.h"
 #include "render/gaussian_renderer.h"
 #include "scene/dataset.h"
 
@@ -33,6 +34,7 @@ struct RenderOptions {
   uint64_t seed = 0;
   TraceFlags trace;
   bool force = false;
+  bool denoise = false;  // also write OUT/render_denoised/NAME.exr
   std::string debugPixel;  // "x,y": print that pixel's paths instead of rendering
   int debugView = 0;
 };
@@ -131,6 +133,7 @@ void runRender(const RenderOptions& o) {
     Camera camera{split.views[v].cameraToWorld, split.cameraAngleX, width, height};
     ViewBuffers buffers = renderGaussianView(*tracer, camera, settings, uint64_t(v));
     writeRenderedBuffers(o.output, split.views[v].filePath, buffers);
+    if (o.denoise) writeImage(denoisedRenderPath(o.output, split.views[v].filePath), denoiseView(buffers));
     progress.advance();
   }
 }
@@ -162,6 +165,9 @@ void addRenderCommand(CLI::App& app) {
                   "X,Y: print the paths of this pixel of --view (segments, throughputs, blended values, hits), "
                   "traced exactly as in the full render, and write nothing");
   cmd->add_option("--view", o->debugView, "View index (in the split) for --debug-pixel")->capture_default_str();
+  cmd->add_flag("--denoise", o->denoise,
+                "Also write the final image denoised, OUT/render_denoised/NAME.exr (edge-avoiding a-trous filter "
+                "guided by the diffuse, normal and depth buffers); the raw buffers are written as without it");
   cmd->add_flag("--force", o->force, "Write into a non-empty output folder");
   cmd->callback([o]() { runRender(*o); });
 }

@@ -12,6 +12,11 @@ std::filesystem::path renderedBufferPath(const std::filesystem::path& out, const
   return out / relative.parent_path().filename() / (relative.filename().string() + ".exr");
 }
 
+std::filesystem::path denoisedRenderPath(const std::filesystem::path& out, const std::string& renderFilePath) {
+  std::filesystem::path relative(renderFilePath);
+  return out / "render_denoised" / (relative.filename().string() + ".exr");
+}
+
 void writeRenderedBuffers(const std::filesystem::path& out, const std::string& renderFilePath,
                           const ViewBuffers& buffers) {
   for (Buffer b : kRenderedBuffers) writeImage(renderedBufferPath(out, renderFilePath, b), buffers[b]);

@@ -16,6 +16,10 @@ constexpr Buffer kRenderedBuffers[] = {Buffer::Render, Buffer::Diffuse, Buffer::
 std::filesystem::path renderedBufferPath(const std::filesystem::path& out, const std::string& renderFilePath,
                                          Buffer buffer);
 
+// "test/render/render_0007" -> "OUT/render_denoised/render_0007.exr": where --denoise puts
+// the denoised final image, beside the raw buffers.
+std::filesystem::path denoisedRenderPath(const std::filesystem::path& out, const std::string& renderFilePath);
+
 // Writes kRenderedBuffers of one view as EXR files (each atomically).
 void writeRenderedBuffers(const std::filesystem::path& out, const std::string& renderFilePath,
                           const ViewBuffers& buffers);
