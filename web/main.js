@@ -63,7 +63,6 @@ async function start() {
   $('bounces').value = s.bounces;
   $('exposure').value = s.exposure;
   $('denoise').checked = s.denoise;
-  $('denoise').disabled = !state.denoiser;
   $('mode').addEventListener('change', (e) => sendSettings({ mode: e.target.value }));
   $('bounces').addEventListener('change', (e) => sendSettings({ bounces: Number(e.target.value) }));
   $('exposure').addEventListener('input', (e) => { $('exposure-value').textContent = e.target.value; sendSettings({ exposure: Number(e.target.value) }); });

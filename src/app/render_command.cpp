@@ -13,6 +13,7 @@
 #include "core/progress.h"
 #include "io/image.h"
 #include "raytrace/gaussian_tracer.h"
+#include "render/denoise.h"
 #include "render/gaussian_renderer.h"
 #include "scene/dataset.h"
 
@@ -34,6 +35,7 @@ struct RenderOptions {
   TraceFlags trace;
   bool force = false;
   std::string format = "exr";
+  bool denoise = false;  // also write OUT/render_denoised/NAME.exr
   std::string debugPixel;  // "x,y": print that pixel's paths instead of rendering
   int debugView = 0;
 };
@@ -133,6 +135,7 @@ void runRender(const RenderOptions& o) {
     ViewBuffers buffers = renderGaussianView(*tracer, camera, settings, uint64_t(v));
     writeRenderedBuffers(o.output, split.views[v].filePath, buffers,
                          o.format == "png" ? ImageFormat::Png : ImageFormat::Exr);
+    if (o.denoise) writeImage(denoisedRenderPath(o.output, split.views[v].filePath), denoiseView(buffers));
     progress.advance();
   }
 }
@@ -164,6 +167,9 @@ void addRenderCommand(CLI::App& app) {
                   "X,Y: print the paths of this pixel of --view (segments, throughputs, blended values, hits), "
                   "traced exactly as in the full render, and write nothing");
   cmd->add_option("--view", o->debugView, "View index (in the split) for --debug-pixel")->capture_default_str();
+  cmd->add_flag("--denoise", o->denoise,
+                "Also write the final image denoised, OUT/render_denoised/NAME.exr (edge-avoiding a-trous filter "
+                "guided by the diffuse, normal and depth buffers); the raw buffers are written as without it");
   cmd->add_flag("--force", o->force, "Write into a non-empty output folder");
   cmd->add_option("--format", o->format, "exr: linear float buffers; png: 8-bit, encoded as datasets store them "
                                          "(radiance through the filmic tonemap, as the viewer shows it; depth stays EXR)")

@@ -14,6 +14,11 @@ std::filesystem::path renderedBufferPath(const std::filesystem::path& out, const
          (relative.filename().string() + imageFormatExtension(bufferStorageFormat(buffer, format)));
 }
 
+std::filesystem::path denoisedRenderPath(const std::filesystem::path& out, const std::string& renderFilePath) {
+  std::filesystem::path relative(renderFilePath);
+  return out / "render_denoised" / (relative.filename().string() + ".exr");
+}
+
 void writeRenderedBuffers(const std::filesystem::path& out, const std::string& renderFilePath,
                           const ViewBuffers& buffers, ImageFormat format) {
   for (Buffer b : kRenderedBuffers) {

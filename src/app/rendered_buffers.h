@@ -17,6 +17,10 @@ constexpr Buffer kRenderedBuffers[] = {Buffer::Render, Buffer::Diffuse, Buffer::
 std::filesystem::path renderedBufferPath(const std::filesystem::path& out, const std::string& renderFilePath,
                                          Buffer buffer, ImageFormat format = ImageFormat::Exr);
 
+// "test/render/render_0007" -> "OUT/render_denoised/render_0007.exr": where --denoise puts
+// the denoised final image, beside the raw buffers.
+std::filesystem::path denoisedRenderPath(const std::filesystem::path& out, const std::string& renderFilePath);
+
 // Writes kRenderedBuffers of one view (each atomically): EXR files of linear values, or 8-bit
 // PNG encoded as datasets store them (radiance tonemapped, normals n/2 + 1/2; depth as EXR).
 void writeRenderedBuffers(const std::filesystem::path& out, const std::string& renderFilePath,

@@ -302,10 +302,13 @@ TEST_F(CliTest, EvalWritesMetricsForAPlyAndForATrainingRun) {
   ASSERT_EQ(render.status, 0) << render.output;
   EXPECT_NE(render.output.find("p = 1"), std::string::npos) << render.output;
   EXPECT_TRUE(fs::exists(root_ / "R" / "render" / "render_0001.exr"));
-  Outcome train = runGlint("render " + path("run") + " --split train --kernel-power 2 -o " + path("R2"));
+  Outcome train = runGlint("render " + path("run") + " --split train --kernel-power 2 --denoise -o " + path("R2"));
   ASSERT_EQ(train.status, 0) << train.output;
   EXPECT_NE(train.output.find("p = 2"), std::string::npos) << train.output;
   EXPECT_TRUE(fs::exists(root_ / "R2" / "render" / "render_0000.exr"));
+  // --denoise adds the denoised final image beside the raw buffers.
+  EXPECT_TRUE(fs::exists(root_ / "R2" / "render_denoised" / "render_0000.exr"));
+  EXPECT_FALSE(fs::exists(root_ / "R" / "render_denoised"));
 }
 
 TEST_F(CliTest, RunFoldersWithoutASceneOrWithABadConfigAreRejected) {

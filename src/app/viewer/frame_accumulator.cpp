@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "io/tonemap.h"
+#include "render/denoise.h"
 
 namespace glint {
 
@@ -37,7 +38,15 @@ Image FrameAccumulator::mean(Buffer buffer) const {
 }
 
 Image FrameAccumulator::display(const DisplaySettings& settings) const {
-  Image m = mean(settings.mode);
+  Image m;
+  if (settings.denoise && settings.mode == Buffer::Render && samples_ > 0) {
+    // The a-trous filter of the final image, guided by the means of the other buffers.
+    ViewBuffers means;
+    for (Buffer b : kAllBuffers) means[b] = mean(b);
+    m = denoiseView(means);
+  } else {
+    m = mean(settings.mode);
+  }
   Image out(m.width, m.height, 3);
   if (isRadianceBuffer(settings.mode)) {
     float gain = float(std::exp2(settings.exposure));

@@ -19,7 +19,8 @@ class FrameAccumulator {
   // The mean of the chosen buffer as an RGB image with values in [0, 1]: radiance times
   // 2^exposure through the filmic tonemap (as 8-bit dataset images), normals as n/2 + 1/2,
   // depth as grey from near (white) to far (dark) over the frame's surfaces, roughness as
-  // grey, F0 as is. Zero samples give a black image.
+  // grey, F0 as is. Zero samples give a black image. With settings.denoise the final image
+  // goes through the a-trous denoiser (render/denoise.h) first.
   Image display(const DisplaySettings& settings) const;
   // The mean of one buffer (linear values).
   Image mean(Buffer buffer) const;

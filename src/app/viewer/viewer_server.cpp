@@ -92,7 +92,6 @@ void ViewerServer::addRoutes() {
                             {"gaussians", scene ? scene->scene->size() : 0},
                             {"editable", options_.editable}};
     if (edits_) state["edits"] = edits_->status();
-    state["denoiser"] = false;
     if (scene && !scene->scene->empty()) {
       Vec3f lo = scene->scene->position[0], hi = lo;
       for (const Vec3f& p : scene->scene->position) lo = min(lo, p), hi = max(hi, p);
