@@ -117,25 +117,24 @@ TEST_F(SynthEditsTest, CamerasComeFromTheUneditedBoundsWhenTheSceneHasNoRig) {
 }
 
 TEST_F(SynthEditsTest, ABadEditFileIsRejectedByName) {
-  write("typo.json", R"({"glint_edits": 1, "selections": {"all": "everything"},
-    "operations": [{"op": "rotat", "selection": "all"}]})");
-  Outcome bad = synth("builtin:spheres", "out", "--edits " + path("typo.json"));
-  EXPECT_NE(bad.status, 0);
-  EXPECT_NE(bad.output.find("typo.json"), std::string::npos) << bad.output;
-  EXPECT_NE(bad.output.find("rotat"), std::string::npos) << bad.output;
-  EXPECT_FALSE(fs::exists(root_ / "out" / "transforms_test.json"));
-
-  // Deleting every node leaves nothing to render: an error naming the edit file.
-  write("empty.json", R"({"glint_edits": 1, "selections": {"all": "everything"},
-    "operations": [{"op": "delete", "selection": "all"}]})");
-  Outcome empty = synth("builtin:spheres", "out", "--edits " + path("empty.json"));
-  EXPECT_NE(empty.status, 0);
-  EXPECT_NE(empty.output.find("empty.json"), std::string::npos) << empty.output;
-  EXPECT_NE(empty.output.find("no geometry"), std::string::npos) << empty.output;
-
-  Outcome missing = synth("builtin:spheres", "out", "--edits " + path("missing.json"));
-  EXPECT_NE(missing.status, 0);
-  EXPECT_NE(missing.output.find("missing.json"), std::string::npos) << missing.output;
+  struct BadEdit {
+    std::string file, operations, expected;  // expected: a fragment of the message
+  };
+  const BadEdit cases[] = {
+      {"typo.json", R"([{"op": "rotat", "selection": "all"}])", "rotat"},
+      // Deleting every node leaves nothing to render.
+      {"empty.json", R"([{"op": "delete", "selection": "all"}])", "no geometry"},
+      {"missing.json", "", "missing.json"},  // not written
+  };
+  for (const BadEdit& c : cases) {
+    if (!c.operations.empty())
+      write(c.file, R"({"glint_edits": 1, "selections": {"all": "everything"}, "operations": )" + c.operations + "}");
+    Outcome bad = synth("builtin:spheres", "out", "--edits " + path(c.file));
+    EXPECT_NE(bad.status, 0) << c.file;
+    EXPECT_NE(bad.output.find(c.file), std::string::npos) << bad.output;
+    EXPECT_NE(bad.output.find(c.expected), std::string::npos) << bad.output;
+    EXPECT_FALSE(fs::exists(root_ / "out" / "transforms_test.json"));
+  }
 }
 
 }  // namespace
