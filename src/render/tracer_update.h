@@ -34,12 +34,13 @@ constexpr int kProbeSize = 64;
 // is unchanged it is refitted (timed), and a new tracer of `kind` is built (timed); a probe
 // batch of kProbeSize^2 primary rays through `probeCamera` (its pose and field of view) is
 // traced on each, since a refit after large moves leaves loose boxes that trace slower. The
-// structure with the lower update + workRays x (probe time per ray) is kept.
+// structure with the lower update + workRays x (probe time per ray) is kept, the refit
+// unless rebuilding saves more than 5% (the probe timing's noise on a shared machine).
 UpdatedTracer updateTracerAfterEdit(std::unique_ptr<GaussianTracer> builtBeforeEdit, const GaussianScene& scene,
                                     const TraceSettings& settings, const std::string& kind, bool countUnchanged,
                                     const Camera& probeCamera, double workRays);
 
-// Seconds to trace the probe batch (best of three, to damp timer noise).
+// Seconds to trace the probe batch (best of five rounds, to damp timer noise).
 double timeProbeBatch(const GaussianTracer& tracer, const Camera& probeCamera);
 
 // One line: "refit 0.012 s (probe 3.1 ms), rebuild 0.150 s (probe 2.9 ms): kept the refit".
