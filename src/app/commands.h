@@ -13,6 +13,7 @@ void addRenderCommand(CLI::App& app);
 void addTrainCommand(CLI::App& app);
 void addEvalCommand(CLI::App& app);
 void addReportCommand(CLI::App& app);
+void addEditCommand(CLI::App& app);
 void addViewCommand(CLI::App& app);
 
 }  // namespace glint

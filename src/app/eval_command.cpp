@@ -14,6 +14,7 @@
 #include "app/cli_parsing.h"
 #include "app/commands.h"
 #include "app/rendered_buffers.h"
+#include "app/scene_edits.h"
 #include "app/scene_source.h"
 #include "app/trace_flags.h"
 #include "core/atomic_file.h"
@@ -43,6 +44,7 @@ struct EvalOptions {
   bool saveImages = false;
   std::string region;
   TraceFlags trace;
+  EditsFlag edits;
 };
 
 // RUN/eval/metrics.json unless -o names another file; a bare .ply has no run folder to
@@ -105,8 +107,11 @@ void runEval(const EvalOptions& o) {
   const DatasetSplit& split = dataset.split(o.split);
   if (split.views.empty()) throw Error(datasetPath.string(), "the " + o.split + " split has no views to evaluate");
 
-  std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(o.trace.tracer());
-  tracer->build(source.scene, trace);
+  // Radiance with spp samples of 1 + bounces segments, and the pixel-centre G-buffer pass.
+  double workRays = double(split.views.size()) * split.width * split.height *
+                    (double(o.spp) * (1 + o.trace.path().bounces) + (o.spp > 1 ? 1 : 0));
+  std::unique_ptr<GaussianTracer> tracer =
+      o.edits.prepareTracer(source.scene, trace, o.trace.tracer(), split.camera(0), workRays, "glint eval");
   std::fprintf(stderr, "glint eval: %zu Gaussians, %s tracer; %zu %s views at %dx%d, %d spp\n", source.scene.size(),
                tracer->name(), split.views.size(), o.split.c_str(), split.width, split.height, o.spp);
 
@@ -160,6 +165,7 @@ void runEval(const EvalOptions& o) {
       {"seconds", seconds},
       {"mean", toJson(mean)},
   };
+  if (o.edits.given()) report["edits"] = o.edits.path();
   nlohmann::json perView = nlohmann::json::array();
   for (size_t v = 0; v < views.size(); ++v) {
     nlohmann::json entry = toJson(views[v]);
@@ -212,6 +218,7 @@ void addEvalCommand(CLI::App& app) {
                   "X0,Y0,Z0,X1,Y1,Z1: also score the pixels whose true surface point lies in this world-space box "
                   "(diffuse and final PSNR per view and pooled), e.g. one object's reconstruction");
   o->trace.add(cmd);
+  o->edits.add(cmd);
   cmd->add_flag("--save-images", o->saveImages,
                 "Also write the rendered buffers as EXR next to the metrics file, under <split>/ (RUN/eval/test/...)");
   cmd->callback([o]() { runEval(*o); });

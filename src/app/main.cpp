@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   glint::addEvalCommand(app);
   glint::addReportCommand(app);
   glint::addExportCommand(app);
+  glint::addEditCommand(app);
   glint::addViewCommand(app);
   if (argc == 1) {
     std::fputs(app.help().c_str(), stdout);

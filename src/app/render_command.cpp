@@ -7,6 +7,7 @@
 #include "app/cli_parsing.h"
 #include "app/commands.h"
 #include "app/rendered_buffers.h"
+#include "app/scene_edits.h"
 #include "app/scene_source.h"
 #include "app/trace_flags.h"
 #include "core/error.h"
@@ -33,6 +34,7 @@ struct RenderOptions {
   bool noJitter = false;
   uint64_t seed = 0;
   TraceFlags trace;
+  EditsFlag edits;
   bool force = false;
   std::string format = "exr";
   bool denoise = false;  // also write OUT/render_denoised/NAME.exr
@@ -78,7 +80,7 @@ void checkOutputFolder(const fs::path& out, bool force) {
 void runRender(const RenderOptions& o) {
   if (o.output.empty() && o.debugPixel.empty()) throw Error("glint render", "needs an output folder: pass -o OUT");
   SceneSource source = loadSceneSource(o.scene);
-  const GaussianScene& scene = source.scene;
+  GaussianScene& scene = source.scene;
   TraceSettings trace = o.trace.apply(source.trace);
   fs::path datasetPath = o.dataset.empty() ? source.dataset : fs::path(o.dataset);
   if (datasetPath.empty())
@@ -101,12 +103,14 @@ void runRender(const RenderOptions& o) {
   }
   if (o.debugPixel.empty()) checkOutputFolder(o.output, o.force);
 
-  std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(o.trace.tracer());
   auto start = std::chrono::steady_clock::now();
-  tracer->build(scene, trace);
+  Camera probeCamera{split.views[0].cameraToWorld, split.cameraAngleX, width, height};
+  double workRays = double(split.views.size()) * width * height * o.spp * (1 + o.trace.path().bounces);
+  std::unique_ptr<GaussianTracer> tracer =
+      o.edits.prepareTracer(scene, trace, o.trace.tracer(), probeCamera, workRays, "glint render");
   double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr,
-               "glint render: %zu Gaussians, %s tracer built in %.3f s (p = %g, alpha_min = %g, "
+               "glint render: %zu Gaussians, %s tracer ready in %.3f s (p = %g, alpha_min = %g, "
                "min_transmittance = %g); %zu %s views at %dx%d, %d spp\n",
                scene.size(), tracer->name(), buildSeconds, trace.kernelPower, trace.alphaMin, trace.minTransmittance,
                split.views.size(), o.split.c_str(), width, height, o.spp);
@@ -163,6 +167,7 @@ void addRenderCommand(CLI::App& app) {
                 "Send every ray through the pixel centre instead of a random sub-pixel position");
   cmd->add_option("--seed", o->seed, "Seed of the sub-pixel jitter")->capture_default_str();
   o->trace.add(cmd);
+  o->edits.add(cmd);
   cmd->add_option("--debug-pixel", o->debugPixel,
                   "X,Y: print the paths of this pixel of --view (segments, throughputs, blended values, hits), "
                   "traced exactly as in the full render, and write nothing");

@@ -9,8 +9,11 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "edit/edit_file.h"
+#include "edit/mesh_edits.h"
 #include "io/image.h"
 #include "synth/builtin_scenes.h"
+#include "synth/camera_paths.h"
 #include "synth/dataset_generator.h"
 #include "synth/gltf_import.h"
 
@@ -33,6 +36,7 @@ struct SynthOptions {
   float exposure = 1.0f;
   std::string environment;
   float environmentIntensity = 1.0f;
+  std::string edits;
   int threads = 0;
   bool force = false;
 };
@@ -81,6 +85,18 @@ void applyEnvironment(MeshScene& scene, const SynthOptions& o) {
   }
 }
 
+// Applies an edit file to the scene's meshes and spheres (docs/edit-files.md). The camera
+// rig is fixed from the unedited scene first, so an edited dataset has exactly the cameras
+// of the unedited one even when the edit changes the scene's bounds.
+void applyEditFile(MeshScene& scene, const std::string& path) {
+  EditDocument document = readEditFile(path);
+  scene.cameras = sceneCameraRig(scene);
+  scene.hasCameraRig = true;
+  MeshEditReport report = applyMeshEdits(document, scene);
+  std::fprintf(stderr, "glint synth: edits from %s\n%s", path.c_str(), formatMeshEditReport(report).c_str());
+  scene.validate(path);  // e.g. an edit that deletes every node
+}
+
 // Refuses to write into a folder with unrelated content, so nothing a user made is lost.
 void checkOutputFolder(const fs::path& out, bool force) {
   if (!fs::exists(out)) return;
@@ -107,7 +123,9 @@ void runSynth(const SynthOptions& o) {
   settings.exposure = o.exposure;
 
   MeshScene scene = loadScene(o.scene);
+  // The lights are chosen before edits, so a deleted emitter never swaps in a default environment.
   applyEnvironment(scene, o);
+  if (!o.edits.empty()) applyEditFile(scene, o.edits);
   checkOutputFolder(o.output, o.force);
 
   ThreadLimit limit(o.threads);
@@ -159,6 +177,11 @@ void addSynthCommand(CLI::App& app) {
   cmd->add_option("--env-intensity", options->environmentIntensity, "Multiplies the environment")
       ->check(CLI::Range(0.0, 1e6))
       ->capture_default_str();
+  cmd->add_option("--edits", options->edits,
+                  "Edit file (docs/edit-files.md) applied to the scene before rendering: shapes select whole meshes "
+                  "and spheres by the centre of their bounds, material operations change their glTF materials. "
+                  "Cameras stay those of the unedited scene")
+      ->check(CLI::ExistingFile);
   cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();

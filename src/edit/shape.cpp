@@ -1,3 +1,4 @@
+// Point-in-shape tests, derived metalness and attribute filters for edit selections.
 #include "edit/shape.h"
 
 #include <algorithm>
@@ -28,6 +29,18 @@ float derivedMetalness(float meanDiffuse, float meanF0) {
   float denominator = specular + std::max(meanDiffuse, 0.0f);
   if (denominator <= 0.0f) return 0.0f;
   return std::clamp(specular / denominator, 0.0f, 1.0f);
+}
+
+bool filterAccepts(const AttributeFilter& filter, const Rgb& F0, float roughness, const Rgb& diffuse) {
+  auto mean = [](const Rgb& c) { return (c.x + c.y + c.z) / 3.0f; };
+  float value = 0.0f;
+  switch (filter.attribute) {
+    case Attribute::F0: value = mean(F0); break;
+    case Attribute::Roughness: value = roughness; break;
+    case Attribute::Diffuse: value = mean(diffuse); break;
+    case Attribute::Metalness: value = derivedMetalness(mean(diffuse), mean(F0)); break;
+  }
+  return value >= filter.lo && value <= filter.hi;
 }
 
 }  // namespace glint

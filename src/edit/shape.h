@@ -13,4 +13,8 @@ bool shapeContains(const Shape& shape, const Vec3f& p);
 // clamp((F - 0.04) / (F - 0.04 + d), 0, 1); 0 when both terms vanish.
 float derivedMetalness(float meanDiffuse, float meanF0);
 
+// True when a primitive with these attributes passes the filter: the mean F0, the
+// roughness, the mean diffuse or the derived metalness lies in [lo, hi].
+bool filterAccepts(const AttributeFilter& filter, const Rgb& F0, float roughness, const Rgb& diffuse);
+
 }  // namespace glint

@@ -35,4 +35,11 @@ CameraRig defaultCameraRig(const Vec3f& lower, const Vec3f& upper, float fovX) {
   return rig;
 }
 
+CameraRig sceneCameraRig(const MeshScene& scene) {
+  if (scene.hasCameraRig) return scene.cameras;
+  Vec3f lower, upper;
+  scene.bounds(&lower, &upper);
+  return defaultCameraRig(lower, upper, scene.cameras.fovX);
+}
+
 }  // namespace glint

@@ -17,4 +17,7 @@ std::vector<Mat4> orbitCameras(const OrbitPath& path, int count);
 // the field of view; train and test paths differ in radius, height and phase.
 CameraRig defaultCameraRig(const Vec3f& lower, const Vec3f& upper, float fovX);
 
+// The scene's own rig, or the default rig from its bounds when it brings none.
+CameraRig sceneCameraRig(const MeshScene& scene);
+
 }  // namespace glint

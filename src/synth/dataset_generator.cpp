@@ -97,12 +97,7 @@ void generateDataset(const MeshScene& scene, const SynthSettings& settings, cons
   LightSampler lights(scene);
   PathTracer tracer(scene, caster, lights, PathTracerSettings{settings.bounces, 3});
 
-  CameraRig rig = scene.cameras;
-  if (!scene.hasCameraRig) {
-    Vec3f lower, upper;
-    scene.bounds(&lower, &upper);
-    rig = defaultCameraRig(lower, upper, scene.cameras.fovX);
-  }
+  CameraRig rig = sceneCameraRig(scene);
 
   struct SplitPlan {
     std::string name;

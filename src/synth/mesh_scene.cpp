@@ -28,26 +28,34 @@ bool Environment::isBlack() const {
   return map.empty() && maxComponent(constant) <= 0.0f;
 }
 
-SurfaceMaterial MeshScene::surfaceMaterial(int index, Vec2f uv) const {
-  const Material& m = materials[index];
+SurfaceMaterial mapMaterial(const Material& m, Rgb baseColor, float metallic, float roughness) {
   SurfaceMaterial s;
-  s.baseColor = m.baseColor;
-  if (m.baseColorTexture >= 0) s.baseColor *= textures[m.baseColorTexture].sampleRgb(uv);
-  s.metallic = m.metallic;
-  s.roughness = m.roughness;
-  if (m.metallicRoughnessTexture >= 0) {
-    Rgb mr = textures[m.metallicRoughnessTexture].sampleRgb(uv);
-    s.roughness *= mr.y;
-    s.metallic *= mr.z;
-  }
-  s.metallic = std::clamp(s.metallic, 0.0f, 1.0f);
-  s.roughness = std::clamp(s.roughness, 0.0f, 1.0f);
+  s.baseColor = baseColor;
+  s.metallic = std::clamp(metallic, 0.0f, 1.0f);
+  s.roughness = std::clamp(roughness, 0.0f, 1.0f);
   // Disney's specular level maps to dielectric F0 = 0.08 * level (0.5 -> 0.04); metals
   // reflect their base colour (Burley 2012, "Physically-Based Shading at Disney").
   Rgb dielectricF0 = m.specularTint * (0.08f * m.specularLevel);
   s.F0 = dielectricF0 * (1.0f - s.metallic) + s.baseColor * s.metallic;
   s.F0 = min(max(s.F0, Rgb(0.0f)), Rgb(1.0f));
   s.diffuse = s.baseColor * (1.0f - s.metallic);
+  s.emission = Rgb(0.0f);
+  return s;
+}
+
+SurfaceMaterial materialFactors(const Material& m) { return mapMaterial(m, m.baseColor, m.metallic, m.roughness); }
+
+SurfaceMaterial MeshScene::surfaceMaterial(int index, Vec2f uv) const {
+  const Material& m = materials[index];
+  Rgb baseColor = m.baseColor;
+  if (m.baseColorTexture >= 0) baseColor *= textures[m.baseColorTexture].sampleRgb(uv);
+  float metallic = m.metallic, roughness = m.roughness;
+  if (m.metallicRoughnessTexture >= 0) {
+    Rgb mr = textures[m.metallicRoughnessTexture].sampleRgb(uv);
+    roughness *= mr.y;
+    metallic *= mr.z;
+  }
+  SurfaceMaterial s = mapMaterial(m, baseColor, metallic, roughness);
   s.emission = emission(index, uv);
   return s;
 }

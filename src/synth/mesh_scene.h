@@ -49,6 +49,13 @@ struct SurfaceMaterial {
   Rgb emission;
 };
 
+// The glTF / Disney mapping from a material's factors to F0 and diffuse, at a surface point's
+// base colour, metallic and roughness (textures already applied). Emission is left black.
+SurfaceMaterial mapMaterial(const Material& material, Rgb baseColor, float metallic, float roughness);
+// The material at its factors alone, textures ignored (edit filters and colour edits work
+// on factors).
+SurfaceMaterial materialFactors(const Material& material);
+
 struct TriangleMesh {
   std::string name;
   std::vector<Vec3f> positions;

@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "raytrace/gaussian_tracer.h"
+#include "render/gaussian_layers.h"
 #include "render/gaussian_renderer.h"
 
 namespace glint {
@@ -277,17 +278,7 @@ TEST(GaussianEdits, OperationsComposeInOrder) {
 // A small reflective scene: a mirror floor of flat Gaussians and a red blob above it.
 GaussianScene reflectiveScene() {
   GaussianScene s;
-  for (int i = 0; i < 10; ++i)
-    for (int j = 0; j < 10; ++j) {
-      size_t k = s.size();
-      s.resize(k + 1);
-      s.position[k] = {-0.9f + 0.2f * i, -0.9f + 0.2f * j, 0.0f};
-      s.logScale[k] = {std::log(0.16f), std::log(0.16f), std::log(0.004f)};
-      s.opacityLogit[k] = logit(0.98f);
-      s.normal[k] = {0, 0, 1};
-      s.roughness[k] = 0.05f;
-      s.f0[k] = Rgb(0.9f);
-    }
+  test::addLayer(&s, 0.0f, 0.0f, 0.0f, 10, 10, 0.2f, {Rgb(0.0f), Vec3f(0, 0, 1), 0.05f, Rgb(0.9f)});
   for (int k = 0; k < 20; ++k) {
     size_t n = s.size();
     s.resize(n + 1);
