@@ -108,9 +108,22 @@ struct Row {
 
 // The tracers measured, by name; the first is the baseline the speed-up refers to.
 // Further tracers (e.g. a GPU backend) are added here.
-std::vector<std::pair<std::string, std::function<std::unique_ptr<GaussianTracer>()>>> tracersToMeasure() {
+// "fast-per-ray" is the fast tracer with coherent bundles off: every ray traverses the BVH
+// alone, as incoherent (reflected) rays do.
+std::vector<std::pair<std::string, std::function<std::unique_ptr<GaussianTracer>()>>> tracersToMeasure(
+    int bundleRays) {
   return {{"embree-k16", [] { return std::make_unique<EmbreeK16Tracer>(); }},
-          {"fast", [] { return std::make_unique<FastGaussianTracer>(); }}};
+          {"fast-per-ray",
+           [] {
+             auto t = std::make_unique<FastGaussianTracer>();
+             t->setBundleRays(0);
+             return t;
+           }},
+          {"fast", [bundleRays] {
+             auto t = std::make_unique<FastGaussianTracer>();
+             t->setBundleRays(bundleRays);
+             return t;
+           }}};
 }
 
 // Kernel evaluations per ray (Gaussians whose proxy the ray reached), for the tracers that
@@ -214,6 +227,10 @@ int main(int argc, char** argv) {
   app.add_flag("--exact-tail", exactTail,
                "Keep traversing after termination for the exact final transmittance (the training mode of "
                "appendix A.2) instead of stopping early (the rendering mode)");
+  int bundleRays = FastGaussianTracer::kDefaultBundleRays;
+  app.add_option("--bundle-rays", bundleRays, "Rays per coherent bundle of the fast tracer")
+      ->check(CLI::Range(2, 4096))
+      ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
 
   ThreadLimit limit(threads);
@@ -225,7 +242,7 @@ int main(int argc, char** argv) {
     std::string sceneName = std::to_string(n / 1000) + "k";
     std::vector<double> depth = allHitsPerRay(scene, settings);
     std::vector<Row> baseline;
-    for (auto& [name, make] : tracersToMeasure()) {
+    for (auto& [name, make] : tracersToMeasure(bundleRays)) {
       if (!only.empty() && std::find(only.begin(), only.end(), name) == only.end()) continue;
       std::unique_ptr<GaussianTracer> tracer = make();
       std::vector<Row> measured = measure(name, *tracer, scene, sceneName, settings, width, height, repeats, depth);

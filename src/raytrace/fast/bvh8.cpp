@@ -18,6 +18,7 @@ void Bvh8Block::setLane(int lane, const GaussianLane& g, uint32_t gaussian) {
   for (int k = 0; k < 9; ++k) worldToLocal[k][lane] = g.worldToLocal[k];
   opacity[lane] = g.opacity;
   radius2[lane] = g.radius2;
+  boundRadius[lane] = g.boundRadius;
   id[lane] = gaussian;
 }
 
@@ -26,6 +27,7 @@ void Bvh8Block::disableLane(int lane, uint32_t gaussian) {
   for (int k = 0; k < 9; ++k) worldToLocal[k][lane] = (k % 4 == 0) ? 1.0f : 0.0f;
   opacity[lane] = 0.0f;
   radius2[lane] = -1.0f;
+  boundRadius[lane] = 0.0f;
   id[lane] = gaussian;
 }
 
@@ -88,6 +90,10 @@ bool computeGaussianLane(const GaussianScene& scene, size_t i, const TraceSettin
   // touches.
   float radius = std::sqrt(radius2);
   bool finite = std::isfinite(radius);
+  // The proxy's longest semi-axis, padded like the box below.
+  float maxScale = std::max({scale[0], scale[1], scale[2]});
+  lane->boundRadius = radius * maxScale * (1.0f + 1e-5f) + 1e-6f * (std::abs(mean.x) + std::abs(mean.y) + std::abs(mean.z));
+  finite = finite && std::isfinite(lane->boundRadius);
   for (int k = 0; k < 3; ++k) {
     float a0 = rot.m[k][0] * scale[0], a1 = rot.m[k][1] * scale[1], a2 = rot.m[k][2] * scale[2];
     float e = radius * std::sqrt(a0 * a0 + a1 * a1 + a2 * a2) * (1.0f + 1e-5f) + 1e-6f * std::abs(mean[k]);

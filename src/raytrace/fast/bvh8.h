@@ -72,6 +72,7 @@ struct GaussianLane {
   float worldToLocal[9];  // row-major S^-1 R^T
   float opacity;
   float radius2;          // proxy radius squared (local units)
+  float boundRadius;      // radius of a world-space sphere about the mean holding the proxy
 };
 
 // A leaf block: up to 8 Gaussians' kernel data, one lane per Gaussian. Lanes without a
@@ -81,6 +82,7 @@ struct alignas(32) Bvh8Block {
   float worldToLocal[9][kBvhWidth];
   float opacity[kBvhWidth];
   float radius2[kBvhWidth];
+  float boundRadius[kBvhWidth];  // GaussianLane::boundRadius (coherent bundles cull with it)
   uint32_t id[kBvhWidth];  // Gaussian index; kNoGaussian in unused lanes
 
   static constexpr uint32_t kNoGaussian = UINT32_MAX;

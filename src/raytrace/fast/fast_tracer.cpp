@@ -14,6 +14,8 @@
 #include "raytrace/fast/bvh8_kernels.h"
 #include "raytrace/fast/hit_buffer.h"
 #include "raytrace/fast/pending_subtrees.h"
+#include "raytrace/fast/ray_bundle.h"
+#include "core/parallel.h"
 
 namespace glint {
 namespace {
@@ -25,6 +27,74 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 constexpr int kHeapCapacity = 256;
 constexpr int kStackCapacity = 512;
 using Pending = PendingSubtrees<kHeapCapacity, kStackCapacity>;
+
+// Turns the lanes of a tested leaf block into hits: the rest of evaluateGaussian, in float.
+class LaneHits {
+ public:
+  explicit LaneHits(const TraceSettings& settings) : settings_(settings) {
+    float p = settings.kernelPower;
+    integerPower_ = (p == std::round(p) && p >= 1.0f && p <= 4.0f) ? int(p) : 0;
+  }
+
+  // Lane i of `block` (whose proxy test passed, giving c); false when its alpha is below alphaMin.
+  bool make(const Bvh8Block& block, const Bvh8BlockCandidates& c, int i, float tMin, BufferedHit* h) const {
+    h->id = block.id[i];
+    h->tPeak = c.tPeak[i];
+    h->tEnter = h->tPeak - c.half[i];
+    h->tExit = h->tPeak + c.half[i];
+    h->key = std::clamp(h->tPeak, std::max(h->tEnter, tMin), h->tExit);
+    h->response = response(c.r2[i]);
+    h->alpha = kMaxAlpha * block.opacity[i] * h->response;
+    if (h->alpha < settings_.alphaMin) return false;
+    for (int a = 0; a < 3; ++a) h->localPoint[a] = c.localPoint[a][i];
+    return true;
+  }
+
+ private:
+  // gaussianResponse in float; small integer powers (1 and 3 are the common ones) as
+  // products, within an ulp or two of powf and several times faster.
+  float response(float r2) const {
+    float power = settings_.kernelPower;
+    float r2p;
+    switch (integerPower_) {
+      case 1: r2p = r2; break;
+      case 2: r2p = r2 * r2; break;
+      case 3: r2p = r2 * r2 * r2; break;
+      case 4: r2p = (r2 * r2) * (r2 * r2); break;
+      default: return gaussianResponse(r2, power);
+    }
+    return std::exp(-r2p / (2.0f * power));
+  }
+
+  const TraceSettings& settings_;
+  int integerPower_;  // kernelPower when it is 1, 2, 3 or 4, else 0
+};
+
+using FastHitBuffer = HitBuffer<FastGaussianTracer::kMaxHitBufferCapacity>;
+
+// Composites, in order, the buffered hits whose key is below `bound`. Returns false when
+// the ray terminated and the exact tail is not wanted; with the exact tail, the remaining
+// hits then only multiply into the final transmittance, in any order (*tail is set).
+bool compositeBelow(float bound, FastHitBuffer& buffer, Compositor<double>& compositor,
+                    const TraceSettings& settings, bool* tail) {
+  while (!buffer.empty() && buffer.nearest().key < bound) {
+    BufferedHit h = buffer.popNearest();
+    if (compositor.add(h.id, h.kernelHit())) continue;
+    if (!settings.exactTail) return false;
+    *tail = true;
+    for (int i = 0; i < buffer.size(); ++i) compositor.add(buffer[i].id, buffer[i].kernelHit());
+    buffer.clear();
+  }
+  return true;
+}
+
+// The compositor will read the Gaussian's attributes: start fetching them now.
+void prefetchAttributes(const GaussianScene& scene, uint32_t id) {
+  __builtin_prefetch(&scene.diffuse[id]);
+  __builtin_prefetch(&scene.normal[id]);
+  __builtin_prefetch(&scene.roughness[id]);
+  __builtin_prefetch(&scene.f0[id]);
+}
 
 // The state of one ray. Each pass traverses the tree once and accepts the hits whose
 // (key, id) lies in [lo, hi); hi starts unbounded and drops when the buffer overflows, in
@@ -38,10 +108,9 @@ class RayTraversal {
         compositor_(*bvh.scene(), bvh.settings(), hits),
         buffer_(capacity),
         capacity_(capacity),
+        lanes_(bvh.settings()),
         stats_(stats) {
     if (ray.backfaceSkip > 0) compositor_.skipBackfacing(ray.direction, ray.backfaceSkip);
-    float p = settings_.kernelPower;
-    integerPower_ = (p == std::round(p) && p >= 1.0f && p <= 4.0f) ? int(p) : 0;
   }
 
   RayResult run() {
@@ -117,38 +186,14 @@ class RayTraversal {
       stats_->evaluations += std::popcount(masks[b]);
       for (uint32_t mask = masks[b]; mask; mask &= mask - 1) {
         int i = std::countr_zero(mask);
-        // The rest of evaluateGaussian, in float.
         BufferedHit h;
-        h.id = blocks[b].id[i];
-        h.tPeak = c[b].tPeak[i];
-        h.tEnter = h.tPeak - c[b].half[i];
-        h.tExit = h.tPeak + c[b].half[i];
-        h.key = std::clamp(h.tPeak, std::max(h.tEnter, ray_.tMin), h.tExit);
-        h.response = response(c[b].r2[i]);
-        h.alpha = kMaxAlpha * blocks[b].opacity[i] * h.response;
-        if (h.alpha < settings_.alphaMin) continue;
-        for (int a = 0; a < 3; ++a) h.localPoint[a] = c[b].localPoint[a][i];
+        if (!lanes_.make(blocks[b], c[b], i, ray_.tMin, &h)) continue;
         HitOrder order = h.order();
         if ((hasLo_ && order < lo_) || (hasHi_ && !(order < hi_))) continue;
         if (!accept(h, bound)) return false;
       }
     }
     return true;
-  }
-
-  // gaussianResponse in float; small integer powers (1 and 3 are the common ones) as
-  // products, within an ulp or two of powf and several times faster.
-  float response(float r2) const {
-    float power = settings_.kernelPower;
-    float r2p;
-    switch (integerPower_) {
-      case 1: r2p = r2; break;
-      case 2: r2p = r2 * r2; break;
-      case 3: r2p = r2 * r2 * r2; break;
-      case 4: r2p = (r2 * r2) * (r2 * r2); break;
-      default: return gaussianResponse(r2, power);
-    }
-    return std::exp(-r2p / (2.0f * power));
   }
 
   bool accept(const BufferedHit& h, float bound) {
@@ -171,44 +216,65 @@ class RayTraversal {
         if (!(h.order() < hi_)) return true;
       }
     }
-    // The compositor will read the Gaussian's attributes: start fetching them now.
-    const GaussianScene& scene = *bvh_.scene();
-    __builtin_prefetch(&scene.diffuse[h.id]);
-    __builtin_prefetch(&scene.normal[h.id]);
-    __builtin_prefetch(&scene.roughness[h.id]);
-    __builtin_prefetch(&scene.f0[h.id]);
+    prefetchAttributes(*bvh_.scene(), h.id);
     buffer_.push(h);
     return true;
   }
 
-  // Composites, in order, the buffered hits whose key is below `bound`. Returns false
-  // when the ray terminated and the exact tail is not wanted; with the exact tail, the
-  // remaining hits then only multiply into the final transmittance, in any order.
-  bool compositeBelow(float bound) {
-    while (!buffer_.empty() && buffer_.nearest().key < bound) {
-      BufferedHit h = buffer_.popNearest();
-      if (compositor_.add(h.id, h.kernelHit())) continue;
-      if (!settings_.exactTail) return false;
-      tail_ = true;
-      for (int i = 0; i < buffer_.size(); ++i) compositor_.add(buffer_[i].id, buffer_[i].kernelHit());
-      buffer_.clear();
-    }
-    return true;
-  }
+  bool compositeBelow(float bound) { return glint::compositeBelow(bound, buffer_, compositor_, settings_, &tail_); }
 
   const Bvh8& bvh_;
   const TraceSettings& settings_;
   Bvh8Ray ray_;
   Compositor<double> compositor_;
-  HitBuffer<FastGaussianTracer::kMaxHitBufferCapacity> buffer_;
+  FastHitBuffer buffer_;
   int capacity_;
-  int integerPower_;  // kernelPower when it is 1, 2, 3 or 4, else 0
+  LaneHits lanes_;
   FastTraceStats* stats_;
   Pending pending_;
   HitOrder lo_{}, hi_{};
   bool hasLo_ = false, hasHi_ = false, hiLowered_ = false;
   bool tail_ = false;  // terminated: later hits only count towards the exact tail
 };
+
+// One ray of a bundle: streams the bundle's candidate blocks (sorted by the lower bound
+// of their keys) and composites every buffered hit below the next block's bound, so the
+// order is the exact (key, id) order of RayTraversal. Returns false if the hit buffer
+// overflowed; the caller then traces the ray alone, whose traversal handles overflow.
+bool traceInBundle(const Bvh8& bvh, const BundleCandidates& candidates, const TraceRay& ray, int capacity,
+                   RayResult* result) {
+  const TraceSettings& settings = bvh.settings();
+  const Bvh8Ray r(ray);
+  Compositor<double> compositor(*bvh.scene(), settings, nullptr);
+  if (ray.backfaceSkip > 0) compositor.skipBackfacing(ray.direction, ray.backfaceSkip);
+  FastHitBuffer buffer(capacity);
+  const LaneHits lanes(settings);
+  bool tail = false;
+  for (int g = 0; g < candidates.groupCount(); ++g) {
+    // Every hit of this group and the later ones has a key of at least the bound.
+    float bound = candidates.blockBound(g * kBvhWidth);
+    if (!tail && !compositeBelow(bound, buffer, compositor, settings, &tail)) break;
+    alignas(32) float tNear[kBvhWidth];
+    for (uint32_t boxes = intersectNode(candidates.group(g), r, tNear); boxes; boxes &= boxes - 1) {
+      const Bvh8Block& block = candidates.block(g * kBvhWidth + std::countr_zero(boxes));
+      Bvh8BlockCandidates c;
+      for (uint32_t mask = intersectBlock(block, r, &c); mask; mask &= mask - 1) {
+        BufferedHit h;
+        if (!lanes.make(block, c, std::countr_zero(mask), r.tMin, &h)) continue;
+        if (tail) {
+          compositor.add(h.id, h.kernelHit());
+          continue;
+        }
+        if (buffer.full()) return false;
+        prefetchAttributes(*bvh.scene(), h.id);
+        buffer.push(h);
+      }
+    }
+  }
+  if (!tail) compositeBelow(kInfinity, buffer, compositor, settings, &tail);
+  *result = compositor.finish();
+  return true;
+}
 
 }  // namespace
 
@@ -232,6 +298,50 @@ void FastGaussianTracer::refit() {
 RayResult FastGaussianTracer::trace(const TraceRay& ray, HitList* hits) const {
   FastTraceStats stats;
   return trace(ray, hits, &stats);
+}
+
+void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results) const {
+  GLINT_CHECK(built_, "trace before build");
+  GLINT_CHECK(rays.size() == results.size(), "traceBatch: one result per ray");
+  GLINT_CHECK(rays.size() < size_t(UINT32_MAX), "traceBatch: too many rays");
+  // Runs of consecutive rays with one origin, ordered by direction and cut into bundles;
+  // every other ray is traced alone.
+  std::vector<uint32_t> order(rays.size());
+  for (size_t i = 0; i < rays.size(); ++i) order[i] = uint32_t(i);
+  struct Span {
+    size_t begin, end;  // into order
+  };
+  std::vector<Span> bundles;
+  std::vector<uint32_t> alone;
+  const size_t bundleRays = size_t(std::max(bundleRays_, 0));
+  for (size_t i = 0; i < rays.size();) {
+    size_t j = i + 1;
+    const Vec3f& o = rays[i].origin;
+    while (j < rays.size() && rays[j].origin.x == o.x && rays[j].origin.y == o.y && rays[j].origin.z == o.z) ++j;
+    size_t inside = 0;
+    if (bundleRays >= 2 && j - i >= bundleRays) {
+      inside = orderByDirection(rays, std::span<uint32_t>(order).subspan(i, j - i));
+      for (size_t b = i; b < i + inside; b += bundleRays) bundles.push_back({b, std::min(b + bundleRays, i + inside)});
+    }
+    alone.insert(alone.end(), order.begin() + std::ptrdiff_t(i + inside), order.begin() + std::ptrdiff_t(j));
+    i = j;
+  }
+
+  auto traceAlone = [&](uint32_t k) { results[k] = trace(rays[k]); };
+  parallelFor(int64_t(bundles.size()), 1, [&](int64_t b) {
+    thread_local BundleCandidates candidates;
+    std::span<const uint32_t> members = std::span<const uint32_t>(order).subspan(
+        bundles[size_t(b)].begin, bundles[size_t(b)].end - bundles[size_t(b)].begin);
+    RayCone cone;
+    if (!boundingCone(rays, members, &cone)) {
+      for (uint32_t k : members) traceAlone(k);
+      return;
+    }
+    candidates.gather(bvh_, cone);
+    for (uint32_t k : members)
+      if (!traceInBundle(bvh_, candidates, rays[k], hitBufferCapacity_, &results[k])) traceAlone(k);
+  });
+  parallelFor(int64_t(alone.size()), 64, [&](int64_t k) { traceAlone(alone[size_t(k)]); });
 }
 
 RayResult FastGaussianTracer::trace(const TraceRay& ray, HitList* hits, FastTraceStats* stats) const {

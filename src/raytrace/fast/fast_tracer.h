@@ -23,6 +23,7 @@ class FastGaussianTracer final : public GaussianTracer {
  public:
   static constexpr int kDefaultHitBufferCapacity = 128;
   static constexpr int kMaxHitBufferCapacity = 256;
+  static constexpr int kDefaultBundleRays = 64;
 
   // hitBufferCapacity (2 to kMaxHitBufferCapacity) bounds the hits a ray holds while
   // waiting to be composited; when a ray needs more, it keeps the nearest, composites
@@ -35,6 +36,12 @@ class FastGaussianTracer final : public GaussianTracer {
   RayResult trace(const TraceRay& ray, HitList* hits = nullptr) const override;
   // The same, also reporting what the ray cost (added to *stats).
   RayResult trace(const TraceRay& ray, HitList* hits, FastTraceStats* stats) const;
+  // Rays that share an origin are ordered by direction and traced in bundles of
+  // kBundleRays (ray_bundle.h): the bundle gathers its candidate Gaussians once and each
+  // ray composites them in the same exact order as trace(). Other rays go one by one.
+  void traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results) const override;
+  // Bundle size (tests set it; 0 turns bundles off and traces every ray alone).
+  void setBundleRays(int rays) { bundleRays_ = rays; }
   size_t memoryBytes() const override { return bvh_.memoryBytes(); }
 
   const Bvh8& bvh() const { return bvh_; }
@@ -42,6 +49,7 @@ class FastGaussianTracer final : public GaussianTracer {
  private:
   Bvh8 bvh_;
   int hitBufferCapacity_;
+  int bundleRays_ = kDefaultBundleRays;
   bool built_ = false;
 };
 

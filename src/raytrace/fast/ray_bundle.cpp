@@ -1,0 +1,232 @@
+#include "raytrace/fast/ray_bundle.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace glint {
+
+namespace {
+
+// Widening of the cone and of the spheres tested against it, so that float rounding in
+// the culling never drops a Gaussian the per-ray kernel would hit: 1e-4 rad of angle is
+// 1 mm at 10 m, far above the rounding of the kernel's entry distance.
+constexpr double kAngleMargin = 1e-4;
+constexpr float kRelativeMargin = 1e-5f;
+
+// Spreads the low 16 bits of x to the even bits of the result (Morton interleaving).
+uint32_t spreadBits(uint32_t x) {
+  x &= 0xffffu;
+  x = (x | (x << 8)) & 0x00ff00ffu;
+  x = (x | (x << 4)) & 0x0f0f0f0fu;
+  x = (x | (x << 2)) & 0x33333333u;
+  x = (x | (x << 1)) & 0x55555555u;
+  return x;
+}
+
+bool sameOrigin(const Vec3f& a, const Vec3f& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+}  // namespace
+
+bool boundingCone(std::span<const TraceRay> rays, std::span<const uint32_t> order, RayCone* cone) {
+  if (order.empty()) return false;
+  const Vec3f apex = rays[order[0]].origin;
+  if (!isFinite(apex)) return false;
+  Vec3d sum(0.0);
+  float tMin = std::numeric_limits<float>::infinity();
+  for (uint32_t i : order) {
+    const TraceRay& r = rays[i];
+    // Negative tMin would let rays hit what lies behind the apex, outside the cone.
+    if (!sameOrigin(r.origin, apex) || !(r.tMin >= 0.0f)) return false;
+    sum += Vec3d(normalize(r.direction));
+    tMin = std::min(tMin, r.tMin);
+  }
+  double sumLength = length(sum);
+  if (!(sumLength > 0.0)) return false;
+  Vec3d axis = sum / sumLength;
+  double cosMin = 1.0;
+  for (uint32_t i : order) cosMin = std::min(cosMin, dot(axis, Vec3d(normalize(rays[i].direction))));
+  double angle = std::acos(std::clamp(cosMin, -1.0, 1.0)) + kAngleMargin;
+  if (!(angle <= double(kMaxBundleHalfAngle))) return false;
+  cone->apex = apex;
+  cone->axis = Vec3f(axis);
+  cone->cosAngle = float(std::cos(angle));
+  cone->sinAngle = float(std::sin(angle));
+  cone->tMin = tMin;
+  return true;
+}
+
+bool sphereMeetsCone(const Vec3f& center, float radius, const RayCone& cone) {
+  Vec3f v = center - cone.apex;
+  float d2 = dot(v, v);
+  if (d2 <= radius * radius) return true;  // the apex lies in the sphere
+  float along = dot(v, cone.axis);
+  float perp = length(cross(v, cone.axis));  // no cancellation for centres near the axis
+  // The nearest point of the cone's surface to the centre, in the plane of axis and centre,
+  // lies on the boundary ray (cos, sin); behind the apex it is the apex itself, farther
+  // than the radius.
+  if (along * cone.cosAngle + perp * cone.sinAngle < 0.0f) return false;
+  // Signed distance to the boundary ray: negative inside the cone.
+  return perp * cone.cosAngle - along * cone.sinAngle <= radius;
+}
+
+void BundleCandidates::gather(const Bvh8& bvh, const RayCone& cone) {
+  candidates_.clear();
+  blocks_.clear();
+  blockBound_.clear();
+  if (bvh.empty()) return;
+
+  // Every subtree whose box's bounding sphere meets the cone, depth first.
+  stack_.clear();
+  stack_.push_back(0);
+  while (!stack_.empty()) {
+    int32_t code = stack_.back();
+    stack_.pop_back();
+    if (Bvh8Node::isLeaf(code)) {
+      uint32_t first = Bvh8Node::leafFirstBlock(code);
+      for (int b = 0; b < Bvh8Node::leafBlocks(code); ++b) {
+        const Bvh8Block& block = bvh.blocks()[first + uint32_t(b)];
+        for (int lane = 0; lane < kBvhWidth; ++lane) {
+          if (!(block.radius2[lane] >= 0.0f)) continue;  // a lane without a proxy
+          Vec3f mean(block.mean[0][lane], block.mean[1][lane], block.mean[2][lane]);
+          float radius = block.boundRadius[lane];
+          if (!sphereMeetsCone(mean, radius, cone)) continue;
+          // Every point of the proxy is at least |mean - apex| - radius from the apex, so
+          // no ray of the cone enters it (and its key) before that.
+          float distance = length(mean - cone.apex);
+          float bound = distance - radius - kRelativeMargin * (distance + radius);
+          candidates_.push_back({0, std::max(bound, cone.tMin), first + uint32_t(b), uint32_t(lane)});
+        }
+      }
+      continue;
+    }
+    const Bvh8Node& node = bvh.nodes()[code];
+    for (int c = 0; c < kBvhWidth; ++c) {
+      if (node.child[c] == Bvh8Node::kNoChild) continue;
+      Vec3f lower(node.bounds[0][c], node.bounds[2][c], node.bounds[4][c]);
+      Vec3f upper(node.bounds[1][c], node.bounds[3][c], node.bounds[5][c]);
+      if (!(lower.x <= upper.x && lower.y <= upper.y && lower.z <= upper.z)) continue;  // emptied by refit
+      Vec3f center = (lower + upper) * 0.5f;
+      float radius = 0.5f * length(upper - lower);
+      radius += kRelativeMargin * (radius + std::abs(center.x) + std::abs(center.y) + std::abs(center.z));
+      if (sphereMeetsCone(center, radius, cone)) stack_.push_back(node.child[c]);
+    }
+  }
+
+  // Order: slabs of depth holding about kSlabCandidates each, and across the cone within
+  // a slab (Morton order of the mean's gnomonic projection), so that the 8 Gaussians of
+  // a block lie close together and most rays miss the block's box.
+  constexpr size_t kSlabCandidates = 64;
+  size_t n = candidates_.size();
+  if (n == 0) return;
+  float nearest = std::numeric_limits<float>::infinity(), farthest = -nearest;
+  for (const Candidate& c : candidates_) nearest = std::min(nearest, c.bound), farthest = std::max(farthest, c.bound);
+  const float slabs = float((n + kSlabCandidates - 1) / kSlabCandidates);
+  const float slabScale = farthest > nearest ? slabs / (farthest - nearest) : 0.0f;
+  Vec3f helper = std::abs(cone.axis.x) < 0.9f ? Vec3f(1, 0, 0) : Vec3f(0, 1, 0);
+  Vec3f e1 = normalize(cross(helper, cone.axis)), e2 = cross(cone.axis, e1);
+  // The cone's cross-section at unit distance spans +-tan(angle); a margin for Gaussians
+  // that reach in from outside it.
+  float span = 4.0f * cone.sinAngle / std::max(cone.cosAngle, 0.1f) + 1e-6f;
+  for (Candidate& c : candidates_) {
+    const Bvh8Block& block = bvh.blocks()[c.block];
+    Vec3f v = Vec3f(block.mean[0][c.lane], block.mean[1][c.lane], block.mean[2][c.lane]) - cone.apex;
+    float along = std::max(dot(v, cone.axis), 1e-6f);
+    auto quantise = [&](float x) { return uint32_t(std::clamp((x / along / span + 0.5f), 0.0f, 1.0f) * 65535.0f); };
+    uint32_t morton = spreadBits(quantise(dot(v, e1))) | (spreadBits(quantise(dot(v, e2))) << 1);
+    uint64_t slab = uint64_t(std::min((c.bound - nearest) * slabScale, slabs - 1.0f));
+    c.order = slab << 32 | morton;
+  }
+  std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
+    return a.order < b.order;
+  });
+
+  size_t blockCount = (n + kBvhWidth - 1) / kBvhWidth;
+  blocks_.resize(blockCount);
+  blockBound_.resize(blockCount);
+  groups_.assign((blockCount + kBvhWidth - 1) / kBvhWidth, Bvh8Node{});
+  constexpr float kInf = std::numeric_limits<float>::infinity();
+  for (Bvh8Node& g : groups_)
+    for (int c = 0; c < kBvhWidth; ++c) {
+      for (int a = 0; a < 3; ++a) g.bounds[2 * a][c] = kInf, g.bounds[2 * a + 1][c] = -kInf;
+      g.child[c] = Bvh8Node::kNoChild;
+    }
+  for (size_t k = 0; k < blockCount; ++k) {
+    Bvh8Block& out = blocks_[k];
+    Bvh8Node& group = groups_[k / kBvhWidth];
+    int slot = int(k % kBvhWidth);
+    float blockMin = kInf;
+    for (int lane = 0; lane < kBvhWidth; ++lane) {
+      size_t c = k * kBvhWidth + size_t(lane);
+      if (c >= n) {
+        out.disableLane(lane);
+        continue;
+      }
+      const Bvh8Block& in = bvh.blocks()[candidates_[c].block];
+      int from = int(candidates_[c].lane);
+      for (int a = 0; a < 3; ++a) out.mean[a][lane] = in.mean[a][from];
+      for (int m = 0; m < 9; ++m) out.worldToLocal[m][lane] = in.worldToLocal[m][from];
+      out.opacity[lane] = in.opacity[from];
+      out.radius2[lane] = in.radius2[from];
+      out.boundRadius[lane] = in.boundRadius[from];
+      out.id[lane] = in.id[from];
+      blockMin = std::min(blockMin, candidates_[c].bound);
+      // The box of the proxy's bounding sphere (already padded for rounding).
+      for (int a = 0; a < 3; ++a) {
+        group.bounds[2 * a][slot] = std::min(group.bounds[2 * a][slot], in.mean[a][from] - in.boundRadius[from]);
+        group.bounds[2 * a + 1][slot] = std::max(group.bounds[2 * a + 1][slot], in.mean[a][from] + in.boundRadius[from]);
+      }
+    }
+    group.child[slot] = int32_t(k);
+    blockBound_[k] = blockMin;
+  }
+  for (size_t k = blockCount - 1; k-- > 0;) blockBound_[k] = std::min(blockBound_[k], blockBound_[k + 1]);
+}
+
+size_t orderByDirection(std::span<const TraceRay> rays, std::span<uint32_t> order) {
+  if (order.empty()) return 0;
+  Vec3d sum(0.0);
+  for (uint32_t i : order) sum += Vec3d(normalize(rays[i].direction));
+  Vec3f mean = length(sum) > 0.0 ? Vec3f(normalize(sum)) : Vec3f(0, 0, 1);
+  // An orthonormal frame about the mean direction.
+  Vec3f helper = std::abs(mean.x) < 0.9f ? Vec3f(1, 0, 0) : Vec3f(0, 1, 0);
+  Vec3f e1 = normalize(cross(helper, mean)), e2 = cross(mean, e1);
+
+  // Gnomonic projection onto the plane at unit distance along the mean: the image plane
+  // of a camera looking that way. Rays at 84 degrees or more (cos < 0.1) are left out.
+  constexpr float kMinCos = 0.1f;
+  std::vector<Vec2f> uv(order.size());
+  float lo[2] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity()};
+  float hi[2] = {-lo[0], -lo[1]};
+  for (size_t k = 0; k < order.size(); ++k) {
+    Vec3f d = normalize(rays[order[k]].direction);
+    float c = dot(d, mean);
+    if (!(c >= kMinCos)) {
+      uv[k] = {std::numeric_limits<float>::quiet_NaN(), 0.0f};
+      continue;
+    }
+    uv[k] = {dot(d, e1) / c, dot(d, e2) / c};
+    lo[0] = std::min(lo[0], uv[k].x), hi[0] = std::max(hi[0], uv[k].x);
+    lo[1] = std::min(lo[1], uv[k].y), hi[1] = std::max(hi[1], uv[k].y);
+  }
+  // One scale for both axes keeps the tiles square.
+  float extent = std::max({hi[0] - lo[0], hi[1] - lo[1], 1e-20f});
+  // (Morton code, ray index): the index breaks ties, so the order is deterministic.
+  std::vector<std::pair<uint64_t, uint32_t>> keys(order.size());
+  size_t inside = 0;
+  for (size_t k = 0; k < order.size(); ++k) {
+    uint64_t code = uint64_t(1) << 32;  // left out: after every 32-bit Morton code
+    if (!std::isnan(uv[k].x)) {
+      uint32_t qx = uint32_t(std::clamp((uv[k].x - lo[0]) / extent, 0.0f, 1.0f) * 65535.0f);
+      uint32_t qy = uint32_t(std::clamp((uv[k].y - lo[1]) / extent, 0.0f, 1.0f) * 65535.0f);
+      code = spreadBits(qx) | (spreadBits(qy) << 1);
+      ++inside;
+    }
+    keys[k] = {code, order[k]};
+  }
+  std::sort(keys.begin(), keys.end());
+  for (size_t k = 0; k < order.size(); ++k) order[k] = keys[k].second;
+  return inside;
+}
+
+}  // namespace glint

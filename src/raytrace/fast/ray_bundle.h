@@ -1,0 +1,80 @@
+// Coherent ray bundles for the fast tracer: rays that share an origin and point into a
+// narrow cone (a tile of camera rays) gather their candidate Gaussians from the BVH once,
+// sorted by a lower bound on the key any of them can give each Gaussian; every ray then
+// streams through that list front to back and composites in exact (key, id) order, as
+// the per-ray traversal does. A tile rasteriser's per-tile lists, kept exact.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "raytrace/fast/bvh8.h"
+#include "raytrace/gaussian_tracer.h"
+
+namespace glint {
+
+// The cone holding a bundle's rays: apex at their shared origin, unit axis, half angle
+// given by its cosine and sine (already widened for rounding).
+struct RayCone {
+  Vec3f apex;
+  Vec3f axis;
+  float cosAngle = 1.0f, sinAngle = 0.0f;
+  float tMin = 0.0f;  // the smallest tMin of the bundle's rays
+};
+
+// Rays wider apart than this (half angle of the cone, radians) are not worth bundling:
+// their candidate list would be most of what they see.
+constexpr float kMaxBundleHalfAngle = 0.1f;
+
+// The cone of rays[order[0..n)]; false if they do not share one origin (bit for bit) or
+// are spread wider than kMaxBundleHalfAngle.
+bool boundingCone(std::span<const TraceRay> rays, std::span<const uint32_t> order, RayCone* cone);
+
+// True if the sphere (center, radius) may meet the cone at a point in front of its apex;
+// conservative (false only when it certainly does not).
+bool sphereMeetsCone(const Vec3f& center, float radius, const RayCone& cone);
+
+// The candidate Gaussians of one bundle, as leaf blocks in the BVH's layout (copied lanes,
+// so the per-ray kernel is the BVH's own). Blocks run front to back in slabs of depth;
+// within a slab they are ordered across the cone, so each block is compact and a ray
+// skips most of them with one box test: 8 blocks' boxes form a group, tested at once
+// like the children of a BVH node.
+class BundleCandidates {
+ public:
+  // Collects every Gaussian whose proxy's bounding sphere meets the cone.
+  void gather(const Bvh8& bvh, const RayCone& cone);
+
+  int blockCount() const { return int(blocks_.size()); }
+  const Bvh8Block& block(int k) const { return blocks_[size_t(k)]; }
+  // Groups of kBvhWidth consecutive blocks: lane c of group g holds the box of block
+  // g * kBvhWidth + c (empty lanes have inverted boxes).
+  int groupCount() const { return int(groups_.size()); }
+  const Bvh8Node& group(int g) const { return groups_[size_t(g)]; }
+  // No Gaussian of block k or of a later block gives any of the bundle's rays a key below
+  // this (the suffix minimum of the candidates' bounds; exact order does not depend on
+  // how well the blocks are sorted, only the work does).
+  float blockBound(int k) const { return blockBound_[size_t(k)]; }
+  size_t candidates() const { return candidates_.size(); }
+
+ private:
+  struct Candidate {
+    uint64_t order;  // depth slab, then Morton code across the cone
+    float bound;     // lower bound of the key
+    uint32_t block, lane;  // where its data lies in the BVH
+  };
+  std::vector<Candidate> candidates_;
+  std::vector<int32_t> stack_;
+  std::vector<Bvh8Block> blocks_;
+  std::vector<Bvh8Node> groups_;
+  std::vector<float> blockBound_;
+};
+
+// Orders the rays of rays[begin, end) (which share an origin) so that consecutive ones
+// point in nearby directions: Morton order of their gnomonic projection about the mean
+// direction, which for camera rays is the image plane, so runs of 64 are 8x8 tiles.
+// Rays at 84 degrees or more from the mean come last (order them into no bundle).
+// Returns how many rays lie within that range (at the front of `order`).
+size_t orderByDirection(std::span<const TraceRay> rays, std::span<uint32_t> order);
+
+}  // namespace glint

@@ -1,0 +1,223 @@
+// Tests of the fast tracer's coherent ray bundles: the cone culling is conservative, and
+// batches of camera rays traced in bundles give what each ray traced alone gives (and
+// what the double-precision reference gives).
+#include "raytrace/fast/ray_bundle.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "math/rng.h"
+#include "raytrace/fast/fast_tracer.h"
+#include "raytrace/reference/reference_tracer.h"
+
+namespace glint {
+namespace {
+
+float uniform(Rng& rng, float a, float b) { return a + (b - a) * rng.uniform(); }
+
+Vec3f randomDirection(Rng& rng) {
+  for (;;) {
+    Vec3f v(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+    float l = length(v);
+    if (l > 1e-3f && l <= 1.0f) return v / l;
+  }
+}
+
+// A dense cloud in [-1, 1]^3 (as the fast tracer's own tests use).
+GaussianScene cloud(size_t n, uint64_t seed) {
+  Rng rng(seed);
+  GaussianScene scene;
+  scene.resize(n);
+  for (size_t i = 0; i < n; ++i) {
+    scene.position[i] = {uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
+    Vec3f axis = randomDirection(rng);
+    float angle = uniform(rng, 0.0f, 3.14159f);
+    scene.rotation[i] = {std::cos(angle / 2), axis.x * std::sin(angle / 2), axis.y * std::sin(angle / 2),
+                         axis.z * std::sin(angle / 2)};
+    scene.logScale[i] = {uniform(rng, -4.0f, -1.8f), uniform(rng, -4.0f, -1.8f), uniform(rng, -4.0f, -1.8f)};
+    scene.opacityLogit[i] = logit(uniform(rng, 0.01f, 0.99f));
+    scene.diffuse[i] = {rng.uniform(), rng.uniform(), rng.uniform()};
+    scene.normal[i] = randomDirection(rng) * uniform(rng, 0.5f, 1.0f);
+    scene.roughness[i] = rng.uniform();
+    scene.f0[i] = {rng.uniform(), rng.uniform(), rng.uniform()};
+  }
+  return scene;
+}
+
+// width x height pinhole rays from eye towards target (60 degrees), jittered in the pixel.
+std::vector<TraceRay> cameraRays(Vec3f eye, Vec3f target, int width, int height, uint64_t seed, float tMin = 0.0f) {
+  Rng rng(seed);
+  Vec3f forward = normalize(target - eye);
+  Vec3f right = normalize(cross(forward, Vec3f(0, 1, 0)));
+  Vec3f up = cross(right, forward);
+  float focal = 0.5f * float(width) / std::tan(0.5f * 60.0f * 3.14159265f / 180.0f);
+  std::vector<TraceRay> rays;
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i) {
+      float x = (float(i) + rng.uniform() - 0.5f * float(width)) / focal;
+      float y = -(float(j) + rng.uniform() - 0.5f * float(height)) / focal;
+      rays.push_back({eye, normalize(forward + right * x + up * y), tMin});
+    }
+  return rays;
+}
+
+bool near(float a, float b, float tolerance) { return std::abs(a - b) <= tolerance * std::max(1.0f, std::abs(b)); }
+bool near(const Vec3f& a, const Vec3f& b, float tolerance) {
+  return near(a.x, b.x, tolerance) && near(a.y, b.y, tolerance) && near(a.z, b.z, tolerance);
+}
+
+void expectSameResults(const std::vector<RayResult>& got, const std::vector<RayResult>& want, float tolerance,
+                       const std::string& what) {
+  int failures = 0;
+  for (size_t i = 0; i < want.size() && failures < 5; ++i) {
+    const RayResult &a = got[i], &b = want[i];
+    bool same = near(a.diffuse, b.diffuse, tolerance) && near(a.depth, b.depth, tolerance) &&
+                near(a.normal, b.normal, tolerance) && near(a.roughness, b.roughness, tolerance) &&
+                near(a.f0, b.f0, tolerance) && near(a.transmittance, b.transmittance, tolerance) &&
+                a.hitCount == b.hitCount && a.truncated == b.truncated;
+    if (!same) {
+      ++failures;
+      ADD_FAILURE() << what << ", ray " << i << ": diffuse " << a.diffuse.x << " vs " << b.diffuse.x << ", depth "
+                    << a.depth << " vs " << b.depth << ", T " << a.transmittance << " vs " << b.transmittance
+                    << ", hits " << a.hitCount << " vs " << b.hitCount;
+    }
+  }
+}
+
+// Camera batches: outside the cloud, inside it (Gaussians behind the eye and around it),
+// inside with tMin > 0, and a batch of rays with one origin but all directions (no bundle
+// can hold them).
+std::vector<std::pair<std::string, std::vector<TraceRay>>> cameraBatches() {
+  std::vector<std::pair<std::string, std::vector<TraceRay>>> batches;
+  batches.push_back({"outside", cameraRays({0.3f, 0.4f, 3.0f}, {0, 0, 0}, 48, 40, 1)});
+  batches.push_back({"inside", cameraRays({0.1f, -0.2f, 0.05f}, {0.5f, 0.3f, -1.0f}, 48, 40, 2)});
+  batches.push_back({"inside, tMin 0.3", cameraRays({-0.2f, 0.1f, 0.3f}, {0.0f, -0.4f, 1.0f}, 40, 32, 3, 0.3f)});
+  Rng rng(4);
+  std::vector<TraceRay> spread;
+  for (int i = 0; i < 500; ++i) spread.push_back({{0.2f, 0.2f, 0.2f}, randomDirection(rng), 0.0f});
+  batches.push_back({"all directions", spread});
+  return batches;
+}
+
+TEST(RayBundle, SphereConeTestNeverRejectsASphereARayOfTheConeMeets) {
+  Rng rng(7);
+  int met = 0, rejected = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    std::vector<TraceRay> rays;
+    Vec3f apex(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+    Vec3f axis = randomDirection(rng);
+    for (int k = 0; k < 16; ++k) rays.push_back({apex, normalize(axis + randomDirection(rng) * 0.05f), 0.0f});
+    std::vector<uint32_t> order(rays.size());
+    for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+    RayCone cone;
+    ASSERT_TRUE(boundingCone(rays, order, &cone));
+    for (int s = 0; s < 200; ++s) {
+      Vec3f center = apex + axis * uniform(rng, -1.0f, 4.0f) + randomDirection(rng) * uniform(rng, 0.0f, 0.5f);
+      float radius = uniform(rng, 0.001f, 0.2f);
+      bool hit = false;
+      for (const TraceRay& ray : rays) {
+        // Ray-sphere in double: the nearest point of the ray (t >= 0) to the centre.
+        Vec3d v = Vec3d(center - ray.origin), d = Vec3d(normalize(ray.direction));
+        double t = std::max(0.0, dot(v, d));
+        hit = hit || length(v - d * t) <= double(radius);
+      }
+      bool meets = sphereMeetsCone(center, radius, cone);
+      if (hit) {
+        ++met;
+        EXPECT_TRUE(meets) << "trial " << trial << " sphere " << s;
+      }
+      if (!meets) ++rejected;
+    }
+  }
+  EXPECT_GT(met, 1000);       // the test saw many spheres the rays meet
+  EXPECT_GT(rejected, 10000);  // and the cone culls most of the others
+}
+
+TEST(RayBundle, BundledBatchesMatchRaysTracedAloneAndTheReference) {
+  GaussianScene scene = cloud(2000, 31);
+  for (float power : {1.0f, 3.0f}) {
+    for (bool exactTail : {false, true}) {
+      TraceSettings settings;
+      settings.kernelPower = power;
+      settings.minTransmittance = 1e-4f;
+      settings.exactTail = exactTail;
+      FastGaussianTracer tracer;
+      tracer.build(scene, settings);
+      ReferenceTracer reference;
+      reference.build(scene, settings);
+      for (const auto& [name, rays] : cameraBatches()) {
+        std::string what = name + " p=" + std::to_string(int(power)) + (exactTail ? " exact tail" : "");
+        std::vector<RayResult> bundled(rays.size()), alone(rays.size()), oracle(rays.size());
+        tracer.setBundleRays(16);
+        tracer.traceBatch(rays, bundled);
+        for (size_t i = 0; i < rays.size(); ++i) alone[i] = tracer.trace(rays[i]);
+        for (size_t i = 0; i < rays.size(); ++i) oracle[i] = reference.trace(rays[i]);
+        // The same hits in the same order; only the exact tail multiplies in another order.
+        expectSameResults(bundled, alone, exactTail ? 1e-5f : 1e-6f, what + " (bundled vs alone)");
+        expectSameResults(bundled, oracle, 1e-4f, what + " (bundled vs reference)");
+      }
+    }
+  }
+}
+
+TEST(RayBundle, CandidatesHoldEveryGaussianTheBundlesRaysHitAndFewOthers) {
+  GaussianScene scene = cloud(2000, 41);
+  TraceSettings settings;
+  settings.minTransmittance = 0.0f;  // every hit, to the far side
+  FastGaussianTracer tracer;
+  tracer.build(scene, settings);
+  ReferenceTracer reference;
+  reference.build(scene, settings);
+  std::vector<TraceRay> rays = cameraRays({0.0f, 0.0f, 2.5f}, {0, 0, 0}, 64, 64, 5);
+  std::vector<uint32_t> order(rays.size());
+  for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+  ASSERT_EQ(orderByDirection(rays, order), rays.size());
+  // The first 64 rays in direction order form a compact tile.
+  std::span<const uint32_t> tile(order.data(), 64);
+  RayCone cone;
+  ASSERT_TRUE(boundingCone(rays, tile, &cone));
+  EXPECT_LT(std::acos(cone.cosAngle), 0.09f);  // an 8x8 tile of 64x64 pixels at 60 degrees: 0.08 rad
+  BundleCandidates candidates;
+  candidates.gather(tracer.bvh(), cone);
+  std::set<uint32_t> gathered;
+  for (int k = 0; k < candidates.blockCount(); ++k)
+    for (int lane = 0; lane < kBvhWidth; ++lane)
+      if (candidates.block(k).radius2[lane] >= 0.0f) gathered.insert(candidates.block(k).id[lane]);
+  EXPECT_EQ(gathered.size(), candidates.candidates());
+  size_t hitGaussians = 0;
+  for (uint32_t k : tile) {
+    HitList hits;
+    hits.capacity = 100000;
+    reference.trace(rays[k], &hits);
+    for (const HitRecord& h : hits.hits) {
+      ++hitGaussians;
+      EXPECT_TRUE(gathered.count(h.id)) << "ray " << k << " hits Gaussian " << h.id << " outside the candidates";
+    }
+  }
+  EXPECT_GT(hitGaussians, 64u);
+  EXPECT_LT(candidates.candidates(), scene.size() / 4);  // the cone culls most of the cloud
+  // The bounds are suffix minima: never increasing from block to block.
+  for (int k = 1; k < candidates.blockCount(); ++k) EXPECT_LE(candidates.blockBound(k - 1), candidates.blockBound(k));
+}
+
+TEST(RayBundle, OverflowingBundlesFallBackToTheTraversalAndGiveTheSameImage) {
+  GaussianScene scene = cloud(2000, 51);
+  TraceSettings settings;
+  settings.minTransmittance = 1e-4f;
+  FastGaussianTracer normal, small(2);
+  normal.build(scene, settings);
+  small.build(scene, settings);
+  for (const auto& [name, rays] : cameraBatches()) {
+    std::vector<RayResult> want(rays.size()), got(rays.size());
+    normal.traceBatch(rays, want);
+    small.traceBatch(rays, got);
+    expectSameResults(got, want, 1e-6f, name + " capacity 2");
+  }
+}
+
+}  // namespace
+}  // namespace glint
