@@ -10,7 +10,7 @@
 #include "core/parallel.h"
 #include "edit/edit_file.h"
 #include "edit/gaussian_selection.h"
-#include "edit/hsv.h"
+#include "edit/value_changes.h"
 
 namespace glint {
 
@@ -24,24 +24,6 @@ void forSelected(const GaussianMask& mask, Change&& change) {
   parallelFor(int64_t(mask.size()), kGrain, [&](int64_t i) {
     if (mask[i]) change(size_t(i));
   });
-}
-
-Rgb changeColor(const Rgb& c, const ColorChange& change) {
-  switch (change.mode) {
-    case ColorChange::Mode::Set: return lerp(c, change.value, change.blend);
-    case ColorChange::Mode::HsvShift: return hsvToRgb(rgbToHsv(c) + change.value);
-    case ColorChange::Mode::HsvMultiply: return hsvToRgb(rgbToHsv(c) * change.value);
-  }
-  return c;
-}
-
-float changeRoughness(float r, const Operation& op) {
-  switch (op.roughnessMode) {
-    case Operation::RoughnessMode::Set: r = op.amount; break;
-    case Operation::RoughnessMode::Shift: r += op.amount; break;
-    case Operation::RoughnessMode::Multiply: r *= op.amount; break;
-  }
-  return std::clamp(r, 0.0f, 1.0f);
 }
 
 }  // namespace
@@ -94,12 +76,11 @@ void applyOperation(const EditDocument& document, const Operation& op, const Gau
       break;
     case Operation::Kind::F0:
       forSelected(mask, [&](size_t i) {
-        Rgb c = changeColor(scene.f0[i], op.color);
-        scene.f0[i] = {std::clamp(c.x, 0.0f, 1.0f), std::clamp(c.y, 0.0f, 1.0f), std::clamp(c.z, 0.0f, 1.0f)};
+        scene.f0[i] = clampF0(changeColor(scene.f0[i], op.color));
       });
       break;
     case Operation::Kind::Diffuse:
-      forSelected(mask, [&](size_t i) { scene.diffuse[i] = max(changeColor(scene.diffuse[i], op.color), Rgb(0.0f)); });
+      forSelected(mask, [&](size_t i) { scene.diffuse[i] = clampDiffuse(changeColor(scene.diffuse[i], op.color)); });
       break;
   }
 }

@@ -12,8 +12,6 @@ namespace {
 
 constexpr int64_t kGrain = 4096;
 
-float meanOf(const Rgb& c) { return (c.x + c.y + c.z) / 3.0f; }
-
 // The selection before its filters.
 GaussianMask unfiltered(const EditDocument& document, const Selection& selection, const GaussianScene& scene) {
   size_t n = scene.size();
@@ -43,14 +41,7 @@ GaussianMask unfiltered(const EditDocument& document, const Selection& selection
 }  // namespace
 
 bool passesFilter(const AttributeFilter& filter, const GaussianScene& scene, size_t i) {
-  float value = 0.0f;
-  switch (filter.attribute) {
-    case Attribute::F0: value = meanOf(scene.f0[i]); break;
-    case Attribute::Roughness: value = scene.roughness[i]; break;
-    case Attribute::Diffuse: value = meanOf(scene.diffuse[i]); break;
-    case Attribute::Metalness: value = derivedMetalness(meanOf(scene.diffuse[i]), meanOf(scene.f0[i])); break;
-  }
-  return value >= filter.lo && value <= filter.hi;
+  return filterAccepts(filter, scene.f0[i], scene.roughness[i], scene.diffuse[i]);
 }
 
 GaussianMask selectGaussians(const EditDocument& document, const std::string& name, const GaussianScene& scene) {
