@@ -10,43 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "common/random_gaussians.h"
 #include "math/rng.h"
 #include "raytrace/fast/fast_tracer.h"
 #include "raytrace/reference/reference_tracer.h"
 
 namespace glint {
 namespace {
-
-float uniform(Rng& rng, float a, float b) { return a + (b - a) * rng.uniform(); }
-
-Vec3f randomDirection(Rng& rng) {
-  for (;;) {
-    Vec3f v(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
-    float l = length(v);
-    if (l > 1e-3f && l <= 1.0f) return v / l;
-  }
-}
-
-// A dense cloud in [-1, 1]^3 (as the fast tracer's own tests use).
-GaussianScene cloud(size_t n, uint64_t seed) {
-  Rng rng(seed);
-  GaussianScene scene;
-  scene.resize(n);
-  for (size_t i = 0; i < n; ++i) {
-    scene.position[i] = {uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
-    Vec3f axis = randomDirection(rng);
-    float angle = uniform(rng, 0.0f, 3.14159f);
-    scene.rotation[i] = {std::cos(angle / 2), axis.x * std::sin(angle / 2), axis.y * std::sin(angle / 2),
-                         axis.z * std::sin(angle / 2)};
-    scene.logScale[i] = {uniform(rng, -4.0f, -1.8f), uniform(rng, -4.0f, -1.8f), uniform(rng, -4.0f, -1.8f)};
-    scene.opacityLogit[i] = logit(uniform(rng, 0.01f, 0.99f));
-    scene.diffuse[i] = {rng.uniform(), rng.uniform(), rng.uniform()};
-    scene.normal[i] = randomDirection(rng) * uniform(rng, 0.5f, 1.0f);
-    scene.roughness[i] = rng.uniform();
-    scene.f0[i] = {rng.uniform(), rng.uniform(), rng.uniform()};
-  }
-  return scene;
-}
 
 // width x height pinhole rays from eye towards target (60 degrees), jittered in the pixel.
 std::vector<TraceRay> cameraRays(Vec3f eye, Vec3f target, int width, int height, uint64_t seed, float tMin = 0.0f) {
@@ -138,7 +108,7 @@ TEST(RayBundle, SphereConeTestNeverRejectsASphereARayOfTheConeMeets) {
 }
 
 TEST(RayBundle, BundledBatchesMatchRaysTracedAloneAndTheReference) {
-  GaussianScene scene = cloud(2000, 31);
+  GaussianScene scene = randomScene(2000, 31);
   for (float power : {1.0f, 3.0f}) {
     for (bool exactTail : {false, true}) {
       TraceSettings settings;
@@ -165,7 +135,7 @@ TEST(RayBundle, BundledBatchesMatchRaysTracedAloneAndTheReference) {
 }
 
 TEST(RayBundle, CandidatesHoldEveryGaussianTheBundlesRaysHitAndFewOthers) {
-  GaussianScene scene = cloud(2000, 41);
+  GaussianScene scene = randomScene(2000, 41);
   TraceSettings settings;
   settings.minTransmittance = 0.0f;  // every hit, to the far side
   FastGaussianTracer tracer;
@@ -205,7 +175,7 @@ TEST(RayBundle, CandidatesHoldEveryGaussianTheBundlesRaysHitAndFewOthers) {
 }
 
 TEST(RayBundle, OverflowingBundlesFallBackToTheTraversalAndGiveTheSameImage) {
-  GaussianScene scene = cloud(2000, 51);
+  GaussianScene scene = randomScene(2000, 51);
   TraceSettings settings;
   settings.minTransmittance = 1e-4f;
   FastGaussianTracer normal, small(2);
