@@ -1,5 +1,6 @@
 // `glint render SCENE.ply|RUN --dataset D --split test -o OUT`: renders a Gaussian scene (or a
-// training run's) from the cameras of a dataset split into per-view buffers named like the dataset's.
+// training run's) from the cameras of a dataset split into per-view buffers named like the
+// dataset's, or along a camera path (--path) into numbered frames and an MP4.
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -10,12 +11,16 @@
 #include "app/scene_edits.h"
 #include "app/scene_source.h"
 #include "app/trace_flags.h"
+#include "app/video_encoder.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "io/image.h"
 #include "raytrace/gaussian_tracer.h"
+#include "render/camera_path.h"
 #include "render/denoise.h"
 #include "render/gaussian_renderer.h"
+#include "render/progressive_render.h"
+#include "scene/buffer_codec.h"
 #include "scene/dataset.h"
 
 namespace glint {
@@ -38,6 +43,11 @@ struct RenderOptions {
   bool force = false;
   std::string format = "exr";
   bool denoise = false;  // also write OUT/render_denoised/NAME.exr
+  bool progressive = false;  // passes of 1, 1, 2, 4, ... samples, files rewritten after each
+  std::string path;          // "orbit", "spiral", "dataset-test": frames instead of the split's views
+  int frames = 0;            // of the path; 0: 120, or the test views for dataset-test
+  int fps = 30;
+  bool noVideo = false;
   std::string debugPixel;  // "x,y": print that pixel's paths instead of rendering
   int debugView = 0;
 };
@@ -69,12 +79,62 @@ void printPixelPaths(const std::vector<std::vector<PathSegment>>& paths, int x, 
   }
 }
 
-void checkOutputFolder(const fs::path& out, bool force) {
+// The output folder must be new, empty, or hold an earlier render of the same kind (its
+// `marker` subfolder: "render" for views, "path" for camera-path frames).
+void checkOutputFolder(const fs::path& out, bool force, const char* marker) {
   if (!fs::exists(out) || force) return;
   if (!fs::is_directory(out)) throw Error(out.string(), "exists and is not a folder");
-  if (!fs::is_empty(out) && !fs::exists(out / "render"))
+  if (!fs::is_empty(out) && !fs::exists(out / marker))
     throw Error(out.string(), "folder is not empty and does not hold an earlier render; choose another -o folder "
                               "or pass --force");
+}
+
+// Renders one view, in one pass or progressively, handing every result to write (the
+// progressive passes' means too, so the files on disk improve while the render runs).
+void renderView(const RenderOptions& o, const GaussianTracer& tracer, const Camera& camera,
+                const RenderSettings& settings, uint64_t viewKey, const ProgressivePassCallback& write) {
+  if (o.progressive)
+    renderProgressively(tracer, camera, settings, viewKey, write);
+  else
+    write(renderGaussianView(tracer, camera, settings, viewKey), settings.spp);
+}
+
+// The final image as the viewer shows it: the filmic tonemap of the dataset's 8-bit files.
+void writeFramePng(const fs::path& path, const Image& radiance) {
+  writeImage(path, encodeBuffer(radiance, Buffer::Render, ImageFormat::Png));
+}
+
+// Renders frames along the camera path into OUT/path/frame_####.png (and, with --denoise,
+// OUT/path_denoised/), then encodes OUT/path.mp4 from the shown frames when ffmpeg exists.
+void renderCameraPath(const RenderOptions& o, const GaussianTracer& tracer, const RenderSettings& settings,
+                      const std::vector<Mat4>& path, double fovX, int width, int height) {
+  fs::path framesDir = fs::path(o.output) / "path", denoisedDir = fs::path(o.output) / "path_denoised";
+  fs::create_directories(framesDir);
+  if (o.denoise) fs::create_directories(denoisedDir);
+  char name[32];
+  ProgressBar progress("render " + o.path, int64_t(path.size()), "frames");
+  for (size_t f = 0; f < path.size(); ++f) {
+    std::snprintf(name, sizeof(name), "frame_%04zu.png", f);
+    Camera camera{path[f], fovX, width, height};
+    auto write = [&](const ViewBuffers& buffers, int /*samples*/) {
+      writeFramePng(framesDir / name, buffers[Buffer::Render]);
+      if (o.denoise) writeFramePng(denoisedDir / name, denoiseView(buffers));
+    };
+    renderView(o, tracer, camera, settings, uint64_t(f), write);
+    progress.advance();
+  }
+  progress.finish();
+  fs::path video = fs::path(o.output) / "path.mp4";
+  if (o.noVideo) return;
+  std::optional<fs::path> ffmpeg = findFfmpeg();
+  if (!ffmpeg) {
+    std::fprintf(stderr, "glint render: ffmpeg is not installed, so no %s (the frames are in %s)\n",
+                 video.string().c_str(), framesDir.string().c_str());
+    return;
+  }
+  encodeVideo(*ffmpeg, (o.denoise ? denoisedDir : framesDir) / "frame_%04d.png", o.fps, video);
+  std::fprintf(stderr, "glint render: wrote %s (%zu frames at %d fps)\n", video.string().c_str(), path.size(),
+               o.fps);
 }
 
 void runRender(const RenderOptions& o) {
@@ -87,8 +147,14 @@ void runRender(const RenderOptions& o) {
     throw Error(o.scene, "names no dataset to take the cameras from (only a training run's config.json can): "
                          "pass --dataset");
 
+  std::optional<CameraPathKind> pathKind;
+  if (!o.path.empty()) {
+    pathKind = cameraPathFromName(o.path);
+    if (!o.debugPixel.empty()) throw Error("--path", "renders frames; it cannot be combined with --debug-pixel");
+  }
   Dataset dataset = Dataset::open(datasetPath, /*requireBuffers=*/false);
-  const DatasetSplit& split = dataset.split(o.split);
+  // dataset-test walks through the test cameras whatever --split says.
+  const DatasetSplit& split = dataset.split(pathKind == CameraPathKind::DatasetTest ? "test" : o.split);
   int width, height;
   if (!o.resolution.empty()) {
     Vec2i r = parseResolution(o.resolution, "--res");
@@ -97,23 +163,32 @@ void runRender(const RenderOptions& o) {
     std::optional<fs::path> first = dataset.findBufferFile(split.views[0], Buffer::Render);
     if (!first)
       throw Error(datasetPath.string(),
-                  "has no " + o.split + " render images to take the image size from; pass --res WxH");
+                  "has no " + split.name + " render images to take the image size from; pass --res WxH");
     Image image = readImage(*first);
     width = image.width, height = image.height;
   }
-  if (o.debugPixel.empty()) checkOutputFolder(o.output, o.force);
+  if (o.debugPixel.empty()) checkOutputFolder(o.output, o.force, pathKind ? "path" : "render");
+
+  // The cameras to render: the split's views, or the frames of the camera path.
+  std::vector<Mat4> cameras;
+  for (const DatasetView& view : split.views) cameras.push_back(view.cameraToWorld);
+  if (pathKind) {
+    int frames = o.frames > 0 ? o.frames : (*pathKind == CameraPathKind::DatasetTest ? int(cameras.size()) : 120);
+    cameras = makeCameraPath(*pathKind, cameras, frames);
+  }
 
   auto start = std::chrono::steady_clock::now();
-  Camera probeCamera{split.views[0].cameraToWorld, split.cameraAngleX, width, height};
-  double workRays = double(split.views.size()) * width * height * o.spp * (1 + o.trace.path().bounces);
+  Camera probeCamera{cameras[0], split.cameraAngleX, width, height};
+  double workRays = double(cameras.size()) * width * height * o.spp * (1 + o.trace.path().bounces);
   std::unique_ptr<GaussianTracer> tracer =
       o.edits.prepareTracer(scene, trace, o.trace.tracer(), probeCamera, workRays, "glint render");
   double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr,
                "glint render: %zu Gaussians, %s tracer ready in %.3f s (p = %g, alpha_min = %g, "
-               "min_transmittance = %g); %zu %s views at %dx%d, %d spp\n",
+               "min_transmittance = %g); %zu %s at %dx%d, %d spp%s\n",
                scene.size(), tracer->name(), buildSeconds, trace.kernelPower, trace.alphaMin, trace.minTransmittance,
-               split.views.size(), o.split.c_str(), width, height, o.spp);
+               cameras.size(), (pathKind ? o.path + " frames" : split.name + " views").c_str(), width, height, o.spp,
+               o.progressive ? " (progressive)" : "");
 
   RenderSettings settings;
   settings.spp = o.spp;
@@ -133,13 +208,19 @@ void runRender(const RenderOptions& o) {
                     size_t(o.debugView));
     return;
   }
+  if (pathKind) {
+    renderCameraPath(o, *tracer, settings, cameras, split.cameraAngleX, width, height);
+    return;
+  }
   ProgressBar progress("render", int64_t(split.views.size()), "views");
   for (size_t v = 0; v < split.views.size(); ++v) {
     Camera camera{split.views[v].cameraToWorld, split.cameraAngleX, width, height};
-    ViewBuffers buffers = renderGaussianView(*tracer, camera, settings, uint64_t(v));
-    writeRenderedBuffers(o.output, split.views[v].filePath, buffers,
-                         o.format == "png" ? ImageFormat::Png : ImageFormat::Exr);
-    if (o.denoise) writeImage(denoisedRenderPath(o.output, split.views[v].filePath), denoiseView(buffers));
+    auto write = [&](const ViewBuffers& buffers, int /*samples*/) {
+      writeRenderedBuffers(o.output, split.views[v].filePath, buffers,
+                           o.format == "png" ? ImageFormat::Png : ImageFormat::Exr);
+      if (o.denoise) writeImage(denoisedRenderPath(o.output, split.views[v].filePath), denoiseView(buffers));
+    };
+    renderView(o, *tracer, camera, settings, uint64_t(v), write);
     progress.advance();
   }
 }
@@ -175,6 +256,23 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_flag("--denoise", o->denoise,
                 "Also write the final image denoised, OUT/render_denoised/NAME.exr (edge-avoiding a-trous filter "
                 "guided by the diffuse, normal and depth buffers); the raw buffers are written as without it");
+  cmd->add_flag("--progressive", o->progressive,
+                "Trace each view (or frame) in passes of 1, 1, 2, 4, ... samples up to --spp, rewriting its files "
+                "with the mean so far after every pass: look at them while the render runs, or stop it early; the "
+                "end result is the render of --spp samples");
+  cmd->add_option("--path", o->path,
+                  "Render a camera path instead of the split's views: orbit (one turn around the point the "
+                  "split's cameras look at, at their mean distance and height), spiral (two turns rising from the "
+                  "lowest camera to the highest and back), dataset-test (through the test cameras in order). Writes "
+                  "OUT/path/frame_####.png (the final image, filmic tonemap), OUT/path_denoised/ with --denoise, "
+                  "and OUT/path.mp4 when ffmpeg is installed")
+      ->check(CLI::IsMember({"orbit", "spiral", "dataset-test"}));
+  cmd->add_option("--frames", o->frames,
+                  "Frames of --path (default: 120; for dataset-test the number of test views, and other counts "
+                  "interpolate smoothly between the test cameras)")
+      ->check(CLI::Range(1, 100000));
+  cmd->add_option("--fps", o->fps, "Frames per second of the --path video")->check(CLI::Range(1, 240))->capture_default_str();
+  cmd->add_flag("--no-video", o->noVideo, "With --path, write the frames only (no MP4)");
   cmd->add_flag("--force", o->force, "Write into a non-empty output folder");
   cmd->add_option("--format", o->format, "exr: linear float buffers; png: 8-bit, encoded as datasets store them "
                                          "(radiance through the filmic tonemap, as the viewer shows it; depth stays EXR)")

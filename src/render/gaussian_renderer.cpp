@@ -68,7 +68,7 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
         out[Buffer::Specular].setRgb(x, yi, specular * invSpp);
         out[Buffer::Render].setRgb(x, yi, (diffuse + specular) * invSpp);
         out[Buffer::Depth].at(x, yi) = depth * invSpp;
-        out[Buffer::Normal].setRgb(x, yi, normalize(normal));
+        out[Buffer::Normal].setRgb(x, yi, settings.normalizeNormals ? normalize(normal) : normal * invSpp);
         out[Buffer::Roughness].at(x, yi) = roughness * invSpp;
         out[Buffer::F0].setRgb(x, yi, f0 * invSpp);
       }

@@ -24,12 +24,17 @@ struct RenderSettings {
   // samples (the viewer accumulates that way).
   int firstSample = 0;
   PathSettings path;  // bounces 0: first segment only (specular stays zero)
+  // Normal buffer: the normalised mean of the blended normals (a direction per pixel), or,
+  // when false, their plain mean, so renders of a few samples each can be summed into the
+  // normal of one render of all their samples (progressive rendering).
+  bool normalizeNormals = true;
 };
 
 // Renders the buffers of one view: diffuse and the G-buffers from each path's first segment,
 // specular from its later segments (settings.path), render = diffuse + specular. Each
 // buffer averages the spp samples;
-// the normal buffer is the average of the blended normals, normalised where non-zero.
+// the normal buffer is the average of the blended normals, normalised where non-zero
+// (unless settings.normalizeNormals is false).
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
                                uint64_t viewKey);
 

@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/run_glint.h"
+#include "app/small_cloud.h"
 #include "scene/gaussian_ply.h"
 #include "synth/gltf_test_files.h"
 
@@ -26,6 +27,7 @@ namespace fs = std::filesystem;
 
 using glint::test::Outcome;
 using glint::test::runGlint;
+using glint::test::writeSmallCloud;
 
 class CliTest : public ::testing::Test {
  protected:
@@ -229,20 +231,6 @@ TEST_F(CliTest, RenderWritesTheBuffersOfEverySplitViewWithTheDatasetsNames) {
 }  // namespace
 
 namespace {
-
-// A small cloud of Gaussians around the origin of builtin:spheres, written to path.
-void writeSmallCloud(const fs::path& path) {
-  glint::GaussianScene scene;
-  scene.resize(60);
-  for (size_t i = 0; i < scene.size(); ++i) {
-    scene.position[i] = {0.1f * float(i % 7) - 0.3f, 0.6f + 0.05f * float(i % 5), 0.08f * float(i % 3)};
-    scene.logScale[i] = glint::Vec3f(std::log(0.2f));
-    scene.opacityLogit[i] = 1.0f;
-    scene.diffuse[i] = {0.5f, 0.4f, 0.3f};
-    scene.normal[i] = {0, 1, 0};
-  }
-  glint::writeGaussianPly(path, scene);
-}
 
 nlohmann::json readJson(const fs::path& path) {
   std::ifstream in(path);
