@@ -8,6 +8,7 @@ packages=(
   libtinygltf-dev nlohmann-json3-dev libcli11-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium  # the viewer's end-to-end test drives it headless (tests/web)
+  ffmpeg    # glint render --path encodes its frames into an MP4
 )
 
 missing=()
