@@ -101,6 +101,8 @@ struct Row {
   double hitsPerRay = 0;       // composited
   double allHitsPerRay = 0;    // every hit with alpha >= alphaMin (no termination)
   double evaluationsPerRay = 0;  // kernel evaluations (proxy reached), where the tracer counts them
+  double nodesPerRay = 0;        // inner nodes visited (fast tracer, per-ray traversal)
+  double blocksPerRay = 0;       // 8-lane leaf blocks tested (fast tracer, per-ray traversal)
   double memoryMb = 0;
   double speedup = 0;          // megaRays / the baseline's on the same scene
   double cpuSpeedup = 0;       // megaRaysPerCpu / the baseline's (robust to other load)
@@ -126,14 +128,22 @@ std::vector<std::pair<std::string, std::function<std::unique_ptr<GaussianTracer>
            }}};
 }
 
-// Kernel evaluations per ray (Gaussians whose proxy the ray reached), for the tracers that
-// count them; 0 otherwise.
-double evaluationsPerRay(const GaussianTracer& tracer, const std::vector<TraceRay>& rays) {
+// Per-ray work counts, for the tracers that count them (zero otherwise): kernel
+// evaluations (Gaussians whose proxy the ray reached), and for the fast tracer's per-ray
+// traversal the inner nodes and leaf blocks it visits.
+struct WorkCounts {
+  double evaluations = 0, nodes = 0, blocks = 0;
+};
+
+WorkCounts workPerRay(const GaussianTracer& tracer, const std::vector<TraceRay>& rays) {
   int64_t evaluations = 0;
+  WorkCounts counts;
   if (auto* fast = dynamic_cast<const FastGaussianTracer*>(&tracer)) {
     FastTraceStats stats;
     for (const TraceRay& ray : rays) fast->trace(ray, nullptr, &stats);
     evaluations = stats.evaluations;
+    counts.nodes = double(stats.nodes) / double(rays.size());
+    counts.blocks = double(stats.leaves) / double(rays.size());
   } else if (auto* embree = dynamic_cast<const EmbreeK16Tracer*>(&tracer)) {
     for (const TraceRay& ray : rays) {
       EmbreeTraceStats stats;
@@ -141,7 +151,8 @@ double evaluationsPerRay(const GaussianTracer& tracer, const std::vector<TraceRa
       evaluations += stats.evaluations;
     }
   }
-  return double(evaluations) / double(rays.size());
+  counts.evaluations = double(evaluations) / double(rays.size());
+  return counts;
 }
 
 // Builds, refits and traces every view of one scene with one tracer.
@@ -184,7 +195,10 @@ std::vector<Row> measure(const std::string& tracerName, GaussianTracer& tracer, 
     row.megaHits = hits * repeats / wall * 1e-6;
     row.hitsPerRay = hits / double(rays.size());
     row.allHitsPerRay = allHitsPerRay[v];
-    row.evaluationsPerRay = evaluationsPerRay(tracer, rays);
+    WorkCounts work = workPerRay(tracer, rays);
+    row.evaluationsPerRay = work.evaluations;
+    row.nodesPerRay = work.nodes;
+    row.blocksPerRay = work.blocks;
     row.memoryMb = double(tracer.memoryBytes()) / (1024.0 * 1024.0);
     rows.push_back(row);
   }
@@ -259,18 +273,22 @@ int main(int argc, char** argv) {
               height, maxThreads(), settings.kernelPower, settings.alphaMin, settings.minTransmittance,
               settings.exactTail ? "exact tail" : "early termination");
   std::printf("Mhits/s and hits/ray count composited hits; all/ray = every hit with alpha >= alphaMin (no\n"
-              "termination); evals/ray = kernel evaluations (proxy reached); Mrays/CPUs = per CPU-second\n\n");
-  std::printf("%-11s %-12s %8s %8s %9s %10s %9s %9s %8s %9s %9s %9s %7s\n", "tracer", "scene", "build s", "refit s",
-              "Mrays/s", "Mrays/CPUs", "Mhits/s", "hits/ray", "all/ray", "evals/ray", "memory MB", "speed-up", "(CPU)");
+              "termination); evals/ray = kernel evaluations (proxy reached); nodes/ray and blocks/ray = inner\n"
+              "nodes and 8-lane leaf blocks a per-ray traversal visits; Mrays/CPUs = per CPU-second\n\n");
+  std::printf("%-12s %-12s %8s %8s %9s %10s %9s %9s %8s %9s %9s %10s %9s %9s %7s\n", "tracer", "scene", "build s",
+              "refit s", "Mrays/s", "Mrays/CPUs", "Mhits/s", "hits/ray", "all/ray", "evals/ray", "nodes/ray", "blocks/ray",
+              "memory MB", "speed-up", "(CPU)");
   nlohmann::json json = nlohmann::json::array();
   for (const Row& r : rows) {
-    std::printf("%-11s %-12s %8.3f %8.4f %9.3f %10.3f %9.2f %9.1f %8.1f %9.1f %9.1f %8.2fx %6.2fx\n",
+    std::printf("%-12s %-12s %8.3f %8.4f %9.3f %10.3f %9.2f %9.1f %8.1f %9.1f %9.1f %10.1f %9.1f %8.2fx %6.2fx\n",
                 r.tracer.c_str(), r.scene.c_str(), r.buildSeconds, r.refitSeconds, r.megaRays, r.megaRaysPerCpu,
-                r.megaHits, r.hitsPerRay, r.allHitsPerRay, r.evaluationsPerRay, r.memoryMb, r.speedup, r.cpuSpeedup);
+                r.megaHits, r.hitsPerRay, r.allHitsPerRay, r.evaluationsPerRay, r.nodesPerRay, r.blocksPerRay,
+                r.memoryMb, r.speedup, r.cpuSpeedup);
     json.push_back({{"tracer", r.tracer}, {"scene", r.scene}, {"exact_tail", settings.exactTail}, {"build_s", r.buildSeconds}, {"refit_s", r.refitSeconds},
                     {"mrays_per_s", r.megaRays}, {"mrays_per_cpu_s", r.megaRaysPerCpu}, {"mhits_per_s", r.megaHits},
                     {"composited_hits_per_ray", r.hitsPerRay}, {"all_hits_per_ray", r.allHitsPerRay},
-                    {"evaluations_per_ray", r.evaluationsPerRay},
+                    {"evaluations_per_ray", r.evaluationsPerRay}, {"nodes_per_ray", r.nodesPerRay},
+                    {"blocks_per_ray", r.blocksPerRay},
                     {"memory_mb", r.memoryMb}, {"speedup_vs_baseline", r.speedup},
                     {"cpu_speedup_vs_baseline", r.cpuSpeedup}, {"width", width},
                     {"height", height}, {"threads", maxThreads()}});
