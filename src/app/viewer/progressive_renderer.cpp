@@ -141,7 +141,7 @@ void ProgressiveRenderer::run() {
       continue;
     }
     redisplay_ = false;
-    if (level_ == 0) accumulator_.reset(width_, height_);
+    if (level_ == 0) accumulator_.reset(width_, height_, settings_.bounces);
 
     // Take what this pass needs, then render without the lock so requests stay quick.
     std::shared_ptr<const TracedScene> scene = scene_;
@@ -160,7 +160,9 @@ void ProgressiveRenderer::run() {
     render.firstSample = sample;
     lock.unlock();
     auto start = std::chrono::steady_clock::now();
-    ViewBuffers buffers = renderGaussianView(*scene->tracer, camera, render, 0);
+    // Every bounce's light is kept, so a switch between bounce modes needs no new samples.
+    std::vector<Image> bounceLight;
+    ViewBuffers buffers = renderGaussianView(*scene->tracer, camera, render, 0, &bounceLight);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     lock.lock();
 
@@ -168,8 +170,8 @@ void ProgressiveRenderer::run() {
       // Shown even if the camera moved meanwhile: while dragging, a frame one step behind
       // beats no frame at all.
       FrameAccumulator single;
-      single.reset(camera.width, camera.height);
-      single.add(buffers);
+      single.reset(camera.width, camera.height, settings.bounces);
+      single.add(buffers, bounceLight);
       publish(single.display(settings_), 0, seconds);
       if (level == 0) {
         if (seconds > kMovingFrameBudget && movingScale_ < kMaxMovingScale) movingScale_ *= 2;
@@ -177,7 +179,7 @@ void ProgressiveRenderer::run() {
       }
       if (epoch == epoch_) ++level_;
     } else if (epoch == epoch_) {
-      accumulator_.add(buffers);
+      accumulator_.add(buffers, bounceLight);
       publish(accumulator_.display(settings_), accumulator_.samples(), seconds);
     }
   }
