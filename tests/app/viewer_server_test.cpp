@@ -257,6 +257,34 @@ TEST_F(ServerFixture, BounceModesStayWithinTheBounceCount) {
   EXPECT_EQ(frame->status, 200);
 }
 
+// An edit that keeps the count lets the render thread go of the shown scene and refits it in
+// place when that is measured cheaper; the answer says which update was kept and its costs.
+TEST_F(ServerFixture, EditsReportTheTracerUpdateTheyChose) {
+  httplib::Client client("127.0.0.1", port_);
+  ASSERT_TRUE(client.Get("/api/frame"));  // the render thread is busy with the scene
+  auto edit = [&](const char* body) {
+    httplib::Result r = client.Post("/api/edits/apply", body, "application/json");
+    EXPECT_TRUE(r);
+    EXPECT_EQ(r ? r->status : 0, 200) << (r ? r->body : "");
+    return r ? nlohmann::json::parse(r->body)["tracer_update"] : nlohmann::json();
+  };
+  nlohmann::json update = edit(R"({"selection": "everything", "operation": {"op": "roughness", "set": 0.2}})");
+  EXPECT_TRUE(update["refit_possible"].get<bool>()) << update;
+  EXPECT_TRUE(update["action"] == "refit" || update["action"] == "rebuild") << update;
+  EXPECT_GT(update["rebuild_ms"].get<double>(), 0.0);
+  EXPECT_GT(update["refit_probe_ms"].get<double>(), 0.0);
+  update = edit(R"({"selection": "everything", "operation": {"op": "duplicate", "offset": [0, 0, 0.1]}})");
+  EXPECT_FALSE(update["refit_possible"].get<bool>()) << update;
+  EXPECT_EQ(update["action"], "rebuild");
+  // The renderer shows the edited scene again.
+  auto state = client.Get("/api/state");
+  ASSERT_TRUE(state);
+  EXPECT_EQ(nlohmann::json::parse(state->body)["gaussians"], 600);
+  auto frame = client.Get("/api/frame");
+  ASSERT_TRUE(frame);
+  EXPECT_EQ(frame->status, 200);
+}
+
 TEST_F(ServerFixture, AccumulatesSamplesWhenTheCameraRests) {
   httplib::Client client("127.0.0.1", port_);
   uint64_t after = 0;

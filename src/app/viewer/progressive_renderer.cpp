@@ -18,10 +18,10 @@ constexpr std::chrono::seconds kIdleAfter{3};
 
 }  // namespace
 
-std::shared_ptr<const TracedScene> traceScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace) {
+std::shared_ptr<TracedScene> traceScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace) {
   auto traced = std::make_shared<TracedScene>();
   traced->scene = std::move(scene);
-  traced->tracer = makeGaussianTracer("fast");
+  traced->tracer = makeGaussianTracer(kViewerTracer);
   traced->tracer->build(*traced->scene, trace);
   return traced;
 }
@@ -51,6 +51,13 @@ void ProgressiveRenderer::setScene(std::shared_ptr<const TracedScene> scene) {
   std::lock_guard lock(mutex_);
   scene_ = std::move(scene);
   restart();
+}
+
+void ProgressiveRenderer::releaseScene() {
+  std::unique_lock lock(mutex_);
+  scene_.reset();
+  restart();
+  passDone_.wait(lock, [&] { return !rendering_; });
 }
 
 void ProgressiveRenderer::setUntracedScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace) {
@@ -158,13 +165,17 @@ void ProgressiveRenderer::run() {
     // of `glint render` (seed 0, view 0), so N accumulated samples are its --spp N render.
     render.jitter = level == 2;
     render.firstSample = sample;
+    rendering_ = true;
     lock.unlock();
     auto start = std::chrono::steady_clock::now();
     // Every bounce's light is kept, so a switch between bounce modes needs no new samples.
     std::vector<Image> bounceLight;
     ViewBuffers buffers = renderGaussianView(*scene->tracer, camera, render, 0, &bounceLight);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    scene.reset();  // before rendering_ goes false: releaseScene promises no reference is left
     lock.lock();
+    rendering_ = false;
+    passDone_.notify_all();
 
     if (level < 2) {
       // Shown even if the camera moved meanwhile: while dragging, a frame one step behind
