@@ -10,7 +10,6 @@
 #include "app/viewer/viewer_http.h"
 #include "app/viewer/viewer_server.h"
 #include "edit/edit_file.h"
-#include "scene/gaussian_ply.h"
 
 namespace glint {
 
@@ -86,8 +85,8 @@ void ViewerServer::addEditRoutes() {
   http.Post("/api/edits/export", [this](const httplib::Request& req, httplib::Response& res) {
     std::filesystem::path file =
         outputFile(options_.outputFolder, parseRequestObject(req.body, kMaxRequestBytes), "viewer_edited.ply", ".ply");
-    writeGaussianPly(file, *edits_->current()->scene);
-    sendJson(res, {{"saved", file.string()}, {"gaussians", edits_->current()->scene->size()}});
+    size_t gaussians = edits_->exportPly(file);
+    sendJson(res, {{"saved", file.string()}, {"gaussians", gaussians}});
   });
 }
 

@@ -11,6 +11,7 @@
 #include "edit/gaussian_edits.h"
 #include "edit/gaussian_selection.h"
 #include "edit/shape.h"
+#include "scene/gaussian_ply.h"
 
 namespace glint {
 
@@ -72,6 +73,12 @@ std::shared_ptr<const TracedScene> EditSession::current() const {
   return current_;
 }
 
+size_t EditSession::exportPly(const std::filesystem::path& file) const {
+  std::lock_guard lock(mutex_);
+  writeGaussianPly(file, *shownScene_);
+  return shownScene_->size();
+}
+
 EditDocument EditSession::documentOfSteps() const {
   EditDocument document;
   for (const Step& step : steps_) {
@@ -87,7 +94,7 @@ void EditSession::update(const TracerUpdateContext& context) {
   applyEdits(documentOfSteps(), edited);
 
   // A refit needs the shown tracer and its scene object to ourselves: the render thread lets
-  // go of them, and a request that took them just before (a preview, an export) keeps them.
+  // go of them; a request that took them through current() just before still holds them.
   std::unique_ptr<GaussianTracer> previous;
   noRefitReason_ = "the Gaussian count changed";
   if (edited.size() == shownScene_->size()) {
@@ -183,10 +190,12 @@ nlohmann::json EditSession::preview(const nlohmann::json& request) const {
   if (!attribute) throw RequestError(400, "\"attribute\" must be one of f0, roughness, diffuse, metalness");
   int bins = request.contains("bins") ? readInteger(request, "bins", 1, 256) : 32;
 
-  std::shared_ptr<const TracedScene> scene = current();
+  // Under the lock, so an edit never overwrites the scene read here (and can refit it).
+  std::lock_guard lock(mutex_);
+  const GaussianScene& scene = *shownScene_;
   GaussianMask selected;
   try {
-    selected = selectGaussians(single, "s", *scene->scene);
+    selected = selectGaussians(single, "s", scene);
   } catch (const Error& e) {
     throw RequestError(400, e.what());
   }
@@ -195,7 +204,7 @@ nlohmann::json EditSession::preview(const nlohmann::json& request) const {
   if (*attribute == Attribute::Diffuse) {
     hi = 0;
     for (size_t i = 0; i < selected.size(); ++i)
-      if (selected[i]) hi = std::max(hi, attributeValue(*scene->scene, i, *attribute));
+      if (selected[i]) hi = std::max(hi, attributeValue(scene, i, *attribute));
     hi = std::max(hi, 1e-6f);
   }
   std::vector<int64_t> histogram(size_t(bins), 0);
@@ -203,7 +212,7 @@ nlohmann::json EditSession::preview(const nlohmann::json& request) const {
   for (size_t i = 0; i < selected.size(); ++i) {
     if (!selected[i]) continue;
     ++count;
-    float t = (attributeValue(*scene->scene, i, *attribute) - lo) / (hi - lo);
+    float t = (attributeValue(scene, i, *attribute) - lo) / (hi - lo);
     histogram[size_t(std::clamp(int(t * float(bins)), 0, bins - 1))]++;
   }
   return {{"count", count}, {"total", selected.size()}, {"attribute", name}, {"histogram", histogram},

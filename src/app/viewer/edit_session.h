@@ -6,6 +6,7 @@
 // --edits` does.
 #pragma once
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -56,6 +57,9 @@ class EditSession {
   // Gaussians of the current scene S holds and the histogram of the attribute over them.
   nlohmann::json preview(const nlohmann::json& request) const;
   EditDocument document() const;
+  // Writes the current scene as a binary PLY; returns its Gaussian count. Under the session's
+  // lock, like preview, so an edit cannot overwrite the scene while it is read.
+  size_t exportPly(const std::filesystem::path& file) const;
 
   static constexpr size_t kMaxOperations = 1000;
 
