@@ -80,7 +80,6 @@ async function start() {
     $('show-box').addEventListener('change', (e) => overlay.setVisible(e.target.checked));
     overlay.draw();
   } else {
-    $('overlay').hidden = true;
     for (const id of ['selection-panel', 'operation-panel']) $(id).disabled = true;
     // The scene is the trainer's: show its size as snapshots arrive.
     const showTraining = (s) => { $('gaussians').textContent = `${s.gaussians} Gaussians (training)`; };
