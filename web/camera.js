@@ -1,11 +1,63 @@
 // The page's camera: orbit (drag turns around a target, wheel zooms) or fly (drag looks
 // around, WASD/QE move), expressed as yaw and pitch about the scene's up axis and sent to
 // the server as eye, forward, up and horizontal field of view.
-const add = (a, b) => a.map((v, i) => v + b[i]);
-const scale = (a, s) => a.map((v) => v * s);
+export const add = (a, b) => a.map((v, i) => v + b[i]);
+export const sub = (a, b) => a.map((v, i) => v - b[i]);
+export const scale = (a, s) => a.map((v) => v * s);
 const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
 const normalize = (a) => scale(a, 1 / Math.hypot(...a));
+
+// Distance in front of the eye below which points are not drawn.
+const kNear = 1e-3;
+
+// The server's pinhole camera for a camera the page sends (ViewerCamera::camera, which
+// builds Mat4::lookAt, and Camera::project in src/), so drawings over the frame land on
+// the rendered pixels of a width x height frame.
+export class Projection {
+  constructor(camera, width, height) {
+    this.eye = camera.eye;
+    // lookAt: camera +z points back from the view direction, x = up x back, y = back x x.
+    this.back = normalize(scale(camera.forward, -1));
+    let right = cross(camera.up, this.back);
+    if (Math.hypot(...right) === 0) right = cross([0, 0, 1], this.back);
+    this.right = normalize(right);
+    this.up = cross(this.back, this.right);
+    this.width = width;
+    this.height = height;
+    this.focal = 0.5 * width / Math.tan(0.5 * camera.fov_x);  // Camera::focal
+  }
+
+  // Camera-space coordinates of a world point (the camera looks down -z).
+  toCamera(p) {
+    const d = sub(p, this.eye);
+    return [dot(d, this.right), dot(d, this.up), dot(d, this.back)];
+  }
+
+  // Pixel position (x right, y down, pixel centres at +0.5) of a camera-space point ahead.
+  toPixel(c) {
+    const ahead = -c[2];
+    return [0.5 * this.width + this.focal * c[0] / ahead, 0.5 * this.height - this.focal * c[1] / ahead];
+  }
+
+  // The pixel position of a world point, or null when it is not in front of the camera.
+  project(p) {
+    const c = this.toCamera(p);
+    return -c[2] > kNear ? this.toPixel(c) : null;
+  }
+
+  // The part of the segment a-b in front of the camera, as two pixel positions, or null.
+  projectSegment(a, b) {
+    let ca = this.toCamera(a), cb = this.toCamera(b);
+    const da = -ca[2] - kNear, db = -cb[2] - kNear;
+    if (da <= 0 && db <= 0) return null;
+    // Cut at the near plane: drawing through the eye would flip the far end across the frame.
+    const cut = (inside, outside, di, dout) => add(inside, scale(sub(outside, inside), di / (di - dout)));
+    if (da <= 0) ca = cut(cb, ca, db, da);
+    if (db <= 0) cb = cut(ca, cb, da, db);
+    return [this.toPixel(ca), this.toPixel(cb)];
+  }
+}
 
 export class CameraController {
   constructor(onChange) {

@@ -4,7 +4,8 @@ import { postJson } from './api.js';
 
 const $ = (id) => document.getElementById(id);
 const number = (id) => Number($(id).value);
-const vec = (prefix) => ['x', 'y', 'z'].map((a) => number(`${prefix}-${a}`));
+// The three number fields PREFIX-x, -y, -z.
+export const vec = (prefix) => ['x', 'y', 'z'].map((a) => number(`${prefix}-${a}`));
 
 // sRGB colour picker value -> linear RGB, the space of the scene's colours.
 function linearFromHex(hex) {
@@ -68,7 +69,7 @@ export class EditPanel {
     try {
       const status = await postJson(path, body);
       this.setStatus(status);
-      this.report(`${verb}; ${status.operations} operations`, false);
+      this.report(`${verb}; ${status.operations} operations${describeTracerUpdate(status.tracer_update)}`, false);
       this.schedulePreview();
     } catch (error) {
       this.report(error.message, true);
@@ -100,6 +101,16 @@ export class EditPanel {
       $('selection-count').textContent = error.message;
     }
   }
+}
+
+// The server's choice between refitting and rebuilding the tracer after the edit, and the
+// measured costs it chose by (render/tracer_update.h).
+function describeTracerUpdate(update) {
+  if (!update) return '';
+  const ms = (v) => `${v.toFixed(1)} ms`;
+  const refit = update.refit_possible ? `refit ${ms(update.refit_ms)} (probe ${ms(update.refit_probe_ms)})`
+    : `no refit (${update.no_refit})`;
+  return `\ntracer: ${update.action}; ${refit}, rebuild ${ms(update.rebuild_ms)} (probe ${ms(update.rebuild_probe_ms)})`;
 }
 
 function drawHistogram(canvas, counts, range) {

@@ -1,7 +1,9 @@
 // Wires the page: loads the server's state, connects the camera, display and edit
 // controls, and runs the frame loop. window.glintViewer exposes the state to tests.
 import { getJson, postJson } from './api.js';
+import { BoxOverlay } from './box_overlay.js';
 import { CameraController } from './camera.js';
+import { DisplayPanel } from './display.js';
 import { EditPanel } from './edits.js';
 import { FrameLoop } from './frames.js';
 
@@ -27,10 +29,6 @@ function cameraSender() {
   return (camera) => { pending = camera; flush(); };
 }
 
-async function sendSettings(settings) {
-  try { await postJson('/api/settings', settings); } catch (error) { report(error.message, true); }
-}
-
 async function start() {
   const state = await getJson('/api/state');
   const canvas = $('frame');
@@ -40,7 +38,8 @@ async function start() {
   const center = state.bounds ? state.bounds.min.map((v, i) => (v + state.bounds.max[i]) / 2) : [0, 0, 0];
   const distanceTo = (eye) => Math.max(0.05, Math.hypot(...eye.map((v, i) => v - center[i])));
   const sendCamera = cameraSender();
-  const camera = new CameraController(sendCamera);
+  let overlay = null;  // the selection box over the frame, redrawn with every camera change
+  const camera = new CameraController((c) => { sendCamera(c); if (overlay) overlay.draw(); });
   camera.setFrom(state.camera, distanceTo(state.camera.eye));
   camera.attach(canvas);
   const showFov = () => { $('fov').value = Math.round(camera.fovX * 180 / Math.PI); $('fov-value').textContent = `${$('fov').value}°`; };
@@ -56,17 +55,10 @@ async function start() {
     camera.setFrom(c.camera, distanceTo(c.camera.eye));
     showFov();
     sendCamera(c.camera);
+    if (overlay) overlay.draw();
   });
 
-  const s = state.settings;
-  $('mode').value = s.mode;
-  $('bounces').value = s.bounces;
-  $('exposure').value = s.exposure;
-  $('denoise').checked = s.denoise;
-  $('mode').addEventListener('change', (e) => sendSettings({ mode: e.target.value }));
-  $('bounces').addEventListener('change', (e) => sendSettings({ bounces: Number(e.target.value) }));
-  $('exposure').addEventListener('input', (e) => { $('exposure-value').textContent = e.target.value; sendSettings({ exposure: Number(e.target.value) }); });
-  $('denoise').addEventListener('change', (e) => sendSettings({ denoise: e.target.checked }));
+  const display = new DisplayPanel(state.settings, report);
 
   const frames = new FrameLoop(canvas, (loop) => {
     $('samples').textContent = loop.samples > 0 ? `${loop.samples} spp` : 'moving';
@@ -84,6 +76,9 @@ async function start() {
       });
     }
     edits.schedulePreview();
+    overlay = new BoxOverlay($('overlay'), canvas, () => camera.current());
+    $('show-box').addEventListener('change', (e) => overlay.setVisible(e.target.checked));
+    overlay.draw();
   } else {
     for (const id of ['selection-panel', 'operation-panel']) $(id).disabled = true;
     // The scene is the trainer's: show its size as snapshots arrive.
@@ -91,7 +86,7 @@ async function start() {
     showTraining(state);
     setInterval(() => getJson('/api/state').then(showTraining).catch(() => {}), 2000);
   }
-  window.glintViewer = { camera, frames, edits, state };
+  window.glintViewer = { camera, frames, edits, display, overlay, state };
   frames.run();
 }
 

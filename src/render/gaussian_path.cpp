@@ -51,7 +51,9 @@ PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, cons
     next.tMin = 0.0f;
     next.backfaceSkip = settings.backfaceSkip;
     current = traceSegment(next, throughput);
-    path.specular += throughput * current.diffuse;
+    Rgb light = throughput * current.diffuse;
+    path.specular += light;
+    if (k <= kSeparateBounces) path.bounceLight[size_t(k - 1)] = light;
     ++path.segments;
     ray = next;
   }

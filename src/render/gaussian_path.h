@@ -5,6 +5,7 @@
 // cached irradiance of equation 3), weighted by the Cook-Torrance throughput.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -24,10 +25,17 @@ struct PathSettings {
   size_t hitListCapacity = 512;  // of the hit lists recorded in PathSegment
 };
 
+// Reflected segments whose light PathResult also keeps one by one (the viewer's per-bounce
+// modes); the light of later segments is only in the sum.
+constexpr int kSeparateBounces = 8;
+
 // One path's outputs: the first segment's result and the specular light of the later ones.
 struct PathResult {
   RayResult first;
   Rgb specular;      // sum over segments k >= 1 of throughput_k x blended diffuse_k
+  // bounceLight[k - 1] = throughput_k x blended diffuse_k of segment k (zero where the path
+  // ended earlier): the terms of `specular`, for k <= kSeparateBounces.
+  std::array<Rgb, kSeparateBounces> bounceLight{};
   int segments = 1;  // segments traced
 };
 

@@ -1,6 +1,9 @@
 // Pixel loop of Gaussian rendering: rays per pixel, traced in parallel rows.
 #include "render/gaussian_renderer.h"
 
+#include <algorithm>
+#include <array>
+
 #include "core/parallel.h"
 #include "math/rng.h"
 
@@ -40,15 +43,18 @@ std::vector<std::vector<PathSegment>> tracePixelPaths(const GaussianTracer& trac
 }
 
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
-                               uint64_t viewKey) {
+                               uint64_t viewKey, std::vector<Image>* bounceLight) {
   ViewBuffers out = ViewBuffers::allocate(camera.width, camera.height);
   const float invSpp = 1.0f / float(settings.spp);
+  const int separate = bounceLight ? std::clamp(settings.path.bounces, 0, kSeparateBounces) : 0;
+  if (bounceLight) bounceLight->assign(size_t(separate), Image(camera.width, camera.height, 3));
   parallelForChunks(camera.height, 1, [&](int64_t rowBegin, int64_t rowEnd) {
     for (int64_t y = rowBegin; y < rowEnd; ++y)
       for (int x = 0; x < camera.width; ++x) {
         uint64_t pixel = uint64_t(y) * uint64_t(camera.width) + uint64_t(x);
         PixelSamples samples(settings, viewKey, pixel);
         Rgb diffuse(0.0f), specular(0.0f), normal(0.0f), f0(0.0f);
+        std::array<Rgb, kSeparateBounces> bounces{};
         float depth = 0, roughness = 0;
         for (int s = 0; s < settings.spp; ++s) {
           Vec2f offset = samples.next();
@@ -58,6 +64,7 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
           const RayResult& r = path.first;
           diffuse += r.diffuse;
           specular += path.specular;
+          for (int k = 0; k < separate; ++k) bounces[size_t(k)] += path.bounceLight[size_t(k)];
           depth += r.depth;
           normal += r.normal;
           roughness += r.roughness;
@@ -71,6 +78,7 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
         out[Buffer::Normal].setRgb(x, yi, settings.normalizeNormals ? normalize(normal) : normal * invSpp);
         out[Buffer::Roughness].at(x, yi) = roughness * invSpp;
         out[Buffer::F0].setRgb(x, yi, f0 * invSpp);
+        for (int k = 0; k < separate; ++k) (*bounceLight)[size_t(k)].setRgb(x, yi, bounces[size_t(k)] * invSpp);
       }
   });
   return out;

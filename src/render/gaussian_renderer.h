@@ -34,9 +34,11 @@ struct RenderSettings {
 // specular from its later segments (settings.path), render = diffuse + specular. Each
 // buffer averages the spp samples;
 // the normal buffer is the average of the blended normals, normalised where non-zero
-// (unless settings.normalizeNormals is false).
+// (unless settings.normalizeNormals is false). With `bounceLight`, it also receives
+// min(bounces, kSeparateBounces) RGB images, image k - 1 averaging the light of reflected
+// segment k (PathResult::bounceLight): the terms of the specular buffer.
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
-                               uint64_t viewKey);
+                               uint64_t viewKey, std::vector<Image>* bounceLight = nullptr);
 
 // Re-runs the paths of one pixel exactly as renderGaussianView traces them (same sample
 // positions and random numbers) and returns every segment with its hits, per sample.

@@ -127,7 +127,8 @@ TEST_F(ServerFixture, SurvivesTenThousandMalformedRequests) {
       "{\"eye\": [0,0,0], \"forward\": [0,1,0], \"up\": [0,1,0], \"fov_x\": 1}",
       "{\"eye\": [0,0,0], \"forward\": [0,0,-1], \"up\": [0,1,0], \"fov_x\": 100}",
       "{\"bounces\": -1}", "{\"bounces\": 1000000}", "{\"bounces\": 1.5}", "{\"exposure\": 1e308}",
-      "{\"mode\": \"../../etc\"}", "{\"mode\": 3}", "{\"denoise\": \"yes\"}", "{\"unknown\": 1}",
+      "{\"mode\": \"../../etc\"}", "{\"mode\": 3}", "{\"mode\": \"bounce9\"}", "{\"mode\": \"bounce0\"}",
+      "{\"mode\": \"bounce-1\"}", "{\"mode\": \"bounce\"}", "{\"mode\": \"bounce8\"}", "{\"denoise\": \"yes\"}", "{\"unknown\": 1}",
       "{\"selection\": {\"box\": {\"min\": [0,0,0], \"max\": [1e400,1,1]}}, \"operation\": {\"op\": \"delete\"}}",
       "{\"selection\": {\"sphere\": {\"center\": [0,0,0], \"radius\": -1}}, \"operation\": {\"op\": \"delete\"}}",
       "{\"selection\": \"everything\", \"operation\": {\"op\": \"explode\"}}",
@@ -220,6 +221,68 @@ TEST_F(ServerFixture, SurvivesTenThousandMalformedRequests) {
   EXPECT_EQ(frame->get_header_value("Content-Type"), "image/png");
   long grown = residentKilobytes() - baseline;
   EXPECT_LT(grown, 64 * 1024) << "resident memory grew by " << grown << " kB over the requests";
+}
+
+// Bounce modes exist up to the bounce count: beyond it, or beyond kMaxBounces, a request is
+// refused with a JSON error and the settings stay; lowering the bounces below the shown
+// bounce needs a new mode in the same request.
+TEST_F(ServerFixture, BounceModesStayWithinTheBounceCount) {
+  httplib::Client client("127.0.0.1", port_);
+  auto post = [&](const char* body) {
+    httplib::Result r = client.Post("/api/settings", body, "application/json");
+    EXPECT_TRUE(r);
+    return r ? std::pair{r->status, nlohmann::json::parse(r->body)} : std::pair{0, nlohmann::json()};
+  };
+  auto [ok, shown] = post(R"({"bounces": 2, "mode": "bounce2"})");
+  ASSERT_EQ(ok, 200) << shown;
+  EXPECT_EQ(shown["mode"], "bounce2");
+  for (const char* bad : {R"({"mode": "bounce3"})", R"({"bounces": 1})", R"({"bounces": 8, "mode": "bounce9"})",
+                          R"({"mode": "bounce02"})"}) {
+    auto [status, error] = post(bad);
+    EXPECT_EQ(status, 400) << bad;
+    EXPECT_TRUE(error.contains("error") && error["error"].get<std::string>().find("bounce") != std::string::npos)
+        << bad << ": " << error;
+  }
+  auto state = client.Get("/api/state");
+  ASSERT_TRUE(state);
+  nlohmann::json settings = nlohmann::json::parse(state->body)["settings"];
+  EXPECT_EQ(settings["mode"], "bounce2");
+  EXPECT_EQ(settings["bounces"], 2);
+  auto [lowered, now] = post(R"({"bounces": 1, "mode": "bounce1"})");
+  EXPECT_EQ(lowered, 200) << now;
+  EXPECT_EQ(now["mode"], "bounce1");
+  // A frame still arrives in the bounce mode.
+  auto frame = client.Get("/api/frame?format=png");
+  ASSERT_TRUE(frame);
+  EXPECT_EQ(frame->status, 200);
+}
+
+// An edit that keeps the count lets the render thread go of the shown scene and refits it in
+// place when that is measured cheaper; the answer says which update was kept and its costs.
+TEST_F(ServerFixture, EditsReportTheTracerUpdateTheyChose) {
+  httplib::Client client("127.0.0.1", port_);
+  ASSERT_TRUE(client.Get("/api/frame"));  // the render thread is busy with the scene
+  auto edit = [&](const char* body) {
+    httplib::Result r = client.Post("/api/edits/apply", body, "application/json");
+    EXPECT_TRUE(r);
+    EXPECT_EQ(r ? r->status : 0, 200) << (r ? r->body : "");
+    return r ? nlohmann::json::parse(r->body)["tracer_update"] : nlohmann::json();
+  };
+  nlohmann::json update = edit(R"({"selection": "everything", "operation": {"op": "roughness", "set": 0.2}})");
+  EXPECT_TRUE(update["refit_possible"].get<bool>()) << update;
+  EXPECT_TRUE(update["action"] == "refit" || update["action"] == "rebuild") << update;
+  EXPECT_GT(update["rebuild_ms"].get<double>(), 0.0);
+  EXPECT_GT(update["refit_probe_ms"].get<double>(), 0.0);
+  update = edit(R"({"selection": "everything", "operation": {"op": "duplicate", "offset": [0, 0, 0.1]}})");
+  EXPECT_FALSE(update["refit_possible"].get<bool>()) << update;
+  EXPECT_EQ(update["action"], "rebuild");
+  // The renderer shows the edited scene again.
+  auto state = client.Get("/api/state");
+  ASSERT_TRUE(state);
+  EXPECT_EQ(nlohmann::json::parse(state->body)["gaussians"], 600);
+  auto frame = client.Get("/api/frame");
+  ASSERT_TRUE(frame);
+  EXPECT_EQ(frame->status, 200);
 }
 
 TEST_F(ServerFixture, AccumulatesSamplesWhenTheCameraRests) {

@@ -1,5 +1,6 @@
 // Horizontal layers of flat Gaussians for the render tests: a regular grid of nearly opaque
-// discs standing in for a plane (mirror floors, emitting ceilings, small patterns).
+// discs standing in for a plane (mirror floors, emitting ceilings, small patterns), and a
+// pair of facing mirrors.
 #pragma once
 
 #include <cmath>
@@ -39,6 +40,15 @@ inline void addLayer(GaussianScene* scene, float centreX, float centreY, float z
       scene->roughness[k] = look.roughness;
       scene->f0[k] = look.f0;
     }
+}
+
+// Two facing glossy mirrors 3 m apart, a reddish floor at z = 0 and a bluish ceiling at
+// z = 3, each 4 x 4 m: paths bounce between them and every reflected segment sees colour.
+inline GaussianScene facingMirrors() {
+  GaussianScene scene;
+  addLayer(&scene, 0.0f, 0.0f, 0.0f, 41, 41, 0.1f, {Rgb(0.3f, 0.1f, 0.1f), Vec3f(0, 0, 1), 0.1f, Rgb(0.8f)});
+  addLayer(&scene, 0.0f, 0.0f, 3.0f, 41, 41, 0.1f, {Rgb(0.1f, 0.1f, 0.4f), Vec3f(0, 0, -1), 0.1f, Rgb(0.7f)});
+  return scene;
 }
 
 }  // namespace glint::test

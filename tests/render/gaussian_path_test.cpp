@@ -86,6 +86,34 @@ TEST(GaussianPath, RoughPathsDependOnlyOnTheirKeys) {
   EXPECT_LT(mean.x, 0.7f);
 }
 
+// The per-bounce light of a path are the terms of its specular sum, in order.
+TEST(GaussianPath, BounceLightsAreTheTermsOfTheSpecularSum) {
+  GaussianScene scene = test::facingMirrors();
+  std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer("fast");
+  tracer->build(scene, TraceSettings());
+  PathSettings settings;
+  settings.bounces = 3;
+  TraceRay primary{Vec3f(0, 0, 1), normalize(Vec3f(0.05f, 0.02f, -1)), 0.0f};
+  int complete = 0;
+  for (uint64_t s = 0; s < 16; ++s) {
+    PathResult path = tracePath(*tracer, primary, settings, 3, 0, 0, s);
+    Rgb sum(0.0f);
+    for (int k = 0; k < kSeparateBounces; ++k) {
+      sum += path.bounceLight[size_t(k)];
+      if (k + 1 >= path.segments) EXPECT_EQ(path.bounceLight[size_t(k)], Rgb(0.0f)) << "segment " << k + 1;
+    }
+    EXPECT_EQ(sum, path.specular);  // the same additions in the same order
+    if (path.segments == 4) {
+      ++complete;
+      // Bounces 1 and 3 see the blue ceiling, bounce 2 the red floor.
+      EXPECT_GT(path.bounceLight[0].z, path.bounceLight[0].x);
+      EXPECT_GT(path.bounceLight[1].x, path.bounceLight[1].z);
+      EXPECT_GT(path.bounceLight[2].z, path.bounceLight[2].x);
+    }
+  }
+  EXPECT_GT(complete, 8);
+}
+
 // Any pixel re-run alone (glint render --debug-pixel) reproduces the full render's value.
 TEST(GaussianPath, PixelReRunAloneMatchesTheRender) {
   MirrorScene m(0.3f, Vec3f(0, 0, 1));

@@ -15,7 +15,7 @@ const url = await new Promise((resolve) => {
 });
 const profile = mkdtempSync(join(tmpdir(), 'glint-shots-'));
 const browser = await chromium.launchPersistentContext(profile, {
-  executablePath: '/usr/bin/chromium', headless: true, viewport: { width: 760, height: 560 },
+  executablePath: '/usr/bin/chromium', headless: true, viewport: { width: 760, height: 640 },
   args: ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
     '--disable-background-networking', '--disable-component-update', '--disable-sync'],
 });
@@ -25,8 +25,18 @@ try {
   await page.waitForFunction(() => window.glintViewer !== undefined);
   const settled = () => page.waitForFunction(() => window.glintViewer.frames.samples >= 32, null, { timeout: 300000 });
   await settled();
+  // The final image without the selection box drawn over it.
+  await page.uncheck('#show-box');
   await page.screenshot({ path: join(out, 'viewer_final.png') });
-  // A selection with its histogram, after a roughness edit.
+  // The light of the first reflected segments alone, from the same samples.
+  const shown = await page.evaluate(() => window.glintViewer.frames.frameId);
+  await page.selectOption('#mode', 'bounce1');
+  await page.waitForFunction((id) => window.glintViewer.frames.frameId > id, shown);
+  await settled();
+  await page.screenshot({ path: join(out, 'viewer_bounce1.png') });
+  await page.selectOption('#mode', 'final');
+  await page.check('#show-box');
+  // A selection with its histogram, box and gizmo, after a roughness edit.
   for (const [id, v] of Object.entries({ 'box-min-x': -0.65, 'box-min-y': -0.05, 'box-min-z': -1.55, 'box-max-x': 0.65, 'box-max-y': 1.25, 'box-max-z': -0.25 }))
     await page.fill(`#${id}`, String(v));
   await page.selectOption('#op-kind', 'roughness');
@@ -35,6 +45,7 @@ try {
   await page.waitForFunction(() => document.getElementById('message').textContent.startsWith('applied'));
   await page.waitForFunction(() => window.glintViewer.frames.samples === 0);
   await settled();
+  await page.evaluate(() => { const panel = document.getElementById('panel'); panel.scrollTop = panel.scrollHeight; });
   await page.screenshot({ path: join(out, 'viewer_edit.png') });
 } finally {
   await browser.close();

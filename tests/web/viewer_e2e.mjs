@@ -1,8 +1,9 @@
 // End-to-end test of `glint view` with Debian's Chromium driven by playwright-core: trains
 // a tiny scene of chrome spheres, opens the viewer page, waits for an accumulated frame and
-// compares it with `glint render` of the same camera (PSNR >= 30 dB), makes the green
-// sphere rough through the page's controls and checks that the frame changes there and in
-// its reflections only, then undoes and checks the frame returns exactly.
+// compares it with `glint render` of the same camera (PSNR >= 30 dB), shows the first
+// bounce alone, drags a face of the selection box and the translate gizmo over the frame,
+// makes the green sphere rough through the page's controls and checks that the frame
+// changes there and in its reflections only, then undoes and checks the frame returns exactly.
 // Usage: node viewer_e2e.mjs GLINT_BINARY WORK_FOLDER. Exit 77 (CTest: skipped) without Chromium.
 import { spawn, execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, readdirSync, rmSync } from 'node:fs';
@@ -47,6 +48,14 @@ function psnr(a, b) {
   for (let i = 0; i < a.length; i += 4)
     for (let c = 0; c < 3; ++c) { const d = a[i + c] - b[i + c]; sum += d * d; ++n; }
   return 10 * Math.log10((255 * 255) / Math.max(sum / n, 1e-12));
+}
+
+// Mean and standard deviation of the RGB values of RGBA pixels.
+function statistics(pixels) {
+  const values = pixels.filter((_, i) => i % 4 !== 3);
+  const mean = values.reduce((s, v) => s + v, 0) / values.length;
+  const spread = Math.sqrt(values.reduce((s, v) => s + (v - mean) * (v - mean), 0) / values.length);
+  return { mean, spread };
 }
 
 // Per-pixel largest channel difference.
@@ -103,9 +112,7 @@ try {
   const before = await accumulatedFrame(0);
 
   // Not blank: bright enough and with contrast.
-  const values = before.filter((_, i) => i % 4 !== 3);
-  const mean = values.reduce((s, v) => s + v, 0) / values.length;
-  const spread = Math.sqrt(values.reduce((s, v) => s + (v - mean) * (v - mean), 0) / values.length);
+  const { mean, spread } = statistics(before);
   check(mean > 10 && spread > 10, `frame is not blank (mean ${mean.toFixed(1)}, deviation ${spread.toFixed(1)})`);
 
   const referencePixels = await page.evaluate(async (b64) => {
@@ -120,14 +127,58 @@ try {
   const match = psnr(before, referencePixels);
   check(match >= 30, `viewer frame matches glint render at ${match.toFixed(2)} dB (>= 30)`);
 
+  // Bounce 1 alone: one mode per traced bounce, shown from the samples already accumulated.
+  const bounceModes = await page.$$eval('#mode option', (options) => options.map((o) => o.value).filter((v) => v.startsWith('bounce')));
+  check(bounceModes.join() === 'bounce1,bounce2', `the mode list offers a mode per bounce (${bounceModes.join(', ')})`);
+  await page.selectOption('#mode', 'bounce1');
+  const bounce1 = await accumulatedFrame(await frameId());
+  const bounceStatistics = statistics(bounce1);
+  check(bounceStatistics.mean > 2 && bounceStatistics.spread > 5,
+    `bounce 1 is not blank (mean ${bounceStatistics.mean.toFixed(1)}, deviation ${bounceStatistics.spread.toFixed(1)})`);
+  const fromFinal = pixelDifferences(bounce1, before);
+  const meanFromFinal = fromFinal.reduce((s, d) => s + d, 0) / fromFinal.length;
+  check(meanFromFinal > 10, `bounce 1 differs from the final image (mean ${meanFromFinal.toFixed(1)} levels)`);
+  await page.selectOption('#mode', 'final');
+
   // The roughness buffer shows where the green sphere is: edit it through the page.
   const box = { 'box-min-x': -0.65, 'box-min-y': -0.05, 'box-min-z': -1.55, 'box-max-x': 0.65, 'box-max-y': 1.25, 'box-max-z': -0.25 };
+  for (const [id, v] of Object.entries(box)) await page.fill(`#${id}`, String(v));
+
+  // Drag handles of the box drawn over the frame along their axes, by the mouse.
+  const cameraBefore = await page.evaluate(() => JSON.stringify(window.glintViewer.camera.current()));
+  async function dragHandle(kind) {
+    // A handle of this kind that is on top where it is drawn (handles may overlap).
+    const handle = await page.evaluate((k) => {
+      for (const h of document.querySelectorAll(`#overlay .handle.${k}`)) {
+        const r = h.getBoundingClientRect();
+        const x = r.left + r.width / 2, y = r.top + r.height / 2;
+        if (document.elementFromPoint(x, y) === h) return { field: h.dataset.field, x, y, dx: Number(h.dataset.dx), dy: Number(h.dataset.dy) };
+      }
+      return null;
+    }, kind);
+    check(handle !== null, `a ${kind} handle is drawn over the frame`);
+    const start = Number(await page.inputValue(`#${handle.field}`));
+    await page.mouse.move(handle.x, handle.y);
+    await page.mouse.down();
+    await page.mouse.move(handle.x + 10 * handle.dx, handle.y + 10 * handle.dy, { steps: 5 });
+    await page.mouse.up();
+    const end = Number(await page.inputValue(`#${handle.field}`));
+    check(end > start, `dragging the ${handle.field} handle 10 pixels along its axis raises the field (${start} -> ${end})`);
+  }
+  await dragHandle('face');
+  await dragHandle('gizmo');
+  check(await page.inputValue('#op-kind') === 'translate', 'dragging the gizmo chooses the translate operation');
+  const cameraAfter = await page.evaluate(() => JSON.stringify(window.glintViewer.camera.current()));
+  check(cameraAfter === cameraBefore, 'dragging handles does not turn the camera');
   for (const [id, v] of Object.entries(box)) await page.fill(`#${id}`, String(v));
   await page.selectOption('#op-kind', 'roughness');
   await page.selectOption('#op-roughness-mode', 'set');
   await page.fill('#op-roughness', '1');
   await page.click('#apply');
   await page.waitForFunction(() => document.getElementById('message').textContent.startsWith('applied'));
+  const message = await page.textContent('#message');
+  check(/tracer: (refit|rebuild); refit [\d.]+ ms .*rebuild [\d.]+ ms/.test(message),
+    `the status line shows the tracer update chosen and both costs (${message.replace('\n', ' / ')})`);
   const edited = await accumulatedFrame(await frameId());
 
   // Where the sphere is: pixels whose roughness buffer changed (mode switch, no re-render).

@@ -1,5 +1,7 @@
 // The viewer's edit endpoints: apply an operation, undo, redo, preview a selection, save
 // the edit file and export the edited scene, all under /api/edits.
+#include <functional>
+
 #include <httplib.h>
 
 #include "app/viewer/edit_session.h"
@@ -8,7 +10,6 @@
 #include "app/viewer/viewer_http.h"
 #include "app/viewer/viewer_server.h"
 #include "edit/edit_file.h"
-#include "scene/gaussian_ply.h"
 
 namespace glint {
 
@@ -34,7 +35,27 @@ std::filesystem::path outputFile(const std::filesystem::path& folder, const nloh
 void ViewerServer::addEditRoutes() {
   httplib::Server& http = *http_;
 
-  auto answer = [this](httplib::Response& res, std::shared_ptr<const TracedScene> scene) {
+  // The measurement of refit against rebuild (render/tracer_update.h) probes the camera
+  // shown; until the next edit the viewer traces at most its sample budget at full size,
+  // 1 + bounces segments a path.
+  auto context = [this] {
+    TracerUpdateContext c;
+    c.probeCamera = renderer_->camera().camera(renderer_->width(), renderer_->height());
+    c.workRays = double(renderer_->width()) * renderer_->height() * options_.maxSamples *
+                 (1 + renderer_->settings().bounces);
+    c.releaseShown = [this] { renderer_->releaseScene(); };
+    return c;
+  };
+  // Runs an edit and shows its scene. The renderer may have let go of the shown scene
+  // (releaseShown) before the edit failed: it gets the session's current scene back.
+  auto answer = [this](httplib::Response& res, const std::function<std::shared_ptr<const TracedScene>()>& edit) {
+    std::shared_ptr<const TracedScene> scene;
+    try {
+      scene = edit();
+    } catch (...) {
+      if (!renderer_->scene()) renderer_->setScene(edits_->current());
+      throw;
+    }
     renderer_->setScene(std::move(scene));
     sendJson(res, edits_->status());
   };
@@ -42,14 +63,15 @@ void ViewerServer::addEditRoutes() {
   http.Get("/api/edits", [this](const httplib::Request&, httplib::Response& res) {
     sendJson(res, editDocumentToJson(edits_->document()));
   });
-  http.Post("/api/edits/apply", [this, answer](const httplib::Request& req, httplib::Response& res) {
-    answer(res, edits_->apply(parseRequestObject(req.body, kMaxRequestBytes)));
+  http.Post("/api/edits/apply", [this, answer, context](const httplib::Request& req, httplib::Response& res) {
+    nlohmann::json request = parseRequestObject(req.body, kMaxRequestBytes);
+    answer(res, [&] { return edits_->apply(request, context()); });
   });
-  http.Post("/api/edits/undo", [this, answer](const httplib::Request&, httplib::Response& res) {
-    answer(res, edits_->undo());
+  http.Post("/api/edits/undo", [this, answer, context](const httplib::Request&, httplib::Response& res) {
+    answer(res, [&] { return edits_->undo(context()); });
   });
-  http.Post("/api/edits/redo", [this, answer](const httplib::Request&, httplib::Response& res) {
-    answer(res, edits_->redo());
+  http.Post("/api/edits/redo", [this, answer, context](const httplib::Request&, httplib::Response& res) {
+    answer(res, [&] { return edits_->redo(context()); });
   });
   http.Post("/api/edits/preview", [this](const httplib::Request& req, httplib::Response& res) {
     sendJson(res, edits_->preview(parseRequestObject(req.body, kMaxRequestBytes)));
@@ -63,8 +85,8 @@ void ViewerServer::addEditRoutes() {
   http.Post("/api/edits/export", [this](const httplib::Request& req, httplib::Response& res) {
     std::filesystem::path file =
         outputFile(options_.outputFolder, parseRequestObject(req.body, kMaxRequestBytes), "viewer_edited.ply", ".ply");
-    writeGaussianPly(file, *edits_->current()->scene);
-    sendJson(res, {{"saved", file.string()}, {"gaussians", edits_->current()->scene->size()}});
+    size_t gaussians = edits_->exportPly(file);
+    sendJson(res, {{"saved", file.string()}, {"gaussians", gaussians}});
   });
 }
 

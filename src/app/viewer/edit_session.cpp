@@ -2,6 +2,7 @@
 #include "app/viewer/edit_session.h"
 
 #include <algorithm>
+#include <atomic>
 #include <optional>
 
 #include "app/viewer/request_json.h"
@@ -10,6 +11,7 @@
 #include "edit/gaussian_edits.h"
 #include "edit/gaussian_selection.h"
 #include "edit/shape.h"
+#include "scene/gaussian_ply.h"
 
 namespace glint {
 
@@ -61,80 +63,123 @@ float attributeValue(const GaussianScene& scene, size_t i, Attribute attribute) 
 }  // namespace
 
 EditSession::EditSession(GaussianScene pristine, const TraceSettings& trace)
-    : pristine_(std::make_shared<const GaussianScene>(std::move(pristine))), trace_(trace) {
-  current_ = traceScene(pristine_, trace_);
-}
+    : pristine_(std::make_shared<const GaussianScene>(std::move(pristine))),
+      trace_(trace),
+      shownScene_(std::make_shared<GaussianScene>(*pristine_)),
+      current_(traceScene(shownScene_, trace_)) {}
 
 std::shared_ptr<const TracedScene> EditSession::current() const {
   std::lock_guard lock(mutex_);
   return current_;
 }
 
-void EditSession::rebuild() {
-  EditDocument document;
-  for (const Step& step : steps_) {
-    document.selections[step.selectionName] = step.selection;
-    document.operations.push_back(step.operation);
-  }
-  if (document.operations.empty()) {
-    current_ = traceScene(pristine_, trace_);
-    return;
-  }
-  auto edited = std::make_shared<GaussianScene>(*pristine_);
-  applyEdits(document, *edited);
-  current_ = traceScene(std::move(edited), trace_);
+size_t EditSession::exportPly(const std::filesystem::path& file) const {
+  std::lock_guard lock(mutex_);
+  writeGaussianPly(file, *shownScene_);
+  return shownScene_->size();
 }
 
-std::shared_ptr<const TracedScene> EditSession::apply(const nlohmann::json& request) {
-  EditDocument single = parseSingleOperation(request, true);
-  std::lock_guard lock(mutex_);
-  if (steps_.size() >= kMaxOperations)
-    throw RequestError(409, "the edit stack holds " + std::to_string(kMaxOperations) + " operations; save and restart");
-  Step step{"selection_" + std::to_string(nextSelectionId_++), single.selections.at("s"), single.operations[0]};
-  step.operation.selection = step.selectionName;
-  std::vector<Step> previous = steps_;
-  steps_.push_back(std::move(step));
-  try {
-    rebuild();
-  } catch (const Error& e) {  // the operation cannot apply (e.g. a rotation without pivot)
-    steps_ = std::move(previous);
-    throw RequestError(400, e.what());
-  }
-  redo_.clear();
-  return current_;
-}
-
-std::shared_ptr<const TracedScene> EditSession::undo() {
-  std::lock_guard lock(mutex_);
-  if (steps_.empty()) throw RequestError(409, "nothing to undo");
-  redo_.push_back(std::move(steps_.back()));
-  steps_.pop_back();
-  rebuild();
-  return current_;
-}
-
-std::shared_ptr<const TracedScene> EditSession::redo() {
-  std::lock_guard lock(mutex_);
-  if (redo_.empty()) throw RequestError(409, "nothing to redo");
-  steps_.push_back(std::move(redo_.back()));
-  redo_.pop_back();
-  rebuild();
-  return current_;
-}
-
-nlohmann::json EditSession::status() const {
-  std::lock_guard lock(mutex_);
-  return {{"operations", steps_.size()}, {"redoable", redo_.size()}, {"gaussians", current_->scene->size()}};
-}
-
-EditDocument EditSession::document() const {
-  std::lock_guard lock(mutex_);
+EditDocument EditSession::documentOfSteps() const {
   EditDocument document;
   for (const Step& step : steps_) {
     document.selections[step.selectionName] = step.selection;
     document.operations.push_back(step.operation);
   }
   return document;
+}
+
+void EditSession::update(const TracerUpdateContext& context) {
+  // Applied to a copy first: an operation that cannot apply throws before anything shown changes.
+  GaussianScene edited = *pristine_;
+  applyEdits(documentOfSteps(), edited);
+
+  // A refit needs the shown tracer and its scene object to ourselves: the render thread lets
+  // go of them; a request that took them through current() just before still holds them.
+  std::unique_ptr<GaussianTracer> previous;
+  noRefitReason_ = "the Gaussian count changed";
+  if (edited.size() == shownScene_->size()) {
+    noRefitReason_ = "the shown scene was in use";
+    if (context.releaseShown) context.releaseShown();
+    if (current_.use_count() == 1 && shownScene_.use_count() == 2) {
+      // Pairs with the release of the other holders' reference counts: their reads of the
+      // scene happen before it is overwritten below.
+      std::atomic_thread_fence(std::memory_order_acquire);
+      previous = std::move(current_->tracer);
+    }
+  }
+  if (previous)
+    *shownScene_ = std::move(edited);  // the same object, which the previous tracer references
+  else
+    shownScene_ = std::make_shared<GaussianScene>(std::move(edited));
+  bool refitPossible = previous != nullptr;
+  UpdatedTracer updated = updateTracerAfterEdit(std::move(previous), *shownScene_, trace_, kViewerTracer,
+                                                refitPossible, context.probeCamera, context.workRays);
+  auto next = std::make_shared<TracedScene>();
+  next->scene = shownScene_;
+  next->tracer = std::move(updated.tracer);
+  current_ = std::move(next);
+  lastUpdate_ = updated.times;
+}
+
+std::shared_ptr<const TracedScene> EditSession::apply(const nlohmann::json& request,
+                                                      const TracerUpdateContext& context) {
+  EditDocument single = parseSingleOperation(request, true);
+  std::lock_guard lock(mutex_);
+  if (steps_.size() >= kMaxOperations)
+    throw RequestError(409, "the edit stack holds " + std::to_string(kMaxOperations) + " operations; save and restart");
+  Step step{"selection_" + std::to_string(nextSelectionId_++), single.selections.at("s"), single.operations[0]};
+  step.operation.selection = step.selectionName;
+  steps_.push_back(std::move(step));
+  try {
+    update(context);
+  } catch (const Error& e) {  // the operation cannot apply (e.g. a rotation without pivot)
+    steps_.pop_back();
+    throw RequestError(400, e.what());
+  }
+  redo_.clear();
+  return current_;
+}
+
+std::shared_ptr<const TracedScene> EditSession::undo(const TracerUpdateContext& context) {
+  std::lock_guard lock(mutex_);
+  if (steps_.empty()) throw RequestError(409, "nothing to undo");
+  redo_.push_back(std::move(steps_.back()));
+  steps_.pop_back();
+  update(context);
+  return current_;
+}
+
+std::shared_ptr<const TracedScene> EditSession::redo(const TracerUpdateContext& context) {
+  std::lock_guard lock(mutex_);
+  if (redo_.empty()) throw RequestError(409, "nothing to redo");
+  steps_.push_back(std::move(redo_.back()));
+  redo_.pop_back();
+  update(context);
+  return current_;
+}
+
+nlohmann::json EditSession::status() const {
+  std::lock_guard lock(mutex_);
+  nlohmann::json status = {
+      {"operations", steps_.size()}, {"redoable", redo_.size()}, {"gaussians", current_->scene->size()}};
+  if (lastUpdate_) {
+    const TracerUpdateTimes& t = *lastUpdate_;
+    status["tracer_update"] = {{"action", t.refitChosen ? "refit" : "rebuild"},
+                               {"refit_possible", t.refitPossible},
+                               {"refit_ms", 1e3 * t.refitSeconds},
+                               {"rebuild_ms", 1e3 * t.rebuildSeconds},
+                               {"refit_probe_ms", 1e3 * t.refitProbeSeconds},
+                               {"rebuild_probe_ms", 1e3 * t.rebuildProbeSeconds},
+                               {"probe_rays", t.probeRays},
+                               {"work_rays", t.workRays}};
+    if (!t.refitPossible) status["tracer_update"]["no_refit"] = noRefitReason_;
+  }
+  return status;
+}
+
+EditDocument EditSession::document() const {
+  std::lock_guard lock(mutex_);
+  return documentOfSteps();
 }
 
 nlohmann::json EditSession::preview(const nlohmann::json& request) const {
@@ -145,10 +190,12 @@ nlohmann::json EditSession::preview(const nlohmann::json& request) const {
   if (!attribute) throw RequestError(400, "\"attribute\" must be one of f0, roughness, diffuse, metalness");
   int bins = request.contains("bins") ? readInteger(request, "bins", 1, 256) : 32;
 
-  std::shared_ptr<const TracedScene> scene = current();
+  // Under the lock, so an edit never overwrites the scene read here (and can refit it).
+  std::lock_guard lock(mutex_);
+  const GaussianScene& scene = *shownScene_;
   GaussianMask selected;
   try {
-    selected = selectGaussians(single, "s", *scene->scene);
+    selected = selectGaussians(single, "s", scene);
   } catch (const Error& e) {
     throw RequestError(400, e.what());
   }
@@ -157,7 +204,7 @@ nlohmann::json EditSession::preview(const nlohmann::json& request) const {
   if (*attribute == Attribute::Diffuse) {
     hi = 0;
     for (size_t i = 0; i < selected.size(); ++i)
-      if (selected[i]) hi = std::max(hi, attributeValue(*scene->scene, i, *attribute));
+      if (selected[i]) hi = std::max(hi, attributeValue(scene, i, *attribute));
     hi = std::max(hi, 1e-6f);
   }
   std::vector<int64_t> histogram(size_t(bins), 0);
@@ -165,7 +212,7 @@ nlohmann::json EditSession::preview(const nlohmann::json& request) const {
   for (size_t i = 0; i < selected.size(); ++i) {
     if (!selected[i]) continue;
     ++count;
-    float t = (attributeValue(*scene->scene, i, *attribute) - lo) / (hi - lo);
+    float t = (attributeValue(scene, i, *attribute) - lo) / (hi - lo);
     histogram[size_t(std::clamp(int(t * float(bins)), 0, bins - 1))]++;
   }
   return {{"count", count}, {"total", selected.size()}, {"attribute", name}, {"histogram", histogram},

@@ -1,11 +1,17 @@
 // The viewer's edit stack: an EditDocument whose operations the page appends one at a
 // time. Undo pops the last operation onto a redo list and redo pushes it back; either way
-// the document is re-applied to a pristine copy of the scene and the tracer rebuilt, so
-// what is shown is always exactly what `glint edit` would bake from the saved file.
+// the document is re-applied to a pristine copy of the scene, so what is shown is always
+// exactly what `glint edit` would bake from the saved file. The tracer is then refitted or
+// rebuilt, whichever render/tracer_update.h measures to be cheaper, as `glint render
+// --edits` does.
 #pragma once
 
+#include <filesystem>
+#include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -13,8 +19,19 @@
 #include "app/viewer/progressive_renderer.h"
 #include "edit/edit_document.h"
 #include "raytrace/trace_settings.h"
+#include "render/tracer_update.h"
+#include "scene/camera.h"
 
 namespace glint {
+
+// What choosing between refit and rebuild after an edit needs from the viewer.
+struct TracerUpdateContext {
+  Camera probeCamera;   // the camera shown: its primary rays probe both structures
+  double workRays = 0;  // rays the viewer expects to trace on the edited scene
+  // Stops every use of the shown scene (the render thread's), so that its tracer can be
+  // refitted in place; called only when the Gaussian count allows a refit.
+  std::function<void()> releaseShown;
+};
 
 class EditSession {
  public:
@@ -24,19 +41,25 @@ class EditSession {
 
   // {"selection": S, "operation": O}: S a selection as in an edit file, O an operation as in
   // an edit file without its "selection" field. Returns the edited scene; throws
-  // RequestError 400 for a malformed request (nothing changes).
-  std::shared_ptr<const TracedScene> apply(const nlohmann::json& request);
+  // RequestError 400 for a malformed request (nothing changes, releaseShown is not called).
+  std::shared_ptr<const TracedScene> apply(const nlohmann::json& request, const TracerUpdateContext& context);
   // Throw RequestError 409 when there is nothing to undo or redo.
-  std::shared_ptr<const TracedScene> undo();
-  std::shared_ptr<const TracedScene> redo();
+  std::shared_ptr<const TracedScene> undo(const TracerUpdateContext& context);
+  std::shared_ptr<const TracedScene> redo(const TracerUpdateContext& context);
 
-  // {"operations", "redoable", "gaussians"}
+  // {"operations", "redoable", "gaussians"} and, after an edit, "tracer_update": {"action":
+  // "refit"|"rebuild", "refit_possible", "refit_ms", "rebuild_ms", "refit_probe_ms",
+  // "rebuild_probe_ms", "probe_rays", "work_rays", and "no_refit" (why) when no refit was
+  // possible} of the last tracer update.
   nlohmann::json status() const;
   // {"selection": S, "attribute": "roughness"|"f0"|"diffuse"|"metalness", "bins": 1..256}
   // -> {"count", "total", "attribute", "histogram": [...], "range": [lo, hi]}: how many
   // Gaussians of the current scene S holds and the histogram of the attribute over them.
   nlohmann::json preview(const nlohmann::json& request) const;
   EditDocument document() const;
+  // Writes the current scene as a binary PLY; returns its Gaussian count. Under the session's
+  // lock, like preview, so an edit cannot overwrite the scene while it is read.
+  size_t exportPly(const std::filesystem::path& file) const;
 
   static constexpr size_t kMaxOperations = 1000;
 
@@ -46,15 +69,24 @@ class EditSession {
     Selection selection;
     Operation operation;
   };
-  // Applies steps_ to the pristine scene and builds its tracer (mutex_ held).
-  void rebuild();
+  // The edit document of steps_.
+  EditDocument documentOfSteps() const;
+  // Applies steps_ to a copy of the pristine scene, then refits the shown tracer in place or
+  // builds a new one (mutex_ held). Throws Error when an operation cannot apply; nothing
+  // shown has changed then.
+  void update(const TracerUpdateContext& context);
 
   mutable std::mutex mutex_;
   std::shared_ptr<const GaussianScene> pristine_;
   TraceSettings trace_;
   std::vector<Step> steps_;
   std::vector<Step> redo_;
-  std::shared_ptr<const TracedScene> current_;
+  // The shown scene, a copy of the pristine one that edits overwrite in place so that its
+  // tracer (which references the scene object) can be refitted.
+  std::shared_ptr<GaussianScene> shownScene_;
+  std::shared_ptr<TracedScene> current_;  // over shownScene_
+  std::optional<TracerUpdateTimes> lastUpdate_;
+  std::string noRefitReason_;  // of the last update, when it could not refit
   int nextSelectionId_ = 0;
 };
 

@@ -11,26 +11,44 @@
 
 namespace glint {
 
-void FrameAccumulator::reset(int width, int height) {
+namespace {
+
+void addInto(Image& sum, const Image& add) {
+  GLINT_CHECK(add.width == sum.width && add.height == sum.height && add.channels == sum.channels,
+              "accumulated sample differs in size");
+  for (size_t i = 0; i < sum.pixels.size(); ++i) sum.pixels[i] += add.pixels[i];
+}
+
+// sum / samples; black with no samples.
+Image meanOf(const Image& sum, int samples) {
+  Image out = sum;
+  float scale = samples > 0 ? 1.0f / float(samples) : 0.0f;
+  for (float& v : out.pixels) v *= scale;
+  return out;
+}
+
+}  // namespace
+
+void FrameAccumulator::reset(int width, int height, int bounces) {
   sums_ = ViewBuffers::allocate(width, height);
+  bounceSums_.assign(size_t(std::clamp(bounces, 0, kSeparateBounces)), Image(width, height, 3));
   samples_ = 0;
 }
 
-void FrameAccumulator::add(const ViewBuffers& sample) {
-  for (Buffer b : kAllBuffers) {
-    Image& sum = sums_[b];
-    const Image& add = sample[b];
-    GLINT_CHECK(add.width == sum.width && add.height == sum.height && add.channels == sum.channels,
-                "accumulated sample differs in size");
-    for (size_t i = 0; i < sum.pixels.size(); ++i) sum.pixels[i] += add.pixels[i];
-  }
+void FrameAccumulator::add(const ViewBuffers& sample, std::span<const Image> bounceLight) {
+  GLINT_CHECK(bounceLight.size() == bounceSums_.size(), "accumulated sample has another bounce count");
+  for (Buffer b : kAllBuffers) addInto(sums_[b], sample[b]);
+  for (size_t k = 0; k < bounceSums_.size(); ++k) addInto(bounceSums_[k], bounceLight[k]);
   ++samples_;
 }
 
+Image FrameAccumulator::meanBounce(int bounce) const {
+  if (bounce < 1 || size_t(bounce) > bounceSums_.size()) return Image(width(), height(), 3);
+  return meanOf(bounceSums_[size_t(bounce - 1)], samples_);
+}
+
 Image FrameAccumulator::mean(Buffer buffer) const {
-  Image out = sums_[buffer];
-  float scale = samples_ > 0 ? 1.0f / float(samples_) : 0.0f;
-  for (float& v : out.pixels) v *= scale;
+  Image out = meanOf(sums_[buffer], samples_);
   if (buffer == Buffer::Normal)  // a mean of unit normals is shorter than 1 at edges
     for (int y = 0; y < out.height; ++y)
       for (int x = 0; x < out.width; ++x) out.setRgb(x, y, normalize(out.rgb(x, y)));
@@ -44,11 +62,13 @@ Image FrameAccumulator::display(const DisplaySettings& settings) const {
     ViewBuffers means;
     for (Buffer b : kAllBuffers) means[b] = mean(b);
     m = denoiseView(means);
+  } else if (settings.bounce > 0) {
+    m = meanBounce(settings.bounce);
   } else {
     m = mean(settings.mode);
   }
   Image out(m.width, m.height, 3);
-  if (isRadianceBuffer(settings.mode)) {
+  if (settings.bounce > 0 || isRadianceBuffer(settings.mode)) {
     float gain = float(std::exp2(settings.exposure));
     for (int y = 0; y < m.height; ++y)
       for (int x = 0; x < m.width; ++x) out.setRgb(x, y, tonemapFilmic(m.rgb(x, y) * gain));

@@ -18,10 +18,10 @@ constexpr std::chrono::seconds kIdleAfter{3};
 
 }  // namespace
 
-std::shared_ptr<const TracedScene> traceScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace) {
+std::shared_ptr<TracedScene> traceScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace) {
   auto traced = std::make_shared<TracedScene>();
   traced->scene = std::move(scene);
-  traced->tracer = makeGaussianTracer("fast");
+  traced->tracer = makeGaussianTracer(kViewerTracer);
   traced->tracer->build(*traced->scene, trace);
   return traced;
 }
@@ -51,6 +51,13 @@ void ProgressiveRenderer::setScene(std::shared_ptr<const TracedScene> scene) {
   std::lock_guard lock(mutex_);
   scene_ = std::move(scene);
   restart();
+}
+
+void ProgressiveRenderer::releaseScene() {
+  std::unique_lock lock(mutex_);
+  scene_.reset();
+  restart();
+  passDone_.wait(lock, [&] { return !rendering_; });
 }
 
 void ProgressiveRenderer::setUntracedScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace) {
@@ -141,7 +148,7 @@ void ProgressiveRenderer::run() {
       continue;
     }
     redisplay_ = false;
-    if (level_ == 0) accumulator_.reset(width_, height_);
+    if (level_ == 0) accumulator_.reset(width_, height_, settings_.bounces);
 
     // Take what this pass needs, then render without the lock so requests stay quick.
     std::shared_ptr<const TracedScene> scene = scene_;
@@ -158,18 +165,24 @@ void ProgressiveRenderer::run() {
     // of `glint render` (seed 0, view 0), so N accumulated samples are its --spp N render.
     render.jitter = level == 2;
     render.firstSample = sample;
+    rendering_ = true;
     lock.unlock();
     auto start = std::chrono::steady_clock::now();
-    ViewBuffers buffers = renderGaussianView(*scene->tracer, camera, render, 0);
+    // Every bounce's light is kept, so a switch between bounce modes needs no new samples.
+    std::vector<Image> bounceLight;
+    ViewBuffers buffers = renderGaussianView(*scene->tracer, camera, render, 0, &bounceLight);
     double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    scene.reset();  // before rendering_ goes false: releaseScene promises no reference is left
     lock.lock();
+    rendering_ = false;
+    passDone_.notify_all();
 
     if (level < 2) {
       // Shown even if the camera moved meanwhile: while dragging, a frame one step behind
       // beats no frame at all.
       FrameAccumulator single;
-      single.reset(camera.width, camera.height);
-      single.add(buffers);
+      single.reset(camera.width, camera.height, settings.bounces);
+      single.add(buffers, bounceLight);
       publish(single.display(settings_), 0, seconds);
       if (level == 0) {
         if (seconds > kMovingFrameBudget && movingScale_ < kMaxMovingScale) movingScale_ *= 2;
@@ -177,7 +190,7 @@ void ProgressiveRenderer::run() {
       }
       if (epoch == epoch_) ++level_;
     } else if (epoch == epoch_) {
-      accumulator_.add(buffers);
+      accumulator_.add(buffers, bounceLight);
       publish(accumulator_.display(settings_), accumulator_.samples(), seconds);
     }
   }

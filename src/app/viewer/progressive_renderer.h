@@ -28,8 +28,11 @@ struct TracedScene {
   std::unique_ptr<GaussianTracer> tracer;
 };
 
-// Builds a TracedScene with the "fast" tracer.
-std::shared_ptr<const TracedScene> traceScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace);
+// The tracer the viewer renders with.
+constexpr const char* kViewerTracer = "fast";
+
+// Builds a TracedScene with the viewer's tracer.
+std::shared_ptr<TracedScene> traceScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace);
 
 // One published frame: the display image (RGB in [0, 1]) and what it holds.
 struct Frame {
@@ -53,6 +56,10 @@ class ProgressiveRenderer {
   // one not yet taken.
   void setUntracedScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace);
   std::shared_ptr<const TracedScene> scene() const;
+  // Stops showing the scene and returns once the render thread holds no reference to it,
+  // so that its owner may change it in place (an edit refitting its tracer); setScene shows
+  // one again. Frames already published stay.
+  void releaseScene();
   void setCamera(const ViewerCamera& camera);
   ViewerCamera camera() const;
   void setSettings(const DisplaySettings& settings);
@@ -72,7 +79,9 @@ class ProgressiveRenderer {
   mutable std::mutex mutex_;
   mutable std::condition_variable wake_;        // the render thread waits for work
   mutable std::condition_variable frameReady_;  // requests wait for frames
+  std::condition_variable passDone_;            // releaseScene waits for the pass to end
   bool stop_ = false;
+  bool rendering_ = false;  // a pass is tracing a scene outside the lock
   std::shared_ptr<const TracedScene> scene_;
   std::shared_ptr<const GaussianScene> untraced_;
   TraceSettings untracedTrace_;

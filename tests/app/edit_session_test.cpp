@@ -1,0 +1,77 @@
+// The viewer's edit session chooses refit or rebuild like `glint render --edits`: it refits
+// the shown tracer in place only when the Gaussian count stays and nobody else holds the
+// shown scene, and the tracer it keeps traces the edited scene as a fresh build does.
+#include "app/viewer/edit_session.h"
+
+#include <gtest/gtest.h>
+
+#include "common/random_gaussians.h"
+
+namespace glint {
+namespace {
+
+nlohmann::json editOf(const char* operation) {
+  return {{"selection", "everything"}, {"operation", nlohmann::json::parse(operation)}};
+}
+
+TEST(EditSession, RefitsInPlaceOnlyWhenTheCountStaysAndTheSceneIsFree) {
+  const GaussianScene pristine = randomScene(400, 5);
+  EditSession session(pristine, TraceSettings{});
+  int released = 0;
+  TracerUpdateContext context;
+  context.probeCamera = Camera{Mat4::lookAt(Vec3d(0, 0, 4), Vec3d(0, 0, 0), Vec3d(0, 1, 0)), 0.9, 32, 24};
+  context.workRays = 1;  // almost nothing to trace: the cheaper update wins, the refit
+  context.releaseShown = [&] { ++released; };
+
+  // A request still reading the shown scene: it must not change under it, so no refit.
+  std::shared_ptr<const TracedScene> held = session.current();
+  session.apply(editOf(R"({"op": "translate", "offset": [0.25, 0, 0]})"), context);
+  nlohmann::json update = session.status()["tracer_update"];
+  EXPECT_EQ(released, 1);
+  EXPECT_FALSE(update["refit_possible"].get<bool>());
+  EXPECT_EQ(update["action"], "rebuild");
+  EXPECT_EQ(update["no_refit"], "the shown scene was in use");
+  EXPECT_EQ(held->scene->position[7], pristine.position[7]);
+  EXPECT_EQ(session.current()->scene->position[7].x, pristine.position[7].x + 0.25f);
+  held.reset();
+
+  // Same count, nobody else holding the scene: refitted in place.
+  session.apply(editOf(R"({"op": "roughness", "set": 0.9})"), context);
+  update = session.status()["tracer_update"];
+  EXPECT_EQ(released, 2);
+  EXPECT_TRUE(update["refit_possible"].get<bool>());
+  EXPECT_EQ(update["action"], "refit") << update;
+  std::shared_ptr<const TracedScene> shown = session.current();
+  EXPECT_EQ(shown->scene->roughness[3], 0.9f);
+  EXPECT_EQ(shown->scene->position[7].x, pristine.position[7].x + 0.25f);
+  // The refitted structure traces the edited scene exactly as one built on it.
+  std::unique_ptr<GaussianTracer> fresh = makeGaussianTracer(kViewerTracer);
+  fresh->build(*shown->scene, TraceSettings{});
+  Rng rng(11);
+  for (int i = 0; i < 200; ++i) {
+    TraceRay ray{Vec3f(0, 0, 4) + randomDirection(rng) * 0.5f, Vec3f(0), 0.0f};
+    ray.direction = normalize(Vec3f(uniform(rng, -1, 1), uniform(rng, -1, 1), 0) - ray.origin);
+    RayResult a = shown->tracer->trace(ray), b = fresh->trace(ray);
+    ASSERT_EQ(a.diffuse, b.diffuse) << i;
+    ASSERT_EQ(a.depth, b.depth) << i;
+    ASSERT_EQ(a.roughness, b.roughness) << i;
+  }
+  shown.reset();
+
+  // A duplicate changes the count: rebuilt, and the renderer is never asked to let go.
+  session.apply(editOf(R"({"op": "duplicate", "offset": [0, 1, 0]})"), context);
+  update = session.status()["tracer_update"];
+  EXPECT_EQ(released, 2);
+  EXPECT_FALSE(update["refit_possible"].get<bool>());
+  EXPECT_EQ(update["no_refit"], "the Gaussian count changed");
+  EXPECT_EQ(session.status()["gaussians"], 800);
+  // Undo returns to 400 Gaussians (rebuilt), then undoing the roughness keeps the count.
+  session.undo(context);
+  session.undo(context);
+  EXPECT_EQ(released, 3);
+  EXPECT_EQ(session.status()["tracer_update"]["action"], "refit");
+  EXPECT_EQ(session.current()->scene->roughness[3], pristine.roughness[3]);
+}
+
+}  // namespace
+}  // namespace glint
