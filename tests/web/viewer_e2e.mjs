@@ -130,15 +130,21 @@ try {
   // Bounce 1 alone: one mode per traced bounce, shown from the samples already accumulated.
   const bounceModes = await page.$$eval('#mode option', (options) => options.map((o) => o.value).filter((v) => v.startsWith('bounce')));
   check(bounceModes.join() === 'bounce1,bounce2', `the mode list offers a mode per bounce (${bounceModes.join(', ')})`);
+  // The frame id is read before each change: a display-only change is shown at once, so
+  // reading it afterwards may already see the one frame that answers it, and wait forever.
+  let shown = await frameId();
   await page.selectOption('#mode', 'bounce1');
-  const bounce1 = await accumulatedFrame(await frameId());
+  const bounce1 = await accumulatedFrame(shown);
   const bounceStatistics = statistics(bounce1);
   check(bounceStatistics.mean > 2 && bounceStatistics.spread > 5,
     `bounce 1 is not blank (mean ${bounceStatistics.mean.toFixed(1)}, deviation ${bounceStatistics.spread.toFixed(1)})`);
   const fromFinal = pixelDifferences(bounce1, before);
   const meanFromFinal = fromFinal.reduce((s, d) => s + d, 0) / fromFinal.length;
   check(meanFromFinal > 10, `bounce 1 differs from the final image (mean ${meanFromFinal.toFixed(1)} levels)`);
+  // Back to final, waiting for its frame, so that it cannot arrive after the edit below.
+  shown = await frameId();
   await page.selectOption('#mode', 'final');
+  await accumulatedFrame(shown);
 
   // The roughness buffer shows where the green sphere is: edit it through the page.
   const box = { 'box-min-x': -0.65, 'box-min-y': -0.05, 'box-min-z': -1.55, 'box-max-x': 0.65, 'box-max-y': 1.25, 'box-max-z': -0.25 };
@@ -174,21 +180,25 @@ try {
   await page.selectOption('#op-kind', 'roughness');
   await page.selectOption('#op-roughness-mode', 'set');
   await page.fill('#op-roughness', '1');
+  shown = await frameId();
   await page.click('#apply');
   await page.waitForFunction(() => document.getElementById('message').textContent.startsWith('applied'));
   const message = await page.textContent('#message');
   check(/tracer: (refit|rebuild); refit [\d.]+ ms .*rebuild [\d.]+ ms/.test(message),
     `the status line shows the tracer update chosen and both costs (${message.replace('\n', ' / ')})`);
-  const edited = await accumulatedFrame(await frameId());
+  const edited = await accumulatedFrame(shown);
 
   // Where the sphere is: pixels whose roughness buffer changed (mode switch, no re-render).
+  shown = await frameId();
   await page.selectOption('#mode', 'roughness');
-  const roughAfter = await accumulatedFrame(await frameId());
+  const roughAfter = await accumulatedFrame(shown);
+  shown = await frameId();
   await page.click('#undo');
   await page.waitForFunction(() => document.getElementById('message').textContent.startsWith('undone'));
-  const roughBefore = await accumulatedFrame(await frameId());
+  const roughBefore = await accumulatedFrame(shown);
+  shown = await frameId();
   await page.selectOption('#mode', 'final');
-  const restored = await accumulatedFrame(await frameId());
+  const restored = await accumulatedFrame(shown);
 
   const objectMask = pixelDifferences(roughAfter, roughBefore).map((d) => d > 8);
   const change = pixelDifferences(edited, before);
