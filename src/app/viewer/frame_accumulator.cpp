@@ -68,7 +68,7 @@ Image FrameAccumulator::display(const DisplaySettings& settings) const {
     m = mean(settings.mode);
   }
   Image out(m.width, m.height, 3);
-  if (settings.bounce > 0 || isRadianceBuffer(settings.mode)) {
+  if (isRadianceBuffer(settings.mode)) {  // bounce modes have mode Specular
     float gain = float(std::exp2(settings.exposure));
     for (int y = 0; y < m.height; ++y)
       for (int x = 0; x < m.width; ++x) out.setRgb(x, y, tonemapFilmic(m.rgb(x, y) * gain));
