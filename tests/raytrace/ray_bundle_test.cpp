@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 #include <set>
 #include <string>
 #include <vector>
@@ -134,6 +135,36 @@ TEST(RayBundle, BundledBatchesMatchRaysTracedAloneAndTheReference) {
   }
 }
 
+// Indices of the rays, all within the bundling range, ordered by direction (8x8 tiles).
+std::vector<uint32_t> directionOrder(const std::vector<TraceRay>& rays) {
+  std::vector<uint32_t> order(rays.size());
+  for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
+  EXPECT_EQ(orderByDirection(rays, order), rays.size());
+  return order;
+}
+
+// The Gaussians of the current chunk's blocks (a multiset, so duplicates would show).
+std::multiset<uint32_t> candidateIds(const BundleCandidates& candidates) {
+  std::multiset<uint32_t> ids;
+  for (int k = 0; k < candidates.blockCount(); ++k)
+    for (int lane = 0; lane < kBvhWidth; ++lane)
+      if (candidates.block(k).radius2[lane] >= 0.0f) ids.insert(candidates.block(k).id[lane]);
+  return ids;
+}
+
+// Every hit of the rays[tile] through the whole cloud, from the reference tracer.
+std::vector<HitRecord> referenceHits(const ReferenceTracer& reference, const std::vector<TraceRay>& rays,
+                                     std::span<const uint32_t> tile) {
+  std::vector<HitRecord> all;
+  for (uint32_t k : tile) {
+    HitList hits;
+    hits.capacity = 100000;
+    reference.trace(rays[k], &hits);
+    all.insert(all.end(), hits.hits.begin(), hits.hits.end());
+  }
+  return all;
+}
+
 TEST(RayBundle, CandidatesHoldEveryGaussianTheBundlesRaysHitAndFewOthers) {
   GaussianScene scene = randomScene(2000, 41);
   TraceSettings settings;
@@ -143,9 +174,7 @@ TEST(RayBundle, CandidatesHoldEveryGaussianTheBundlesRaysHitAndFewOthers) {
   ReferenceTracer reference;
   reference.build(scene, settings);
   std::vector<TraceRay> rays = cameraRays({0.0f, 0.0f, 2.5f}, {0, 0, 0}, 64, 64, 5);
-  std::vector<uint32_t> order(rays.size());
-  for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
-  ASSERT_EQ(orderByDirection(rays, order), rays.size());
+  std::vector<uint32_t> order = directionOrder(rays);
   // The first 64 rays in direction order form a compact tile.
   std::span<const uint32_t> tile(order.data(), 64);
   RayCone cone;
@@ -153,25 +182,63 @@ TEST(RayBundle, CandidatesHoldEveryGaussianTheBundlesRaysHitAndFewOthers) {
   EXPECT_LT(std::acos(cone.cosAngle), 0.09f);  // an 8x8 tile of 64x64 pixels at 60 degrees: 0.08 rad
   BundleCandidates candidates;
   candidates.gather(tracer.bvh(), cone);
-  std::set<uint32_t> gathered;
-  for (int k = 0; k < candidates.blockCount(); ++k)
-    for (int lane = 0; lane < kBvhWidth; ++lane)
-      if (candidates.block(k).radius2[lane] >= 0.0f) gathered.insert(candidates.block(k).id[lane]);
+  std::multiset<uint32_t> gathered = candidateIds(candidates);
   EXPECT_EQ(gathered.size(), candidates.candidates());
-  size_t hitGaussians = 0;
-  for (uint32_t k : tile) {
-    HitList hits;
-    hits.capacity = 100000;
-    reference.trace(rays[k], &hits);
-    for (const HitRecord& h : hits.hits) {
-      ++hitGaussians;
-      EXPECT_TRUE(gathered.count(h.id)) << "ray " << k << " hits Gaussian " << h.id << " outside the candidates";
-    }
-  }
-  EXPECT_GT(hitGaussians, 64u);
+  std::vector<HitRecord> hits = referenceHits(reference, rays, tile);
+  for (const HitRecord& h : hits) EXPECT_TRUE(gathered.count(h.id)) << "Gaussian " << h.id << " is hit but no candidate";
+  EXPECT_GT(hits.size(), 64u);
   EXPECT_LT(candidates.candidates(), scene.size() / 4);  // the cone culls most of the cloud
   // The bounds are suffix minima: never increasing from block to block.
   for (int k = 1; k < candidates.blockCount(); ++k) EXPECT_LE(candidates.blockBound(k - 1), candidates.blockBound(k));
+}
+
+TEST(RayBundle, ChunksPartitionTheCandidatesAndEachFrontierBoundsTheLaterChunks) {
+  GaussianScene scene = randomScene(2000, 47);
+  TraceSettings settings;
+  FastGaussianTracer tracer;
+  tracer.build(scene, settings);
+  std::vector<TraceRay> rays = cameraRays({0.0f, 0.0f, 2.5f}, {0, 0, 0}, 64, 64, 5);
+  std::vector<uint32_t> order = directionOrder(rays);
+  RayCone cone;
+  // Morton position 2048 starts the 8x8 tile at the image centre, which sees the cloud's depth.
+  std::span<const uint32_t> tile(order.data() + 2048, 64);
+  ASSERT_TRUE(boundingCone(rays, tile, &cone));
+
+  BundleCandidates all;
+  all.gather(tracer.bvh(), cone);
+  std::multiset<uint32_t> wanted = candidateIds(all);
+  EXPECT_EQ(all.frontier(), std::numeric_limits<float>::infinity());
+
+  // Chunks of at least 4: together they hold each candidate once, and no ray of the cone
+  // hits a Gaussian of a later chunk with a key below an earlier chunk's frontier.
+  BundleCandidates chunked;
+  chunked.start(tracer.bvh(), cone);
+  std::multiset<uint32_t> got;
+  std::map<uint32_t, float> frontierBefore;  // Gaussian id -> frontier of the chunk before its own
+  float previousFrontier = cone.tMin;
+  int chunks = 0;
+  while (chunked.next(4)) {
+    ++chunks;
+    for (int k = 0; k < chunked.blockCount(); ++k) EXPECT_LE(chunked.blockBound(k), chunked.frontier());
+    for (uint32_t id : candidateIds(chunked)) {
+      got.insert(id);
+      frontierBefore[id] = previousFrontier;
+    }
+    EXPECT_GE(chunked.frontier(), previousFrontier);
+    previousFrontier = chunked.frontier();
+  }
+  EXPECT_GT(chunks, 3) << all.candidates() << " candidates";
+  EXPECT_EQ(chunked.frontier(), std::numeric_limits<float>::infinity());
+  EXPECT_EQ(got, wanted);
+
+  ReferenceTracer reference;
+  reference.build(scene, settings);
+  std::vector<HitRecord> hits = referenceHits(reference, rays, tile);
+  for (const HitRecord& h : hits) {
+    ASSERT_TRUE(frontierBefore.count(h.id)) << "Gaussian " << h.id << " hit but never gathered";
+    EXPECT_GE(h.t, frontierBefore[h.id]) << "Gaussian " << h.id << " hit before its chunk's frontier";
+  }
+  EXPECT_GT(hits.size(), 64u);
 }
 
 TEST(RayBundle, OverflowingBundlesFallBackToTheTraversalAndGiveTheSameImage) {

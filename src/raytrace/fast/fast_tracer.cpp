@@ -237,44 +237,107 @@ class RayTraversal {
   bool tail_ = false;  // terminated: later hits only count towards the exact tail
 };
 
-// One ray of a bundle: streams the bundle's candidate blocks (sorted by the lower bound
-// of their keys) and composites every buffered hit below the next block's bound, so the
-// order is the exact (key, id) order of RayTraversal. Returns false if the hit buffer
-// overflowed; the caller then traces the ray alone, whose traversal handles overflow.
-bool traceInBundle(const Bvh8& bvh, const BundleCandidates& candidates, const TraceRay& ray, int capacity,
-                   RayResult* result) {
-  const TraceSettings& settings = bvh.settings();
-  const Bvh8Ray r(ray);
-  Compositor<double> compositor(*bvh.scene(), settings, nullptr);
-  if (ray.backfaceSkip > 0) compositor.skipBackfacing(ray.direction, ray.backfaceSkip);
-  FastHitBuffer buffer(capacity);
-  const LaneHits lanes(settings);
-  bool tail = false;
-  for (int g = 0; g < candidates.groupCount(); ++g) {
-    // Every hit of this group and the later ones has a key of at least the bound.
-    float bound = candidates.blockBound(g * kBvhWidth);
-    if (!tail && !compositeBelow(bound, buffer, compositor, settings, &tail)) break;
-    alignas(32) float tNear[kBvhWidth];
-    for (uint32_t boxes = intersectNode(candidates.group(g), r, tNear); boxes; boxes &= boxes - 1) {
-      const Bvh8Block& block = candidates.block(g * kBvhWidth + std::countr_zero(boxes));
-      Bvh8BlockCandidates c;
-      for (uint32_t mask = intersectBlock(block, r, &c); mask; mask &= mask - 1) {
-        BufferedHit h;
-        if (!lanes.make(block, c, std::countr_zero(mask), r.tMin, &h)) continue;
-        if (tail) {
-          compositor.add(h.id, h.kernelHit());
-          continue;
-        }
-        if (buffer.full()) return false;
-        prefetchAttributes(*bvh.scene(), h.id);
-        buffer.push(h);
+// The rays of one bundle, streamed chunk by chunk through the bundle's candidates (sorted
+// by the lower bound of their keys). Each ray composites every buffered hit below the next
+// block's bound, so the order is the exact (key, id) order of RayTraversal. Chunks are
+// gathered only while some ray is still compositing. A ray whose hit buffer overflows is
+// handed back; the caller traces it alone, and that traversal handles overflow.
+class BundleStreams {
+ public:
+  // Traces rays[members] and writes results[members]; appends the overflowed rays to
+  // *overflowed (their results are left for the caller).
+  void trace(const Bvh8& bvh, BundleCandidates& candidates, const RayCone& cone, std::span<const TraceRay> rays,
+             std::span<const uint32_t> members, int capacity, std::span<RayResult> results,
+             std::vector<uint32_t>* overflowed) {
+    const TraceSettings& settings = bvh.settings();
+    const size_t n = members.size();
+    if (buffers_.size() < n) buffers_.resize(n, FastHitBuffer(capacity));
+    compositors_.clear();
+    compositors_.reserve(n);
+    states_.assign(n, Streaming);
+    tails_.assign(n, false);
+    for (size_t k = 0; k < n; ++k) {
+      const TraceRay& ray = rays[members[k]];
+      buffers_[k].reset(capacity);
+      compositors_.emplace_back(*bvh.scene(), settings, nullptr);
+      if (ray.backfaceSkip > 0) compositors_[k].skipBackfacing(ray.direction, ray.backfaceSkip);
+    }
+    const LaneHits lanes(settings);
+    size_t streaming = n;
+    candidates.start(bvh, cone);
+    // Small first chunks suit bundles that terminate in the first surface; doubling keeps
+    // the number of chunks logarithmic for those that see deep into the cloud.
+    for (size_t chunk = kFirstChunk; streaming > 0 && candidates.next(chunk); chunk *= 2) {
+      for (size_t k = 0; k < n; ++k) {
+        if (states_[k] != Streaming) continue;
+        State s = streamChunk(bvh, candidates, Bvh8Ray(rays[members[k]]), lanes, k);
+        if (s == Streaming) continue;
+        states_[k] = s;
+        --streaming;
+        if (s == Overflowed) overflowed->push_back(members[k]);
       }
     }
+    for (size_t k = 0; k < n; ++k) {
+      if (states_[k] == Overflowed) continue;
+      bool tail = tails_[k];
+      if (states_[k] == Streaming && !tail)
+        compositeBelow(kInfinity, buffers_[k], compositors_[k], settings, &tail);
+      results[members[k]] = compositors_[k].finish();
+    }
   }
-  if (!tail) compositeBelow(kInfinity, buffer, compositor, settings, &tail);
-  *result = compositor.finish();
-  return true;
-}
+
+ private:
+  enum State : uint8_t { Streaming, Terminated, Overflowed };
+  static constexpr size_t kFirstChunk = 256;
+
+  // Streams ray k through the current chunk; returns its state after it.
+  State streamChunk(const Bvh8& bvh, const BundleCandidates& candidates, const Bvh8Ray& r, const LaneHits& lanes,
+                    size_t k) {
+    const TraceSettings& settings = bvh.settings();
+    FastHitBuffer& buffer = buffers_[k];
+    Compositor<double>& compositor = compositors_[k];
+    bool tail = tails_[k];
+    State state = Streaming;
+    for (int g = 0; g < candidates.groupCount() && state == Streaming; ++g) {
+      // Every hit of this group and the later ones has a key of at least the bound.
+      float bound = candidates.blockBound(g * kBvhWidth);
+      if (!tail && !compositeBelow(bound, buffer, compositor, settings, &tail)) {
+        state = Terminated;
+        break;
+      }
+      alignas(32) float tNear[kBvhWidth];
+      for (uint32_t boxes = intersectNode(candidates.group(g), r, tNear); boxes && state == Streaming;
+           boxes &= boxes - 1) {
+        const Bvh8Block& block = candidates.block(g * kBvhWidth + std::countr_zero(boxes));
+        Bvh8BlockCandidates c;
+        for (uint32_t mask = intersectBlock(block, r, &c); mask; mask &= mask - 1) {
+          BufferedHit h;
+          if (!lanes.make(block, c, std::countr_zero(mask), r.tMin, &h)) continue;
+          if (tail) {
+            compositor.add(h.id, h.kernelHit());
+            continue;
+          }
+          if (buffer.full()) {
+            state = Overflowed;
+            break;
+          }
+          prefetchAttributes(*bvh.scene(), h.id);
+          buffer.push(h);
+        }
+      }
+    }
+    // Nothing of the later chunks comes before the frontier.
+    if (state == Streaming && !tail && !compositeBelow(candidates.frontier(), buffer, compositor, settings, &tail))
+      state = Terminated;
+    tails_[k] = tail;
+    return state;
+  }
+
+  std::vector<FastHitBuffer> buffers_;
+  std::vector<Compositor<double>> compositors_;
+  std::vector<State> states_;
+  std::vector<bool> tails_;
+};
 
 }  // namespace
 
@@ -337,9 +400,11 @@ void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<Ra
       for (uint32_t k : members) traceAlone(k);
       return;
     }
-    candidates.gather(bvh_, cone);
-    for (uint32_t k : members)
-      if (!traceInBundle(bvh_, candidates, rays[k], hitBufferCapacity_, &results[k])) traceAlone(k);
+    thread_local BundleStreams streams;
+    thread_local std::vector<uint32_t> overflowed;
+    overflowed.clear();
+    streams.trace(bvh_, candidates, cone, rays, members, hitBufferCapacity_, results, &overflowed);
+    for (uint32_t k : overflowed) traceAlone(k);
   });
   parallelFor(int64_t(alone.size()), 64, [&](int64_t k) { traceAlone(alone[size_t(k)]); });
 }

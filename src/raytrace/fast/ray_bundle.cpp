@@ -1,6 +1,7 @@
 #include "raytrace/fast/ray_bundle.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -70,49 +71,109 @@ bool sphereMeetsCone(const Vec3f& center, float radius, const RayCone& cone) {
   return perp * cone.cosAngle - along * cone.sinAngle <= radius;
 }
 
-void BundleCandidates::gather(const Bvh8& bvh, const RayCone& cone) {
+namespace {
+
+// The lanes of a leaf block whose proxy's bounding sphere meets the cone (sphereMeetsCone
+// on all 8 at once, in a form the compiler vectorises), as a bit mask; *distance receives
+// each centre's distance from the apex.
+uint32_t lanesMeetingCone(const Bvh8Block& block, const RayCone& cone, float* distance) {
+  uint32_t mask = 0;
+  for (int i = 0; i < kBvhWidth; ++i) {
+    float vx = block.mean[0][i] - cone.apex.x, vy = block.mean[1][i] - cone.apex.y, vz = block.mean[2][i] - cone.apex.z;
+    float r = block.boundRadius[i];
+    float d2 = vx * vx + vy * vy + vz * vz;
+    float along = vx * cone.axis.x + vy * cone.axis.y + vz * cone.axis.z;
+    float cx = vy * cone.axis.z - vz * cone.axis.y, cy = vz * cone.axis.x - vx * cone.axis.z,
+          cz = vx * cone.axis.y - vy * cone.axis.x;
+    float perp = std::sqrt(cx * cx + cy * cy + cz * cz);
+    bool meets = d2 <= r * r || (along * cone.cosAngle + perp * cone.sinAngle >= 0.0f &&
+                                 perp * cone.cosAngle - along * cone.sinAngle <= r);
+    bool proxy = block.radius2[i] >= 0.0f;  // false for a lane without a Gaussian
+    distance[i] = std::sqrt(d2);
+    mask |= uint32_t(meets && proxy) << i;
+  }
+  return mask;
+}
+
+}  // namespace
+
+void BundleCandidates::start(const Bvh8& bvh, const RayCone& cone) {
+  bvh_ = &bvh;
+  cone_ = cone;
   candidates_.clear();
   blocks_.clear();
+  groups_.clear();
   blockBound_.clear();
-  if (bvh.empty()) return;
+  pending_.clear();
+  if (!bvh.empty()) pending_.push_back({cone.tMin, 0});
+  frontier_ = pending_.empty() ? std::numeric_limits<float>::infinity() : cone.tMin;
+}
 
-  // Every subtree whose box's bounding sphere meets the cone, depth first.
-  stack_.clear();
-  stack_.push_back(0);
-  while (!stack_.empty()) {
-    int32_t code = stack_.back();
-    stack_.pop_back();
-    if (Bvh8Node::isLeaf(code)) {
-      uint32_t first = Bvh8Node::leafFirstBlock(code);
-      for (int b = 0; b < Bvh8Node::leafBlocks(code); ++b) {
-        const Bvh8Block& block = bvh.blocks()[first + uint32_t(b)];
-        for (int lane = 0; lane < kBvhWidth; ++lane) {
-          if (!(block.radius2[lane] >= 0.0f)) continue;  // a lane without a proxy
-          Vec3f mean(block.mean[0][lane], block.mean[1][lane], block.mean[2][lane]);
-          float radius = block.boundRadius[lane];
-          if (!sphereMeetsCone(mean, radius, cone)) continue;
-          // Every point of the proxy is at least |mean - apex| - radius from the apex, so
-          // no ray of the cone enters it (and its key) before that.
-          float distance = length(mean - cone.apex);
-          float bound = distance - radius - kRelativeMargin * (distance + radius);
-          candidates_.push_back({0, std::max(bound, cone.tMin), first + uint32_t(b), uint32_t(lane)});
-        }
-      }
-      continue;
-    }
-    const Bvh8Node& node = bvh.nodes()[code];
-    for (int c = 0; c < kBvhWidth; ++c) {
-      if (node.child[c] == Bvh8Node::kNoChild) continue;
-      Vec3f lower(node.bounds[0][c], node.bounds[2][c], node.bounds[4][c]);
-      Vec3f upper(node.bounds[1][c], node.bounds[3][c], node.bounds[5][c]);
-      if (!(lower.x <= upper.x && lower.y <= upper.y && lower.z <= upper.z)) continue;  // emptied by refit
-      Vec3f center = (lower + upper) * 0.5f;
-      float radius = 0.5f * length(upper - lower);
-      radius += kRelativeMargin * (radius + std::abs(center.x) + std::abs(center.y) + std::abs(center.z));
-      if (sphereMeetsCone(center, radius, cone)) stack_.push_back(node.child[c]);
+void BundleCandidates::gather(const Bvh8& bvh, const RayCone& cone) {
+  start(bvh, cone);
+  next(std::numeric_limits<size_t>::max());
+}
+
+bool BundleCandidates::next(size_t minCandidates) {
+  candidates_.clear();
+  // Subtrees nearest first; their bounds only grow along the walk, so when the chunk is
+  // full the heap's top bounds everything not yet gathered.
+  while (!pending_.empty() && candidates_.size() < minCandidates) {
+    std::pop_heap(pending_.begin(), pending_.end());
+    Subtree s = pending_.back();
+    pending_.pop_back();
+    if (Bvh8Node::isLeaf(s.code))
+      collectLeaf(s.code);
+    else
+      pushChildren(bvh_->nodes()[s.code], s.bound);
+  }
+  frontier_ = pending_.empty() ? std::numeric_limits<float>::infinity() : pending_.front().bound;
+  arrange();
+  return !candidates_.empty();
+}
+
+void BundleCandidates::collectLeaf(int32_t code) {
+  uint32_t first = Bvh8Node::leafFirstBlock(code);
+  for (int b = 0; b < Bvh8Node::leafBlocks(code); ++b) {
+    const Bvh8Block& block = bvh_->blocks()[first + uint32_t(b)];
+    alignas(32) float distance[kBvhWidth];
+    for (uint32_t mask = lanesMeetingCone(block, cone_, distance); mask; mask &= mask - 1) {
+      int lane = std::countr_zero(mask);
+      // Every point of the proxy is at least |mean - apex| - radius from the apex, so no
+      // ray of the cone enters it (and its key) before that.
+      float radius = block.boundRadius[lane];
+      float bound = distance[lane] - radius - kRelativeMargin * (distance[lane] + radius);
+      candidates_.push_back({0, std::max(bound, cone_.tMin), first + uint32_t(b), uint32_t(lane)});
     }
   }
+}
 
+void BundleCandidates::pushChildren(const Bvh8Node& node, float parentBound) {
+  for (int c = 0; c < kBvhWidth; ++c) {
+    if (node.child[c] == Bvh8Node::kNoChild) continue;
+    Vec3f lower(node.bounds[0][c], node.bounds[2][c], node.bounds[4][c]);
+    Vec3f upper(node.bounds[1][c], node.bounds[3][c], node.bounds[5][c]);
+    if (!(lower.x <= upper.x && lower.y <= upper.y && lower.z <= upper.z)) continue;  // emptied by refit
+    Vec3f center = (lower + upper) * 0.5f;
+    float radius = 0.5f * length(upper - lower);
+    radius += kRelativeMargin * (radius + std::abs(center.x) + std::abs(center.y) + std::abs(center.z));
+    if (!sphereMeetsCone(center, radius, cone_)) continue;
+    // The box's bounding sphere holds every proxy of the subtree (each lies in the box).
+    // So does the parent's, which need not hold the child's sphere: the larger bound is
+    // kept, so bounds never drop along the walk and the heap's top bounds all the rest.
+    float distance = length(center - cone_.apex);
+    float bound = distance - radius - kRelativeMargin * (distance + radius);
+    pending_.push_back({std::max(bound, parentBound), node.child[c]});
+    std::push_heap(pending_.begin(), pending_.end());
+  }
+}
+
+void BundleCandidates::arrange() {
+  const Bvh8& bvh = *bvh_;
+  const RayCone& cone = cone_;
+  blocks_.clear();
+  groups_.clear();
+  blockBound_.clear();
   // Order: slabs of depth holding about kSlabCandidates each, and across the cone within
   // a slab (Morton order of the mean's gnomonic projection), so that the 8 Gaussians of
   // a block lie close together and most rays miss the block's box.
@@ -180,6 +241,7 @@ void BundleCandidates::gather(const Bvh8& bvh, const RayCone& cone) {
     group.child[slot] = int32_t(k);
     blockBound_[k] = blockMin;
   }
+  blockBound_[blockCount - 1] = std::min(blockBound_[blockCount - 1], frontier_);
   for (size_t k = blockCount - 1; k-- > 0;) blockBound_[k] = std::min(blockBound_[k], blockBound_[k + 1]);
 }
 

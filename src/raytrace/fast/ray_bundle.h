@@ -36,13 +36,21 @@ bool boundingCone(std::span<const TraceRay> rays, std::span<const uint32_t> orde
 bool sphereMeetsCone(const Vec3f& center, float radius, const RayCone& cone);
 
 // The candidate Gaussians of one bundle, as leaf blocks in the BVH's layout (copied lanes,
-// so the per-ray kernel is the BVH's own). Blocks run front to back in slabs of depth;
-// within a slab they are ordered across the cone, so each block is compact and a ray
-// skips most of them with one box test: 8 blocks' boxes form a group, tested at once
-// like the children of a BVH node.
+// so the per-ray kernel is the BVH's own). They are gathered lazily, front to back, in
+// chunks: the BVH is walked nearest bounding sphere first, and a chunk ends once it holds
+// enough candidates, so a bundle whose rays all terminate early never gathers what lies
+// behind. Within a chunk, blocks run front to back in slabs of depth and are ordered
+// across the cone within a slab, so each block is compact and a ray skips most of them
+// with one box test: 8 blocks' boxes form a group, tested at once like the children of a
+// BVH node.
 class BundleCandidates {
  public:
-  // Collects every Gaussian whose proxy's bounding sphere meets the cone.
+  // Starts a front-to-back walk of the BVH for the cone; the first chunk is empty.
+  void start(const Bvh8& bvh, const RayCone& cone);
+  // Replaces the chunk with the next one: at least minCandidates Gaussians (fewer only at
+  // the end) whose proxy's bounding sphere meets the cone. False when nothing is left.
+  bool next(size_t minCandidates);
+  // Every candidate at once: start, then one chunk holding them all.
   void gather(const Bvh8& bvh, const RayCone& cone);
 
   int blockCount() const { return int(blocks_.size()); }
@@ -51,10 +59,12 @@ class BundleCandidates {
   // g * kBvhWidth + c (empty lanes have inverted boxes).
   int groupCount() const { return int(groups_.size()); }
   const Bvh8Node& group(int g) const { return groups_[size_t(g)]; }
-  // No Gaussian of block k or of a later block gives any of the bundle's rays a key below
-  // this (the suffix minimum of the candidates' bounds; exact order does not depend on
-  // how well the blocks are sorted, only the work does).
+  // No Gaussian of block k, of a later block or of a later chunk gives any of the bundle's
+  // rays a key below this (exact order does not depend on how well the blocks are sorted,
+  // only the work does).
   float blockBound(int k) const { return blockBound_[size_t(k)]; }
+  // No Gaussian of a later chunk gives a key below this (+infinity after the last chunk).
+  float frontier() const { return frontier_; }
   size_t candidates() const { return candidates_.size(); }
 
  private:
@@ -63,8 +73,20 @@ class BundleCandidates {
     float bound;     // lower bound of the key
     uint32_t block, lane;  // where its data lies in the BVH
   };
+  struct Subtree {
+    float bound;  // lower bound of the key of anything in it
+    int32_t code;
+    bool operator<(const Subtree& b) const { return bound > b.bound; }  // std heap: nearest on top
+  };
+  void collectLeaf(int32_t code);
+  void pushChildren(const Bvh8Node& node, float parentBound);
+  void arrange();
+
+  const Bvh8* bvh_ = nullptr;
+  RayCone cone_;
+  std::vector<Subtree> pending_;
+  float frontier_ = 0.0f;
   std::vector<Candidate> candidates_;
-  std::vector<int32_t> stack_;
   std::vector<Bvh8Block> blocks_;
   std::vector<Bvh8Node> groups_;
   std::vector<float> blockBound_;
