@@ -143,7 +143,7 @@ void BundleCandidates::collectLeaf(int32_t code) {
       // ray of the cone enters it (and its key) before that.
       float radius = block.boundRadius[lane];
       float bound = distance[lane] - radius - kRelativeMargin * (distance[lane] + radius);
-      candidates_.push_back({0, std::max(bound, cone_.tMin), first + uint32_t(b), uint32_t(lane)});
+      candidates_.push_back({std::max(bound, cone_.tMin), first + uint32_t(b), uint32_t(lane)});
     }
   }
 }
@@ -170,37 +170,16 @@ void BundleCandidates::pushChildren(const Bvh8Node& node, float parentBound) {
 
 void BundleCandidates::arrange() {
   const Bvh8& bvh = *bvh_;
-  const RayCone& cone = cone_;
   blocks_.clear();
   groups_.clear();
   blockBound_.clear();
-  // Order: slabs of depth holding about kSlabCandidates each, and across the cone within
-  // a slab (Morton order of the mean's gnomonic projection), so that the 8 Gaussians of
-  // a block lie close together and most rays miss the block's box.
-  constexpr size_t kSlabCandidates = 64;
+  // Blocks take the candidates in the order of the walk, which visits leaves nearest
+  // first: a leaf's Gaussians lie close together (the SAH builder made it), so blocks are
+  // compact and most rays miss most of their boxes. Sorting them by depth slab and then
+  // across the cone (Morton order) measured 10-20% slower at 500k Gaussians: the sort
+  // cost more than the tighter blocks saved.
   size_t n = candidates_.size();
   if (n == 0) return;
-  float nearest = std::numeric_limits<float>::infinity(), farthest = -nearest;
-  for (const Candidate& c : candidates_) nearest = std::min(nearest, c.bound), farthest = std::max(farthest, c.bound);
-  const float slabs = float((n + kSlabCandidates - 1) / kSlabCandidates);
-  const float slabScale = farthest > nearest ? slabs / (farthest - nearest) : 0.0f;
-  Vec3f helper = std::abs(cone.axis.x) < 0.9f ? Vec3f(1, 0, 0) : Vec3f(0, 1, 0);
-  Vec3f e1 = normalize(cross(helper, cone.axis)), e2 = cross(cone.axis, e1);
-  // The cone's cross-section at unit distance spans +-tan(angle); a margin for Gaussians
-  // that reach in from outside it.
-  float span = 4.0f * cone.sinAngle / std::max(cone.cosAngle, 0.1f) + 1e-6f;
-  for (Candidate& c : candidates_) {
-    const Bvh8Block& block = bvh.blocks()[c.block];
-    Vec3f v = Vec3f(block.mean[0][c.lane], block.mean[1][c.lane], block.mean[2][c.lane]) - cone.apex;
-    float along = std::max(dot(v, cone.axis), 1e-6f);
-    auto quantise = [&](float x) { return uint32_t(std::clamp((x / along / span + 0.5f), 0.0f, 1.0f) * 65535.0f); };
-    uint32_t morton = spreadBits(quantise(dot(v, e1))) | (spreadBits(quantise(dot(v, e2))) << 1);
-    uint64_t slab = uint64_t(std::min((c.bound - nearest) * slabScale, slabs - 1.0f));
-    c.order = slab << 32 | morton;
-  }
-  std::sort(candidates_.begin(), candidates_.end(), [](const Candidate& a, const Candidate& b) {
-    return a.order < b.order;
-  });
 
   size_t blockCount = (n + kBvhWidth - 1) / kBvhWidth;
   blocks_.resize(blockCount);

@@ -39,10 +39,9 @@ bool sphereMeetsCone(const Vec3f& center, float radius, const RayCone& cone);
 // so the per-ray kernel is the BVH's own). They are gathered lazily, front to back, in
 // chunks: the BVH is walked nearest bounding sphere first, and a chunk ends once it holds
 // enough candidates, so a bundle whose rays all terminate early never gathers what lies
-// behind. Within a chunk, blocks run front to back in slabs of depth and are ordered
-// across the cone within a slab, so each block is compact and a ray skips most of them
-// with one box test: 8 blocks' boxes form a group, tested at once like the children of a
-// BVH node.
+// behind. Within a chunk, blocks follow the walk (leaf by leaf, nearest first), so each
+// block is compact and a ray skips most of them with one box test: 8 blocks' boxes form
+// a group, tested at once like the children of a BVH node.
 class BundleCandidates {
  public:
   // Starts a front-to-back walk of the BVH for the cone; the first chunk is empty.
@@ -69,8 +68,7 @@ class BundleCandidates {
 
  private:
   struct Candidate {
-    uint64_t order;  // depth slab, then Morton code across the cone
-    float bound;     // lower bound of the key
+    float bound;           // lower bound of the key
     uint32_t block, lane;  // where its data lies in the BVH
   };
   struct Subtree {
