@@ -37,8 +37,7 @@ StepLearningRates learningRatesAt(const LearningRates& lr, float extent, int64_t
   double position = lr.positionInit > 0 && lr.positionFinal > 0
                         ? std::exp((1 - t) * std::log(double(lr.positionInit)) + t * std::log(double(lr.positionFinal)))
                         : double(lr.positionInit) * (1 - t) + double(lr.positionFinal) * t;
-  return {float(position * extent), lr.rotation, lr.scale,    lr.opacity, lr.diffuse,
-          lr.normal,                lr.roughness, lr.f0,     lr.diffuseRelativeAbove};
+  return {float(position * extent), lr.rotation, lr.scale, lr.opacity, lr.diffuse, lr.normal, lr.roughness, lr.f0};
 }
 
 void AdamOptimizer::reset(size_t n) {
@@ -57,9 +56,7 @@ void AdamOptimizer::step(GaussianScene* scene, const GaussianGradients& g, const
   const double c1 = 1.0 - std::pow(double(b1), double(step_));
   const double c2 = 1.0 - std::pow(double(b2), double(step_));
   const float invSqrtC2 = float(1.0 / std::sqrt(c2));
-  // relativeAbove > 0: values above it step in proportion to their size.
-  auto group = [&](auto& param, const auto& grad, auto& m, auto& v, float lr, size_t begin, size_t end,
-                   float relativeAbove = 0.0f) {
+  auto group = [&](auto& param, const auto& grad, auto& m, auto& v, float lr, size_t begin, size_t end) {
     const float stepSize = float(lr / c1);
     for (size_t i = begin; i < end; ++i) {
       for (int k = 0; k < componentCount(param[i]); ++k) {
@@ -68,9 +65,7 @@ void AdamOptimizer::step(GaussianScene* scene, const GaussianGradients& g, const
         float& vk = component(v[i], k);
         mk = b1 * mk + (1 - b1) * gk;
         vk = b2 * vk + (1 - b2) * gk * gk;
-        float& p = component(param[i], k);
-        float scale = relativeAbove > 0.0f ? std::max(1.0f, p / relativeAbove) : 1.0f;
-        p -= scale * stepSize * mk / (std::sqrt(vk) * invSqrtC2 + eps);
+        component(param[i], k) -= stepSize * mk / (std::sqrt(vk) * invSqrtC2 + eps);
       }
     }
   };
@@ -80,7 +75,7 @@ void AdamOptimizer::step(GaussianScene* scene, const GaussianGradients& g, const
     group(scene->rotation, g.rotation, m_.rotation, v_.rotation, r.rotation, begin, end);
     group(scene->logScale, g.logScale, m_.logScale, v_.logScale, r.scale, begin, end);
     group(scene->opacityLogit, g.opacityLogit, m_.opacityLogit, v_.opacityLogit, r.opacity, begin, end);
-    group(scene->diffuse, g.diffuse, m_.diffuse, v_.diffuse, r.diffuse, begin, end, r.diffuseRelativeAbove);
+    group(scene->diffuse, g.diffuse, m_.diffuse, v_.diffuse, r.diffuse, begin, end);
     group(scene->normal, g.normal, m_.normal, v_.normal, r.normal, begin, end);
     group(scene->roughness, g.roughness, m_.roughness, v_.roughness, r.roughness, begin, end);
     group(scene->f0, g.f0, m_.f0, v_.f0, r.f0, begin, end);

@@ -14,7 +14,6 @@ namespace glint {
 // Learning rates of one step.
 struct StepLearningRates {
   float position, rotation, scale, opacity, diffuse, normal, roughness, f0;
-  float diffuseRelativeAbove = 0.0f;  // LearningRates::diffuseRelativeAbove
 };
 
 // The position rate at a step: log-linear from init to final x extent over decaySteps

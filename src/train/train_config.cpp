@@ -3,7 +3,6 @@
 #include "train/train_config.h"
 
 #include <array>
-#include <cmath>
 #include <set>
 #include <stdexcept>
 
@@ -69,7 +68,6 @@ void forEachField(Config& c, F&& f) {
   f("lr", "scale", c.lr.scale);
   f("lr", "opacity", c.lr.opacity);
   f("lr", "diffuse", c.lr.diffuse);
-  f("lr", "diffuse_relative_above", c.lr.diffuseRelativeAbove);
   f("lr", "normal", c.lr.normal);
   f("lr", "roughness", c.lr.roughness);
   f("lr", "f0", c.lr.f0);
@@ -193,8 +191,6 @@ void TrainConfig::validate(const std::string& source) const {
   for (float r : {lr.positionInit, lr.positionFinal, lr.rotation, lr.scale, lr.opacity, lr.diffuse, lr.normal,
                   lr.roughness, lr.f0})
     require(r >= 0 && r < 10, source, "learning rates must be in [0, 10)");
-  require(std::isfinite(lr.diffuseRelativeAbove) && lr.diffuseRelativeAbove >= 0, source,
-          "lr.diffuse_relative_above must be a non-negative number (0 = off)");
   positive(lr.positionDecaySteps, "lr.position_decay_steps");
   require(lr.positionFinal <= lr.positionInit, source, "lr.position_final must not exceed lr.position_init");
   require(adam.beta1 >= 0 && adam.beta1 < 1 && adam.beta2 >= 0 && adam.beta2 < 1, source,

@@ -36,11 +36,6 @@ struct LearningRates {
   float scale = 5e-3f;
   float opacity = 2.5e-2f;
   float diffuse = 5e-3f;
-  // Above this value a diffuse colour channel steps in proportion to its value (a relative
-  // step, as if learnt in log space); 0 keeps every step absolute. The colour holds
-  // radiance: a light of 11 seen only in reflections would need over 2,000 absolute steps
-  // of 0.005 to build up, and training ends with a few huge blurred Gaussians for it.
-  float diffuseRelativeAbove = 0.0f;
   float normal = 2.5e-3f;
   float roughness = 2.5e-3f;
   float f0 = 2.5e-3f;

@@ -176,8 +176,8 @@ void BundleCandidates::arrange() {
   // Blocks take the candidates in the order of the walk, which visits leaves nearest
   // first: a leaf's Gaussians lie close together (the SAH builder made it), so blocks are
   // compact and most rays miss most of their boxes. Sorting them by depth slab and then
-  // across the cone (Morton order) measured 10-20% slower at 500k Gaussians: the sort
-  // cost more than the tighter blocks saved.
+  // across the cone (Morton order) made tighter blocks but cost more than they saved:
+  // without the sort, bundles traced 7-30% more rays per CPU-second at 500k Gaussians.
   size_t n = candidates_.size();
   if (n == 0) return;
 
