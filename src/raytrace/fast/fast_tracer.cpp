@@ -254,11 +254,14 @@ class BundleStreams {
     if (buffers_.size() < n) buffers_.resize(n, FastHitBuffer(capacity));
     compositors_.clear();
     compositors_.reserve(n);
+    rays_.clear();
+    rays_.reserve(n);
     states_.assign(n, Streaming);
     tails_.assign(n, false);
     for (size_t k = 0; k < n; ++k) {
       const TraceRay& ray = rays[members[k]];
       buffers_[k].reset(capacity);
+      rays_.emplace_back(ray);  // the tests' per-ray constants, once for all chunks
       compositors_.emplace_back(*bvh.scene(), settings, nullptr);
       if (ray.backfaceSkip > 0) compositors_[k].skipBackfacing(ray.direction, ray.backfaceSkip);
     }
@@ -270,7 +273,7 @@ class BundleStreams {
     for (size_t chunk = kFirstChunk; streaming > 0 && candidates.next(chunk); chunk *= 2) {
       for (size_t k = 0; k < n; ++k) {
         if (states_[k] != Streaming) continue;
-        State s = streamChunk(bvh, candidates, Bvh8Ray(rays[members[k]]), lanes, k);
+        State s = streamChunk(bvh, candidates, lanes, k);
         if (s == Streaming) continue;
         states_[k] = s;
         --streaming;
@@ -291,9 +294,9 @@ class BundleStreams {
   static constexpr size_t kFirstChunk = 256;
 
   // Streams ray k through the current chunk; returns its state after it.
-  State streamChunk(const Bvh8& bvh, const BundleCandidates& candidates, const Bvh8Ray& r, const LaneHits& lanes,
-                    size_t k) {
+  State streamChunk(const Bvh8& bvh, const BundleCandidates& candidates, const LaneHits& lanes, size_t k) {
     const TraceSettings& settings = bvh.settings();
+    const Bvh8Ray& r = rays_[k];
     FastHitBuffer& buffer = buffers_[k];
     Compositor<double>& compositor = compositors_[k];
     bool tail = tails_[k];
@@ -334,6 +337,7 @@ class BundleStreams {
   }
 
   std::vector<FastHitBuffer> buffers_;
+  std::vector<Bvh8Ray> rays_;
   std::vector<Compositor<double>> compositors_;
   std::vector<State> states_;
   std::vector<bool> tails_;
