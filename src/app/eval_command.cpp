@@ -24,6 +24,7 @@
 #include "eval/region_metrics.h"
 #include "eval/view_metrics.h"
 #include "raytrace/gaussian_tracer.h"
+#include "render/denoise.h"
 #include "render/gaussian_renderer.h"
 #include "scene/dataset.h"
 
@@ -42,6 +43,7 @@ struct EvalOptions {
   uint64_t seed = 0;
   int threads = 0;
   bool saveImages = false;
+  std::string denoise = "none";
   std::string region;
   TraceFlags trace;
   EditsFlag edits;
@@ -92,6 +94,23 @@ void printRegionTable(const DatasetSplit& split, const std::vector<RegionMetrics
   row("pooled over views", pooled);
 }
 
+// With --denoise, the passes are scored after the a-trous filter (render/denoise.h), as the
+// paper scores its renders after the OptiX denoiser. "final" filters the render buffer
+// only (the paper's choice); "specular" filters the specular buffer and makes the render
+// the unfiltered diffuse plus it, so that specular and final are both scored denoised.
+void denoisePasses(const std::string& target, ViewBuffers& rendered) {
+  if (target == "none") return;
+  DenoiseSettings settings;
+  settings.target = target == "final" ? DenoiseTarget::Render : DenoiseTarget::Specular;
+  Image filtered = denoiseView(rendered, settings);
+  if (target == "specular") {
+    Image& specular = rendered[Buffer::Specular];
+    const Image& diffuse = rendered[Buffer::Diffuse];
+    for (size_t i = 0; i < specular.pixels.size(); ++i) specular.pixels[i] = filtered.pixels[i] - diffuse.pixels[i];
+  }
+  rendered[Buffer::Render] = std::move(filtered);
+}
+
 void runEval(const EvalOptions& o) {
   ThreadLimit threads(o.threads);
   std::optional<WorldBox> region;
@@ -138,6 +157,7 @@ void runEval(const EvalOptions& o) {
         ViewBuffers gbuffers = renderGaussianView(*tracer, split.camera(v), centre, uint64_t(v));
         for (Buffer b : {Buffer::Depth, Buffer::Normal, Buffer::Roughness, Buffer::F0}) rendered[b] = gbuffers[b];
       }
+      denoisePasses(o.denoise, rendered);
       ViewBuffers truth = dataset.loadView(split, v);
       views[v] = evaluateView(rendered, truth);
       if (region)
@@ -157,6 +177,7 @@ void runEval(const EvalOptions& o) {
       {"width", split.width},
       {"height", split.height},
       {"spp", o.spp},
+      {"denoise", o.denoise},
       {"tracer", tracer->name()},
       {"trace",
        {{"kernel_power", trace.kernelPower},
@@ -217,6 +238,12 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_option("--region", o->region,
                   "X0,Y0,Z0,X1,Y1,Z1: also score the pixels whose true surface point lies in this world-space box "
                   "(diffuse and final PSNR per view and pooled), e.g. one object's reconstruction");
+  cmd->add_option("--denoise", o->denoise,
+                  "Score the passes after the a-trous denoiser (guided by the diffuse, normal and depth buffers), "
+                  "as the paper scores its renders after the OptiX denoiser: none; final (filter the render buffer "
+                  "only, as the paper); specular (filter the specular buffer, render = diffuse + filtered specular)")
+      ->check(CLI::IsMember({"none", "final", "specular"}))
+      ->capture_default_str();
   o->trace.add(cmd);
   o->edits.add(cmd);
   cmd->add_flag("--save-images", o->saveImages,

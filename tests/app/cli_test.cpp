@@ -18,6 +18,7 @@
 
 #include "app/run_glint.h"
 #include "app/small_cloud.h"
+#include "io/image.h"
 #include "scene/gaussian_ply.h"
 #include "synth/gltf_test_files.h"
 
@@ -284,6 +285,30 @@ TEST_F(CliTest, EvalWritesMetricsForAPlyAndForATrainingRun) {
   expectFiniteMetrics(metrics["mean"]);
   for (const char* buffer : {"render", "diffuse", "depth", "normal"})
     EXPECT_TRUE(fs::exists(root_ / "run" / "eval" / "test" / buffer / (std::string(buffer) + "_0001.exr"))) << buffer;
+
+  // --denoise specular scores the filtered specular pass, and the render it scores is the
+  // unfiltered diffuse plus it.
+  Outcome denoised = runGlint("eval " + path("run") + " --spp 4 --denoise specular --save-images -o " + path("dn.json"));
+  ASSERT_EQ(denoised.status, 0) << denoised.output;
+  EXPECT_EQ(readJson(root_ / "dn.json")["denoise"], "specular");
+  fs::path images = root_ / "test";
+  glint::Image final = glint::readImage(images / "render" / "render_0001.exr");
+  glint::Image diffuse = glint::readImage(images / "diffuse" / "diffuse_0001.exr");
+  glint::Image specular = glint::readImage(images / "specular" / "specular_0001.exr");
+  ASSERT_EQ(final.pixels.size(), diffuse.pixels.size());
+  ASSERT_EQ(final.pixels.size(), specular.pixels.size());
+  for (size_t i = 0; i < final.pixels.size(); ++i)
+    ASSERT_NEAR(final.pixels[i], diffuse.pixels[i] + specular.pixels[i], 1e-5f * (1.0f + final.pixels[i])) << i;
+  // The filter changed the specular pass: the same render without it differs.
+  Outcome raw = runGlint("eval " + path("run") + " --spp 4 --save-images -o " + path("raw/m.json"));
+  ASSERT_EQ(raw.status, 0) << raw.output;
+  glint::Image rawSpecular = glint::readImage(root_ / "raw" / "test" / "specular" / "specular_0001.exr");
+  double change = 0.0;
+  for (size_t i = 0; i < specular.pixels.size(); ++i) change += std::abs(specular.pixels[i] - rawSpecular.pixels[i]);
+  EXPECT_GT(change, 1e-3);
+  Outcome badDenoise = runGlint("eval " + path("run") + " --denoise everything -o " + path("dn2.json"));
+  EXPECT_NE(badDenoise.status, 0);
+  EXPECT_NE(badDenoise.output.find("--denoise"), std::string::npos) << badDenoise.output;
 
   // glint render takes the same run folder, without --dataset.
   Outcome render = runGlint("render " + path("run") + " -o " + path("R"));
