@@ -293,6 +293,14 @@ TEST(FastTracer, LaneDataMatchesTheKernelFrameAndBoxesHoldTheProxies) {
   EXPECT_FALSE(computeGaussianLane(scene, 2, settings, &lane, &box));
 }
 
+// Lane i of a and lane j of b hold the same proxy test results, bit for bit.
+void expectSameLane(const Bvh8BlockCandidates& a, int i, const Bvh8BlockCandidates& b, int j) {
+  ASSERT_EQ(a.tPeak[i], b.tPeak[j]);
+  ASSERT_EQ(a.half[i], b.half[j]);
+  ASSERT_EQ(a.r2[i], b.r2[j]);
+  for (int k = 0; k < 3; ++k) ASSERT_EQ(a.localPoint[k][i], b.localPoint[k][j]);
+}
+
 #ifdef __AVX2__
 TEST(FastTracer, Avx2TestsAreBitIdenticalToTheScalarOnes) {
   GaussianScene scene = randomScene(4000, 71);
@@ -323,16 +331,63 @@ TEST(FastTracer, Avx2TestsAreBitIdenticalToTheScalarOnes) {
       for (int i = 0; i < kBvhWidth; ++i) {
         if (!(ma & (1u << i))) continue;
         ++leafHits;
-        ASSERT_EQ(a.tPeak[i], b.tPeak[i]);
-        ASSERT_EQ(a.half[i], b.half[i]);
-        ASSERT_EQ(a.r2[i], b.r2[i]);
-        for (int k = 0; k < 3; ++k) ASSERT_EQ(a.localPoint[k][i], b.localPoint[k][i]);
+        expectSameLane(a, i, b, i);
       }
     }
   }
   EXPECT_GT(leafHits, 1000);
 }
 #endif
+
+// A Gaussian tested against a packet of 8 rays gives each ray, bit for bit, what the ray
+// gets testing the Gaussian's block (with AVX2 too: both against the scalar tests).
+TEST(FastTracer, PacketTestsAgreeWithBlockTestsBitForBit) {
+  GaussianScene scene = randomScene(4000, 73);
+  TraceSettings settings;
+  FastGaussianTracer tracer;
+  tracer.build(scene, settings);
+  const Bvh8& bvh = tracer.bvh();
+  std::vector<TraceRay> rays = randomRays(160, 74);
+  int hits = 0;
+  for (size_t first = 0; first + kBvhWidth <= rays.size(); first += kBvhWidth) {
+    // The packet's rays share the first one's origin; some have zero direction components.
+    RayPacket packet;
+    std::vector<Bvh8Ray> alone;
+    for (int i = 0; i < kBvhWidth; ++i) {
+      TraceRay ray = rays[first + size_t(i)];
+      ray.origin = rays[first].origin;
+      if (i == 7) ray.direction = {0, 0, 1};
+      ray.tMin = i == 3 ? 0.5f : 0.0f;
+      alone.emplace_back(ray);
+      for (int a = 0; a < 3; ++a) packet.direction[a][i] = alone.back().direction[a];
+      packet.tMin[i] = ray.tMin;
+    }
+    for (size_t l = 0; l < bvh.stats().blocks; l += 5) {
+      const Bvh8Block& block = bvh.blocks()[l];
+      for (int g = 0; g < kBvhWidth; ++g) {
+        Bvh8BlockCandidates packetResult;
+        uint32_t packetMask = intersectPacketScalar(block, g, alone[0].origin, packet, &packetResult);
+#ifdef __AVX2__
+        Bvh8BlockCandidates avx2;
+        ASSERT_EQ(intersectPacketAvx2(block, g, alone[0].origin, packet, &avx2), packetMask);
+#endif
+        for (int i = 0; i < kBvhWidth; ++i) {
+          Bvh8BlockCandidates blockResult;
+          uint32_t blockMask = intersectBlockScalar(block, alone[size_t(i)], &blockResult);
+          bool passes = packetMask & (1u << i);
+          ASSERT_EQ(passes, bool(blockMask & (1u << g)));
+          if (!passes) continue;
+          ++hits;
+          expectSameLane(packetResult, i, blockResult, g);
+#ifdef __AVX2__
+          expectSameLane(avx2, i, packetResult, i);
+#endif
+        }
+      }
+    }
+  }
+  EXPECT_GT(hits, 300);
+}
 
 // Reflection rays' back-face skipping: the fast tracer matches the reference, and the skip
 // really removes hits (Gaussians whose normal points along the ray near the origin).

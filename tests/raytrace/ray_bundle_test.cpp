@@ -74,9 +74,9 @@ std::vector<std::pair<std::string, std::vector<TraceRay>>> cameraBatches() {
   return batches;
 }
 
-TEST(RayBundle, SphereConeTestNeverRejectsASphereARayOfTheConeMeets) {
+TEST(RayBundle, SphereConeTestsNeverRejectASphereARayOfTheConeMeets) {
   Rng rng(7);
-  int met = 0, rejected = 0;
+  int met = 0, rejected = 0, laneRejected = 0;
   for (int trial = 0; trial < 400; ++trial) {
     std::vector<TraceRay> rays;
     Vec3f apex(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
@@ -86,6 +86,15 @@ TEST(RayBundle, SphereConeTestNeverRejectsASphereARayOfTheConeMeets) {
     for (uint32_t k = 0; k < order.size(); ++k) order[k] = k;
     RayCone cone;
     ASSERT_TRUE(boundingCone(rays, order, &cone));
+    // The 8-lane form of the test, with the cone in one lane of a packet's cones.
+    const int lane = trial % kBvhWidth;
+    PacketCones lanes;
+    for (int l = 0; l < kBvhWidth; ++l) {
+      Vec3f other = l == lane ? cone.axis : randomDirection(rng);
+      for (int a = 0; a < 3; ++a) lanes.axis[a][l] = other[a];
+      lanes.cosAngle[l] = l == lane ? cone.cosAngle : 1.0f;
+      lanes.sinAngle[l] = l == lane ? cone.sinAngle : 0.0f;
+    }
     for (int s = 0; s < 200; ++s) {
       Vec3f center = apex + axis * uniform(rng, -1.0f, 4.0f) + randomDirection(rng) * uniform(rng, 0.0f, 0.5f);
       float radius = uniform(rng, 0.001f, 0.2f);
@@ -97,15 +106,19 @@ TEST(RayBundle, SphereConeTestNeverRejectsASphereARayOfTheConeMeets) {
         hit = hit || length(v - d * t) <= double(radius);
       }
       bool meets = sphereMeetsCone(center, radius, cone);
+      bool laneMeets = conesMeetingSphere(lanes, cone.apex, center, radius) & (1u << lane);
       if (hit) {
         ++met;
         EXPECT_TRUE(meets) << "trial " << trial << " sphere " << s;
+        EXPECT_TRUE(laneMeets) << "trial " << trial << " sphere " << s << " (8 lanes)";
       }
       if (!meets) ++rejected;
+      if (!laneMeets) ++laneRejected;
     }
   }
   EXPECT_GT(met, 1000);       // the test saw many spheres the rays meet
   EXPECT_GT(rejected, 10000);  // and the cone culls most of the others
+  EXPECT_GT(laneRejected, 10000);
 }
 
 TEST(RayBundle, BundledBatchesMatchRaysTracedAloneAndTheReference) {
@@ -123,13 +136,17 @@ TEST(RayBundle, BundledBatchesMatchRaysTracedAloneAndTheReference) {
       for (const auto& [name, rays] : cameraBatches()) {
         std::string what = name + " p=" + std::to_string(int(power)) + (exactTail ? " exact tail" : "");
         std::vector<RayResult> bundled(rays.size()), alone(rays.size()), oracle(rays.size());
-        tracer.setBundleRays(16);
-        tracer.traceBatch(rays, bundled);
         for (size_t i = 0; i < rays.size(); ++i) alone[i] = tracer.trace(rays[i]);
         for (size_t i = 0; i < rays.size(); ++i) oracle[i] = reference.trace(rays[i]);
-        // The same hits in the same order; only the exact tail multiplies in another order.
-        expectSameResults(bundled, alone, exactTail ? 1e-5f : 1e-6f, what + " (bundled vs alone)");
-        expectSameResults(bundled, oracle, 1e-4f, what + " (bundled vs reference)");
+        // 2 packets of 8 rays; 13 packets in 2 groups of cones, the last packet half full.
+        for (int bundleRays : {16, 100}) {
+          std::string bundle = what + ", bundles of " + std::to_string(bundleRays);
+          tracer.setBundleRays(bundleRays);
+          tracer.traceBatch(rays, bundled);
+          // The same hits in the same order; only the exact tail multiplies in another order.
+          expectSameResults(bundled, alone, exactTail ? 1e-5f : 1e-6f, bundle + " (bundled vs alone)");
+          expectSameResults(bundled, oracle, 1e-4f, bundle + " (bundled vs reference)");
+        }
       }
     }
   }

@@ -25,9 +25,8 @@ struct BufferedHit {
   float localPoint[3];
 
   HitOrder order() const { return {key, id}; }
-  KernelHit<double> kernelHit() const {
-    return {double(tPeak), double(tEnter), double(tExit), double(key), double(response), double(alpha),
-            Vec3d(localPoint[0], localPoint[1], localPoint[2])};
+  KernelHit<float> kernelHit() const {
+    return {tPeak, tEnter, tExit, key, response, alpha, Vec3f(localPoint[0], localPoint[1], localPoint[2])};
   }
 };
 

@@ -80,16 +80,10 @@ uint32_t lanesMeetingCone(const Bvh8Block& block, const RayCone& cone, float* di
   uint32_t mask = 0;
   for (int i = 0; i < kBvhWidth; ++i) {
     float vx = block.mean[0][i] - cone.apex.x, vy = block.mean[1][i] - cone.apex.y, vz = block.mean[2][i] - cone.apex.z;
-    float r = block.boundRadius[i];
-    float d2 = vx * vx + vy * vy + vz * vz;
-    float along = vx * cone.axis.x + vy * cone.axis.y + vz * cone.axis.z;
-    float cx = vy * cone.axis.z - vz * cone.axis.y, cy = vz * cone.axis.x - vx * cone.axis.z,
-          cz = vx * cone.axis.y - vy * cone.axis.x;
-    float perp = std::sqrt(cx * cx + cy * cy + cz * cz);
-    bool meets = d2 <= r * r || (along * cone.cosAngle + perp * cone.sinAngle >= 0.0f &&
-                                 perp * cone.cosAngle - along * cone.sinAngle <= r);
+    bool meets = sphereMeetsConeLane(vx, vy, vz, block.boundRadius[i], cone.axis.x, cone.axis.y, cone.axis.z,
+                                     cone.cosAngle, cone.sinAngle);
     bool proxy = block.radius2[i] >= 0.0f;  // false for a lane without a Gaussian
-    distance[i] = std::sqrt(d2);
+    distance[i] = std::sqrt(vx * vx + vy * vy + vz * vz);
     mask |= uint32_t(meets && proxy) << i;
   }
   return mask;
@@ -102,7 +96,6 @@ void BundleCandidates::start(const Bvh8& bvh, const RayCone& cone) {
   cone_ = cone;
   candidates_.clear();
   blocks_.clear();
-  groups_.clear();
   blockBound_.clear();
   pending_.clear();
   if (!bvh.empty()) pending_.push_back({cone.tMin, 0});
@@ -171,30 +164,20 @@ void BundleCandidates::pushChildren(const Bvh8Node& node, float parentBound) {
 void BundleCandidates::arrange() {
   const Bvh8& bvh = *bvh_;
   blocks_.clear();
-  groups_.clear();
   blockBound_.clear();
   // Blocks take the candidates in the order of the walk, which visits leaves nearest
-  // first: a leaf's Gaussians lie close together (the SAH builder made it), so blocks are
-  // compact and most rays miss most of their boxes. Sorting them by depth slab and then
-  // across the cone (Morton order) made tighter blocks but cost more than they saved:
-  // without the sort, bundles traced 7-30% more rays per CPU-second at 500k Gaussians.
+  // first, so the bounds rise from block to block and each ray's hits arrive nearly in key
+  // order. (A sort by depth slab and then across the cone, for compact blocks, cost more
+  // than it saved when rays were tested against blocks.)
   size_t n = candidates_.size();
   if (n == 0) return;
 
   size_t blockCount = (n + kBvhWidth - 1) / kBvhWidth;
   blocks_.resize(blockCount);
   blockBound_.resize(blockCount);
-  groups_.assign((blockCount + kBvhWidth - 1) / kBvhWidth, Bvh8Node{});
   constexpr float kInf = std::numeric_limits<float>::infinity();
-  for (Bvh8Node& g : groups_)
-    for (int c = 0; c < kBvhWidth; ++c) {
-      for (int a = 0; a < 3; ++a) g.bounds[2 * a][c] = kInf, g.bounds[2 * a + 1][c] = -kInf;
-      g.child[c] = Bvh8Node::kNoChild;
-    }
   for (size_t k = 0; k < blockCount; ++k) {
     Bvh8Block& out = blocks_[k];
-    Bvh8Node& group = groups_[k / kBvhWidth];
-    int slot = int(k % kBvhWidth);
     float blockMin = kInf;
     for (int lane = 0; lane < kBvhWidth; ++lane) {
       size_t c = k * kBvhWidth + size_t(lane);
@@ -211,13 +194,7 @@ void BundleCandidates::arrange() {
       out.boundRadius[lane] = in.boundRadius[from];
       out.id[lane] = in.id[from];
       blockMin = std::min(blockMin, candidates_[c].bound);
-      // The box of the proxy's bounding sphere (already padded for rounding).
-      for (int a = 0; a < 3; ++a) {
-        group.bounds[2 * a][slot] = std::min(group.bounds[2 * a][slot], in.mean[a][from] - in.boundRadius[from]);
-        group.bounds[2 * a + 1][slot] = std::max(group.bounds[2 * a + 1][slot], in.mean[a][from] + in.boundRadius[from]);
-      }
     }
-    group.child[slot] = int32_t(k);
     blockBound_[k] = blockMin;
   }
   blockBound_[blockCount - 1] = std::min(blockBound_[blockCount - 1], frontier_);

@@ -5,6 +5,7 @@
 // the per-ray traversal does. A tile rasteriser's per-tile lists, kept exact.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -35,13 +36,43 @@ bool boundingCone(std::span<const TraceRay> rays, std::span<const uint32_t> orde
 // conservative (false only when it certainly does not).
 bool sphereMeetsCone(const Vec3f& center, float radius, const RayCone& cone);
 
+// The sphere test of sphereMeetsCone for one lane, written so that loops over 8 lanes
+// (of spheres or of cones) vectorise: v = centre - apex, r the radius, (a, cosA, sinA) the
+// cone. It computes the cross product even when the apex lies in the sphere, which the
+// scalar test avoids.
+inline bool sphereMeetsConeLane(float vx, float vy, float vz, float r, float ax, float ay, float az, float cosA,
+                                float sinA) {
+  float d2 = vx * vx + vy * vy + vz * vz;
+  float along = vx * ax + vy * ay + vz * az;
+  float cx = vy * az - vz * ay, cy = vz * ax - vx * az, cz = vx * ay - vy * ax;
+  float perp = std::sqrt(cx * cx + cy * cy + cz * cz);
+  return d2 <= r * r || (along * cosA + perp * sinA >= 0.0f && perp * cosA - along * sinA <= r);
+}
+
+// The cones of up to 8 packets of 8 rays of one bundle (shared apex), one per lane, so that
+// a Gaussian's bounding sphere is tested against all 8 at once.
+struct alignas(32) PacketCones {
+  float axis[3][kBvhWidth];
+  float cosAngle[kBvhWidth];
+  float sinAngle[kBvhWidth];
+};
+
+// The lanes of `cones` (apex shared) whose cone the sphere (center, radius) may meet.
+inline uint32_t conesMeetingSphere(const PacketCones& cones, const Vec3f& apex, const Vec3f& center, float radius) {
+  const float vx = center.x - apex.x, vy = center.y - apex.y, vz = center.z - apex.z;
+  uint32_t mask = 0;
+  for (int i = 0; i < kBvhWidth; ++i)
+    mask |= uint32_t(sphereMeetsConeLane(vx, vy, vz, radius, cones.axis[0][i], cones.axis[1][i], cones.axis[2][i],
+                                         cones.cosAngle[i], cones.sinAngle[i]))
+            << i;
+  return mask;
+}
+
 // The candidate Gaussians of one bundle, as leaf blocks in the BVH's layout (copied lanes,
-// so the per-ray kernel is the BVH's own). They are gathered lazily, front to back, in
+// so the tracer's kernels are the BVH's own). They are gathered lazily, front to back, in
 // chunks: the BVH is walked nearest bounding sphere first, and a chunk ends once it holds
 // enough candidates, so a bundle whose rays all terminate early never gathers what lies
-// behind. Within a chunk, blocks follow the walk (leaf by leaf, nearest first), so each
-// block is compact and a ray skips most of them with one box test: 8 blocks' boxes form
-// a group, tested at once like the children of a BVH node.
+// behind. Within a chunk, blocks follow the walk (leaf by leaf, nearest first).
 class BundleCandidates {
  public:
   // Starts a front-to-back walk of the BVH for the cone; the first chunk is empty.
@@ -54,10 +85,6 @@ class BundleCandidates {
 
   int blockCount() const { return int(blocks_.size()); }
   const Bvh8Block& block(int k) const { return blocks_[size_t(k)]; }
-  // Groups of kBvhWidth consecutive blocks: lane c of group g holds the box of block
-  // g * kBvhWidth + c (empty lanes have inverted boxes).
-  int groupCount() const { return int(groups_.size()); }
-  const Bvh8Node& group(int g) const { return groups_[size_t(g)]; }
   // No Gaussian of block k, of a later block or of a later chunk gives any of the bundle's
   // rays a key below this (exact order does not depend on how well the blocks are sorted,
   // only the work does).
@@ -86,7 +113,6 @@ class BundleCandidates {
   float frontier_ = 0.0f;
   std::vector<Candidate> candidates_;
   std::vector<Bvh8Block> blocks_;
-  std::vector<Bvh8Node> groups_;
   std::vector<float> blockBound_;
 };
 
