@@ -57,20 +57,6 @@ bool boundingCone(std::span<const TraceRay> rays, std::span<const uint32_t> orde
   return true;
 }
 
-bool sphereMeetsCone(const Vec3f& center, float radius, const RayCone& cone) {
-  Vec3f v = center - cone.apex;
-  float d2 = dot(v, v);
-  if (d2 <= radius * radius) return true;  // the apex lies in the sphere
-  float along = dot(v, cone.axis);
-  float perp = length(cross(v, cone.axis));  // no cancellation for centres near the axis
-  // The nearest point of the cone's surface to the centre, in the plane of axis and centre,
-  // lies on the boundary ray (cos, sin); behind the apex it is the apex itself, farther
-  // than the radius.
-  if (along * cone.cosAngle + perp * cone.sinAngle < 0.0f) return false;
-  // Signed distance to the boundary ray: negative inside the cone.
-  return perp * cone.cosAngle - along * cone.sinAngle <= radius;
-}
-
 namespace {
 
 // The lanes of a leaf block whose proxy's bounding sphere meets the cone (sphereMeetsCone
@@ -85,6 +71,29 @@ uint32_t lanesMeetingCone(const Bvh8Block& block, const RayCone& cone, float* di
     bool proxy = block.radius2[i] >= 0.0f;  // false for a lane without a Gaussian
     distance[i] = std::sqrt(vx * vx + vy * vy + vz * vz);
     mask |= uint32_t(meets && proxy) << i;
+  }
+  return mask;
+}
+
+// The children of `node` whose box's bounding sphere meets the cone (empty lanes and boxes
+// emptied by refit never do), as a bit mask; bound[c] receives the distance from the apex
+// within which nothing of child c lies: the sphere holds every proxy of the subtree.
+uint32_t childrenMeetingCone(const Bvh8Node& node, const RayCone& cone, float* bound) {
+  uint32_t mask = 0;
+  for (int c = 0; c < kBvhWidth; ++c) {
+    float lx = node.bounds[0][c], ux = node.bounds[1][c], ly = node.bounds[2][c], uy = node.bounds[3][c],
+          lz = node.bounds[4][c], uz = node.bounds[5][c];
+    bool box = lx <= ux && ly <= uy && lz <= uz;
+    float cx = 0.5f * (lx + ux), cy = 0.5f * (ly + uy), cz = 0.5f * (lz + uz);
+    float ex = ux - lx, ey = uy - ly, ez = uz - lz;
+    float radius = 0.5f * std::sqrt(ex * ex + ey * ey + ez * ez);
+    radius += kRelativeMargin * (radius + std::abs(cx) + std::abs(cy) + std::abs(cz));
+    float vx = cx - cone.apex.x, vy = cy - cone.apex.y, vz = cz - cone.apex.z;
+    bool meets = sphereMeetsConeLane(vx, vy, vz, radius, cone.axis.x, cone.axis.y, cone.axis.z, cone.cosAngle,
+                                     cone.sinAngle);
+    float distance = std::sqrt(vx * vx + vy * vy + vz * vz);
+    bound[c] = distance - radius - kRelativeMargin * (distance + radius);
+    mask |= uint32_t(box && meets && node.child[c] != Bvh8Node::kNoChild) << c;
   }
   return mask;
 }
@@ -142,21 +151,12 @@ void BundleCandidates::collectLeaf(int32_t code) {
 }
 
 void BundleCandidates::pushChildren(const Bvh8Node& node, float parentBound) {
-  for (int c = 0; c < kBvhWidth; ++c) {
-    if (node.child[c] == Bvh8Node::kNoChild) continue;
-    Vec3f lower(node.bounds[0][c], node.bounds[2][c], node.bounds[4][c]);
-    Vec3f upper(node.bounds[1][c], node.bounds[3][c], node.bounds[5][c]);
-    if (!(lower.x <= upper.x && lower.y <= upper.y && lower.z <= upper.z)) continue;  // emptied by refit
-    Vec3f center = (lower + upper) * 0.5f;
-    float radius = 0.5f * length(upper - lower);
-    radius += kRelativeMargin * (radius + std::abs(center.x) + std::abs(center.y) + std::abs(center.z));
-    if (!sphereMeetsCone(center, radius, cone_)) continue;
-    // The box's bounding sphere holds every proxy of the subtree (each lies in the box).
-    // So does the parent's, which need not hold the child's sphere: the larger bound is
-    // kept, so bounds never drop along the walk and the heap's top bounds all the rest.
-    float distance = length(center - cone_.apex);
-    float bound = distance - radius - kRelativeMargin * (distance + radius);
-    pending_.push_back({std::max(bound, parentBound), node.child[c]});
+  alignas(32) float bound[kBvhWidth];
+  for (uint32_t mask = childrenMeetingCone(node, cone_, bound); mask; mask &= mask - 1) {
+    int c = std::countr_zero(mask);
+    // The parent's sphere need not hold the child's: the larger bound is kept, so bounds
+    // never drop along the walk and the heap's top bounds all the rest.
+    pending_.push_back({std::max(bound[c], parentBound), node.child[c]});
     std::push_heap(pending_.begin(), pending_.end());
   }
 }

@@ -32,21 +32,28 @@ constexpr float kMaxBundleHalfAngle = 0.1f;
 // are spread wider than kMaxBundleHalfAngle.
 bool boundingCone(std::span<const TraceRay> rays, std::span<const uint32_t> order, RayCone* cone);
 
-// True if the sphere (center, radius) may meet the cone at a point in front of its apex;
-// conservative (false only when it certainly does not).
-bool sphereMeetsCone(const Vec3f& center, float radius, const RayCone& cone);
-
-// The sphere test of sphereMeetsCone for one lane, written so that loops over 8 lanes
-// (of spheres or of cones) vectorise: v = centre - apex, r the radius, (a, cosA, sinA) the
-// cone. It computes the cross product even when the apex lies in the sphere, which the
-// scalar test avoids.
+// True if the sphere (center, radius) may meet the cone (apex shared, unit axis a, half
+// angle given by cosA and sinA) at a point in front of its apex; conservative (false only
+// when it certainly does not). v = centre - apex. Written so that loops over 8 lanes (of
+// spheres or of cones) vectorise.
 inline bool sphereMeetsConeLane(float vx, float vy, float vz, float r, float ax, float ay, float az, float cosA,
                                 float sinA) {
   float d2 = vx * vx + vy * vy + vz * vz;
   float along = vx * ax + vy * ay + vz * az;
+  // |v x a|, without the cancellation of sqrt(d2 - along^2) for centres near the axis.
   float cx = vy * az - vz * ay, cy = vz * ax - vx * az, cz = vx * ay - vy * ax;
   float perp = std::sqrt(cx * cx + cy * cy + cz * cz);
+  // The apex lies in the sphere; or else the nearest point of the cone's surface to the
+  // centre, in the plane of axis and centre, lies on the boundary ray (cos, sin), and
+  // behind the apex it is the apex itself, farther than the radius; the signed distance
+  // to the boundary ray is negative inside the cone.
   return d2 <= r * r || (along * cosA + perp * sinA >= 0.0f && perp * cosA - along * sinA <= r);
+}
+
+inline bool sphereMeetsCone(const Vec3f& center, float radius, const RayCone& cone) {
+  Vec3f v = center - cone.apex;
+  return sphereMeetsConeLane(v.x, v.y, v.z, radius, cone.axis.x, cone.axis.y, cone.axis.z, cone.cosAngle,
+                             cone.sinAngle);
 }
 
 // The cones of up to 8 packets of 8 rays of one bundle (shared apex), one per lane, so that
