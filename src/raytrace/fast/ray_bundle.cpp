@@ -103,7 +103,7 @@ uint32_t childrenMeetingCone(const Bvh8Node& node, const RayCone& cone, float* b
 void BundleCandidates::start(const Bvh8& bvh, const RayCone& cone) {
   bvh_ = &bvh;
   cone_ = cone;
-  candidates_.clear();
+  count_ = 0;
   blocks_.clear();
   blockBound_.clear();
   pending_.clear();
@@ -117,10 +117,12 @@ void BundleCandidates::gather(const Bvh8& bvh, const RayCone& cone) {
 }
 
 bool BundleCandidates::next(size_t minCandidates) {
-  candidates_.clear();
+  count_ = 0;
+  blocks_.clear();
+  blockBound_.clear();
   // Subtrees nearest first; their bounds only grow along the walk, so when the chunk is
   // full the heap's top bounds everything not yet gathered.
-  while (!pending_.empty() && candidates_.size() < minCandidates) {
+  while (!pending_.empty() && count_ < minCandidates) {
     std::pop_heap(pending_.begin(), pending_.end());
     Subtree s = pending_.back();
     pending_.pop_back();
@@ -130,8 +132,8 @@ bool BundleCandidates::next(size_t minCandidates) {
       pushChildren(bvh_->nodes()[s.code], s.bound);
   }
   frontier_ = pending_.empty() ? std::numeric_limits<float>::infinity() : pending_.front().bound;
-  arrange();
-  return !candidates_.empty();
+  finishChunk();
+  return count_ > 0;
 }
 
 void BundleCandidates::collectLeaf(int32_t code) {
@@ -145,7 +147,7 @@ void BundleCandidates::collectLeaf(int32_t code) {
       // ray of the cone enters it (and its key) before that.
       float radius = block.boundRadius[lane];
       float bound = distance[lane] - radius - kRelativeMargin * (distance[lane] + radius);
-      candidates_.push_back({std::max(bound, cone_.tMin), first + uint32_t(b), uint32_t(lane)});
+      append(block, lane, std::max(bound, cone_.tMin));
     }
   }
 }
@@ -161,42 +163,32 @@ void BundleCandidates::pushChildren(const Bvh8Node& node, float parentBound) {
   }
 }
 
-void BundleCandidates::arrange() {
-  const Bvh8& bvh = *bvh_;
-  blocks_.clear();
-  blockBound_.clear();
-  // Blocks take the candidates in the order of the walk, which visits leaves nearest
-  // first, so the bounds rise from block to block and each ray's hits arrive nearly in key
-  // order. (A sort by depth slab and then across the cone, for compact blocks, cost more
-  // than it saved when rays were tested against blocks.)
-  size_t n = candidates_.size();
-  if (n == 0) return;
-
-  size_t blockCount = (n + kBvhWidth - 1) / kBvhWidth;
-  blocks_.resize(blockCount);
-  blockBound_.resize(blockCount);
-  constexpr float kInf = std::numeric_limits<float>::infinity();
-  for (size_t k = 0; k < blockCount; ++k) {
-    Bvh8Block& out = blocks_[k];
-    float blockMin = kInf;
-    for (int lane = 0; lane < kBvhWidth; ++lane) {
-      size_t c = k * kBvhWidth + size_t(lane);
-      if (c >= n) {
-        out.disableLane(lane);
-        continue;
-      }
-      const Bvh8Block& in = bvh.blocks()[candidates_[c].block];
-      int from = int(candidates_[c].lane);
-      for (int a = 0; a < 3; ++a) out.mean[a][lane] = in.mean[a][from];
-      for (int m = 0; m < 9; ++m) out.worldToLocal[m][lane] = in.worldToLocal[m][from];
-      out.opacity[lane] = in.opacity[from];
-      out.radius2[lane] = in.radius2[from];
-      out.boundRadius[lane] = in.boundRadius[from];
-      out.id[lane] = in.id[from];
-      blockMin = std::min(blockMin, candidates_[c].bound);
-    }
-    blockBound_[k] = blockMin;
+// Blocks take the candidates in the order of the walk, which visits leaves nearest first,
+// so the bounds rise from block to block and each ray's hits arrive nearly in key order.
+// (A sort by depth slab and then across the cone, for compact blocks, cost more than it
+// saved when rays were tested against blocks.)
+void BundleCandidates::append(const Bvh8Block& in, int from, float bound) {
+  int lane = int(count_ % kBvhWidth);
+  if (lane == 0) {
+    blocks_.emplace_back();
+    blockBound_.push_back(std::numeric_limits<float>::infinity());
   }
+  Bvh8Block& out = blocks_.back();
+  for (int a = 0; a < 3; ++a) out.mean[a][lane] = in.mean[a][from];
+  for (int m = 0; m < 9; ++m) out.worldToLocal[m][lane] = in.worldToLocal[m][from];
+  out.opacity[lane] = in.opacity[from];
+  out.radius2[lane] = in.radius2[from];
+  out.boundRadius[lane] = in.boundRadius[from];
+  out.id[lane] = in.id[from];
+  blockBound_.back() = std::min(blockBound_.back(), bound);
+  ++count_;
+}
+
+void BundleCandidates::finishChunk() {
+  if (blocks_.empty()) return;
+  for (int lane = int(count_ % kBvhWidth); lane > 0 && lane < kBvhWidth; ++lane) blocks_.back().disableLane(lane);
+  // Suffix minima, the last block's capped by the frontier: a bound for it and all after.
+  size_t blockCount = blocks_.size();
   blockBound_[blockCount - 1] = std::min(blockBound_[blockCount - 1], frontier_);
   for (size_t k = blockCount - 1; k-- > 0;) blockBound_[k] = std::min(blockBound_[k], blockBound_[k + 1]);
 }

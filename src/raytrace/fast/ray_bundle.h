@@ -98,13 +98,9 @@ class BundleCandidates {
   float blockBound(int k) const { return blockBound_[size_t(k)]; }
   // No Gaussian of a later chunk gives a key below this (+infinity after the last chunk).
   float frontier() const { return frontier_; }
-  size_t candidates() const { return candidates_.size(); }
+  size_t candidates() const { return count_; }
 
  private:
-  struct Candidate {
-    float bound;           // lower bound of the key
-    uint32_t block, lane;  // where its data lies in the BVH
-  };
   struct Subtree {
     float bound;  // lower bound of the key of anything in it
     int32_t code;
@@ -112,13 +108,17 @@ class BundleCandidates {
   };
   void collectLeaf(int32_t code);
   void pushChildren(const Bvh8Node& node, float parentBound);
-  void arrange();
+  // Adds lane `from` of `in` as the chunk's next candidate; no ray of the cone gives it a
+  // key below `bound`.
+  void append(const Bvh8Block& in, int from, float bound);
+  // Empties the last block's unused lanes and makes the block bounds suffix minima.
+  void finishChunk();
 
   const Bvh8* bvh_ = nullptr;
   RayCone cone_;
   std::vector<Subtree> pending_;
   float frontier_ = 0.0f;
-  std::vector<Candidate> candidates_;
+  size_t count_ = 0;  // candidates in the chunk
   std::vector<Bvh8Block> blocks_;
   std::vector<float> blockBound_;
 };
