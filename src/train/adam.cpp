@@ -32,12 +32,23 @@ void keepEntries(std::vector<V>* v, const std::vector<bool>& keep) {
 
 }  // namespace
 
+namespace {
+
+// From init at step 0 to final at decaySteps (and after): log-linear, or linear when either
+// end is zero.
+double decayedRate(float init, float final, int decaySteps, int64_t step) {
+  double t = std::clamp(double(step) / double(decaySteps), 0.0, 1.0);
+  return init > 0 && final > 0 ? std::exp((1 - t) * std::log(double(init)) + t * std::log(double(final)))
+                               : double(init) * (1 - t) + double(final) * t;
+}
+
+}  // namespace
+
 StepLearningRates learningRatesAt(const LearningRates& lr, float extent, int64_t step) {
-  double t = std::clamp(double(step) / double(lr.positionDecaySteps), 0.0, 1.0);
-  double position = lr.positionInit > 0 && lr.positionFinal > 0
-                        ? std::exp((1 - t) * std::log(double(lr.positionInit)) + t * std::log(double(lr.positionFinal)))
-                        : double(lr.positionInit) * (1 - t) + double(lr.positionFinal) * t;
-  return {float(position * extent), lr.rotation, lr.scale, lr.opacity, lr.diffuse, lr.normal, lr.roughness, lr.f0};
+  double position = decayedRate(lr.positionInit, lr.positionFinal, lr.positionDecaySteps, step);
+  double normal = decayedRate(lr.normal, lr.normalFinal, lr.normalDecaySteps, step);
+  return {float(position * extent), lr.rotation, lr.scale,          lr.opacity,
+          lr.diffuse,               float(normal), lr.roughness, lr.f0};
 }
 
 void AdamOptimizer::reset(size_t n) {

@@ -16,8 +16,9 @@ struct StepLearningRates {
   float position, rotation, scale, opacity, diffuse, normal, roughness, f0;
 };
 
-// The position rate at a step: log-linear from init to final x extent over decaySteps
-// (constant at final afterwards); the other groups are constant.
+// The rates at a step: position log-linear from init to final x extent over its decay
+// steps (constant at final afterwards), normal likewise from normal to normalFinal; the
+// other groups are constant.
 StepLearningRates learningRatesAt(const LearningRates& lr, float sceneExtent, int64_t step);
 
 class AdamOptimizer {

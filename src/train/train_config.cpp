@@ -69,6 +69,8 @@ void forEachField(Config& c, F&& f) {
   f("lr", "opacity", c.lr.opacity);
   f("lr", "diffuse", c.lr.diffuse);
   f("lr", "normal", c.lr.normal);
+  f("lr", "normal_final", c.lr.normalFinal);
+  f("lr", "normal_decay_steps", c.lr.normalDecaySteps);
   f("lr", "roughness", c.lr.roughness);
   f("lr", "f0", c.lr.f0);
   f("adam", "beta1", c.adam.beta1);
@@ -189,10 +191,12 @@ void TrainConfig::validate(const std::string& source) const {
   for (float w : {loss.diffuse, loss.depth, loss.normal, loss.roughness, loss.f0, loss.specular})
     require(w >= 0, source, "loss weights must be non-negative");
   for (float r : {lr.positionInit, lr.positionFinal, lr.rotation, lr.scale, lr.opacity, lr.diffuse, lr.normal,
-                  lr.roughness, lr.f0})
+                  lr.normalFinal, lr.roughness, lr.f0})
     require(r >= 0 && r < 10, source, "learning rates must be in [0, 10)");
   positive(lr.positionDecaySteps, "lr.position_decay_steps");
   require(lr.positionFinal <= lr.positionInit, source, "lr.position_final must not exceed lr.position_init");
+  positive(lr.normalDecaySteps, "lr.normal_decay_steps");
+  require(lr.normalFinal <= lr.normal, source, "lr.normal_final must not exceed lr.normal");
   require(adam.beta1 >= 0 && adam.beta1 < 1 && adam.beta2 >= 0 && adam.beta2 < 1, source,
           "adam.beta1 and adam.beta2 must be in [0, 1)");
   positive(adam.epsilon, "adam.epsilon");

@@ -37,6 +37,12 @@ struct LearningRates {
   float opacity = 2.5e-2f;
   float diffuse = 5e-3f;
   float normal = 2.5e-3f;
+  // The normal rate decays log-linearly from `normal` to this over normalDecaySteps steps
+  // (constant afterwards); equal to `normal` (the paper's schedule), it stays constant.
+  // Adam moves each parameter by about its rate per step whatever the gradient's size, so
+  // a constant rate keeps normals jittering by about that much: reflected rays magnify it.
+  float normalFinal = 2.5e-3f;
+  int normalDecaySteps = 8000;
   float roughness = 2.5e-3f;
   float f0 = 2.5e-3f;
 };

@@ -46,7 +46,7 @@ TEST(Adam, MatchesTheAlgorithmStepByStep) {
   EXPECT_EQ(adam.stepCount(), 20);
 }
 
-TEST(Adam, PositionRateDecaysLogLinearly) {
+TEST(Adam, PositionAndNormalRatesDecayLogLinearly) {
   LearningRates lr;
   float extent = 2.5f;
   EXPECT_NEAR(learningRatesAt(lr, extent, 0).position, 1.6e-4 * 2.5, 1e-9);
@@ -55,6 +55,13 @@ TEST(Adam, PositionRateDecaysLogLinearly) {
   EXPECT_NEAR(learningRatesAt(lr, extent, 90000).position, 1.6e-6 * 2.5, 1e-10);
   EXPECT_EQ(learningRatesAt(lr, extent, 123).diffuse, lr.diffuse);
   EXPECT_EQ(learningRatesAt(lr, extent, 123).opacity, lr.opacity);
+  // The normal rate is constant by default, and decays like the position rate when asked.
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 5000).normal, lr.normal);
+  lr.normalFinal = lr.normal / 100;
+  lr.normalDecaySteps = 4000;
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 0).normal, lr.normal);
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 2000).normal, lr.normal / 10);
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 9000).normal, lr.normal / 100);
 }
 
 TEST(Adam, FilterKeepsTheMomentsOfKeptGaussians) {

@@ -79,6 +79,8 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   expectRejected("{\"init\": {\"source\": \"magic\"}}", "init.source");
   expectRejected("{\"adam\": {\"beta1\": 1.0}}", "beta1");
   expectRejected("{\"lr\": {\"position_final\": 1.0}}", "position_final");
+  expectRejected("{\"lr\": {\"normal_final\": 1.0}}", "normal_final");
+  expectRejected("{\"lr\": {\"normal_decay_steps\": 0}}", "normal_decay_steps");
   expectRejected("{\"far_field\": {\"count\": -5}}", "far_field.count");
   expectRejected("{\"far_field\": {\"boxes\": {\"count\": 5}}}", "\"far_field.boxes\" has the wrong type");
   expectRejected("{\"far_field\": {\"boxes\": [{\"min\": [0, 0], \"max\": [1, 1, 1], \"count\": 5}]}}",
