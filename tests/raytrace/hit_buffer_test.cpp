@@ -12,17 +12,19 @@
 namespace glint {
 namespace {
 
-BufferedHit hitAt(float key, uint32_t id) {
-  BufferedHit h{};
+template <typename Hit>
+Hit hitAt(float key, uint32_t id) {
+  Hit h{};
   h.id = id;
   h.key = key;
   h.alpha = float(id) * 0.25f;  // a payload to check it travels with its hit
   return h;
 }
 
-TEST(HitBuffer, PopsInKeyThenIdOrderUnderRandomUse) {
+template <typename Hit>
+void expectOrderUnderRandomUse() {
   Rng rng(17);
-  HitBuffer<256> buffer(64);
+  HitBuffer<256, Hit> buffer(64);
   std::vector<HitOrder> reference;
   uint32_t nextId = 0;
   for (int step = 0; step < 20000; ++step) {
@@ -31,11 +33,11 @@ TEST(HitBuffer, PopsInKeyThenIdOrderUnderRandomUse) {
       // Few distinct keys, so ties (broken by id) are common.
       float key = float(int(rng.uniform() * 40.0f)) * 0.125f - 1.0f;
       uint32_t id = (nextId++ * 2654435761u) % 1000u;
-      buffer.push(hitAt(key, id));
+      buffer.push(hitAt<Hit>(key, id));
       reference.push_back({key, id});
     } else if (u < 0.97f && !buffer.empty()) {
       auto nearest = std::min_element(reference.begin(), reference.end());
-      BufferedHit h = buffer.popNearest();
+      Hit h = buffer.popNearest();
       ASSERT_EQ(h.key, nearest->key);
       ASSERT_EQ(h.id, nearest->id);
       ASSERT_EQ(h.alpha, float(h.id) * 0.25f);
@@ -50,6 +52,11 @@ TEST(HitBuffer, PopsInKeyThenIdOrderUnderRandomUse) {
     }
     ASSERT_EQ(buffer.size(), int(reference.size()));
   }
+}
+
+TEST(HitBuffer, PopsInKeyThenIdOrderUnderRandomUse) {
+  expectOrderUnderRandomUse<BufferedHit>();
+  expectOrderUnderRandomUse<KeyedHit>();  // the bundles' compact entries
 }
 
 }  // namespace

@@ -77,13 +77,19 @@ class LaneHits {
   }
 
   // The hit of Gaussian `id` in lane i of c, given its response and alpha.
+  // The sort key of lane i: the peak clamped into the proxy's chord beyond tMin.
+  static float key(const Bvh8BlockCandidates& c, int i, float tMin) {
+    float tEnter = c.tPeak[i] - c.half[i], tExit = c.tPeak[i] + c.half[i];
+    return std::clamp(c.tPeak[i], std::max(tEnter, tMin), tExit);
+  }
+
   static void fill(uint32_t id, const Bvh8BlockCandidates& c, int i, float tMin, float response, float alpha,
                    BufferedHit* h) {
     h->id = id;
     h->tPeak = c.tPeak[i];
     h->tEnter = h->tPeak - c.half[i];
     h->tExit = h->tPeak + c.half[i];
-    h->key = std::clamp(h->tPeak, std::max(h->tEnter, tMin), h->tExit);
+    h->key = key(c, i, tMin);
     h->response = response;
     h->alpha = alpha;
     for (int a = 0; a < 3; ++a) h->localPoint[a] = c.localPoint[a][i];
@@ -111,15 +117,17 @@ class LaneHits {
 };
 
 using FastHitBuffer = HitBuffer<FastGaussianTracer::kMaxHitBufferCapacity>;
+using BundleHitBuffer = HitBuffer<FastGaussianTracer::kMaxHitBufferCapacity, KeyedHit>;
 using FastCompositor = Compositor<float>;
 
 // Composites, in order, the buffered hits whose key is below `bound`. Returns false when
 // the ray terminated and the exact tail is not wanted; with the exact tail, the remaining
 // hits then only multiply into the final transmittance, in any order (*tail is set).
-bool compositeBelow(float bound, FastHitBuffer& buffer, FastCompositor& compositor,
+template <typename Buffer>
+bool compositeBelow(float bound, Buffer& buffer, FastCompositor& compositor,
                     const TraceSettings& settings, bool* tail) {
   while (!buffer.empty() && buffer.nearest().key < bound) {
-    BufferedHit h = buffer.popNearest();
+    auto h = buffer.popNearest();
     if (compositor.add(h.id, h.kernelHit())) continue;
     if (!settings.exactTail) return false;
     *tail = true;
@@ -295,7 +303,7 @@ class BundleStreams {
              std::vector<uint32_t>* overflowed) {
     const TraceSettings& settings = bvh.settings();
     const size_t n = members.size();
-    if (buffers_.size() < n) buffers_.resize(n, FastHitBuffer(capacity));
+    if (buffers_.size() < n) buffers_.resize(n, BundleHitBuffer(capacity));
     compositors_.clear();
     compositors_.reserve(n);
     states_.assign(n, Streaming);
@@ -410,8 +418,7 @@ class BundleStreams {
             alignas(32) float response[kBvhWidth], alpha[kBvhWidth];
             for (rays = lanes.alphas(c, rays, block.opacity[g], response, alpha); rays; rays &= rays - 1) {
               int i = std::countr_zero(rays);
-              BufferedHit h;
-              LaneHits::fill(block.id[g], c, i, packets_[p].tMin[i], response[i], alpha[i], &h);
+              KeyedHit h{LaneHits::key(c, i, packets_[p].tMin[i]), block.id[g], alpha[i]};
               size_t k = p * kBvhWidth + size_t(i);
               if (tails_[k]) {
                 compositors_[k].add(h.id, h.kernelHit());
@@ -435,7 +442,7 @@ class BundleStreams {
   std::vector<uint8_t> active_;  // per packet: the rays still streaming
   std::vector<PacketCones> cones_;  // cones_[j] lane l: packet 8 j + l
   size_t streaming_ = 0;
-  std::vector<FastHitBuffer> buffers_;
+  std::vector<BundleHitBuffer> buffers_;
   std::vector<FastCompositor> compositors_;
   std::vector<State> states_;
   std::vector<bool> tails_;

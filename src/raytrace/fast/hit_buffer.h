@@ -30,11 +30,24 @@ struct BufferedHit {
   }
 };
 
+// What a bundle's ray keeps of a hit: its rays composite without a hit list, and the
+// compositor then reads only the key and alpha. A third of BufferedHit's size, so that the
+// buffers of a bundle's 64 rays, written in turn, stay in the cache.
+struct KeyedHit {
+  float key;
+  uint32_t id;
+  float alpha;
+
+  HitOrder order() const { return {key, id}; }
+  // Only key and alpha are meaningful: for a compositor without a hit list.
+  KernelHit<float> kernelHit() const { return {0.0f, 0.0f, 0.0f, key, 0.0f, alpha, Vec3f(0.0f)}; }
+};
+
 // Kept sorted, nearest first, from head_ to end_: hits arrive nearly in order (BVH
 // children nearest first, bundle candidates by the bound of their key), so inserting from
 // the back moves few entries, and taking the nearest is an increment. Measured faster
 // than a binary heap, whose sift-down branches on every level.
-template <int kCapacityLimit>
+template <int kCapacityLimit, typename Hit = BufferedHit>
 class HitBuffer {
  public:
   explicit HitBuffer(int capacity) : capacity_(std::min(capacity, kCapacityLimit)) {}
@@ -42,9 +55,9 @@ class HitBuffer {
   bool empty() const { return end_ == head_; }
   bool full() const { return end_ - head_ == capacity_; }
   int size() const { return end_ - head_; }
-  const BufferedHit& nearest() const { return hits_[head_]; }
+  const Hit& nearest() const { return hits_[head_]; }
   // The i-th nearest hit.
-  const BufferedHit& operator[](int i) const { return hits_[head_ + i]; }
+  const Hit& operator[](int i) const { return hits_[head_ + i]; }
   void clear() { head_ = end_ = 0; }
   // Empties the buffer and sets a new capacity (reuse without copying the storage).
   void reset(int capacity) {
@@ -52,7 +65,7 @@ class HitBuffer {
     capacity_ = std::min(capacity, kCapacityLimit);
   }
 
-  void push(const BufferedHit& h) {
+  void push(const Hit& h) {
     if (end_ == kCapacityLimit) {  // not full, so head_ > 0: slide the hits to the front
       std::copy(hits_ + head_, hits_ + end_, hits_);
       end_ -= head_;
@@ -64,7 +77,7 @@ class HitBuffer {
     hits_[i] = h;
   }
 
-  BufferedHit popNearest() { return hits_[head_++]; }
+  Hit popNearest() { return hits_[head_++]; }
 
   // Keeps only the `keep` nearest hits (keep < size) and returns the order of the
   // nearest hit removed.
@@ -75,7 +88,7 @@ class HitBuffer {
   }
 
  private:
-  BufferedHit hits_[kCapacityLimit];
+  Hit hits_[kCapacityLimit];
   int head_ = 0, end_ = 0;
   int capacity_;
 };
