@@ -63,27 +63,27 @@ namespace {
 // on all 8 at once, in a form the compiler vectorises), as a bit mask; *distance receives
 // each centre's distance from the apex.
 uint32_t lanesMeetingCone(const Bvh8Block& block, const RayCone& cone, float* distance) {
-  uint32_t mask = 0;
+  alignas(32) int32_t flags[kBvhWidth];
   for (int i = 0; i < kBvhWidth; ++i) {
     float vx = block.mean[0][i] - cone.apex.x, vy = block.mean[1][i] - cone.apex.y, vz = block.mean[2][i] - cone.apex.z;
     bool meets = sphereMeetsConeLane(vx, vy, vz, block.boundRadius[i], cone.axis.x, cone.axis.y, cone.axis.z,
                                      cone.cosAngle, cone.sinAngle);
     bool proxy = block.radius2[i] >= 0.0f;  // false for a lane without a Gaussian
     distance[i] = std::sqrt(vx * vx + vy * vy + vz * vz);
-    mask |= uint32_t(meets && proxy) << i;
+    flags[i] = -int32_t(meets & proxy);
   }
-  return mask;
+  return laneMask(flags);
 }
 
 // The children of `node` whose box's bounding sphere meets the cone (empty lanes and boxes
 // emptied by refit never do), as a bit mask; bound[c] receives the distance from the apex
 // within which nothing of child c lies: the sphere holds every proxy of the subtree.
 uint32_t childrenMeetingCone(const Bvh8Node& node, const RayCone& cone, float* bound) {
-  uint32_t mask = 0;
+  alignas(32) int32_t flags[kBvhWidth];
   for (int c = 0; c < kBvhWidth; ++c) {
     float lx = node.bounds[0][c], ux = node.bounds[1][c], ly = node.bounds[2][c], uy = node.bounds[3][c],
           lz = node.bounds[4][c], uz = node.bounds[5][c];
-    bool box = lx <= ux && ly <= uy && lz <= uz;
+    bool box = (lx <= ux) & (ly <= uy) & (lz <= uz);
     float cx = 0.5f * (lx + ux), cy = 0.5f * (ly + uy), cz = 0.5f * (lz + uz);
     float ex = ux - lx, ey = uy - ly, ez = uz - lz;
     float radius = 0.5f * std::sqrt(ex * ex + ey * ey + ez * ez);
@@ -93,9 +93,9 @@ uint32_t childrenMeetingCone(const Bvh8Node& node, const RayCone& cone, float* b
                                      cone.sinAngle);
     float distance = std::sqrt(vx * vx + vy * vy + vz * vz);
     bound[c] = distance - radius - kRelativeMargin * (distance + radius);
-    mask |= uint32_t(box && meets && node.child[c] != Bvh8Node::kNoChild) << c;
+    flags[c] = -int32_t(box & meets & (node.child[c] != Bvh8Node::kNoChild));
   }
-  return mask;
+  return laneMask(flags);
 }
 
 }  // namespace

@@ -10,6 +10,10 @@
 #include <span>
 #include <vector>
 
+#ifdef __AVX2__
+#include <immintrin.h>
+#endif
+
 #include "raytrace/fast/bvh8.h"
 #include "raytrace/gaussian_tracer.h"
 
@@ -47,7 +51,21 @@ inline bool sphereMeetsConeLane(float vx, float vy, float vz, float r, float ax,
   // centre, in the plane of axis and centre, lies on the boundary ray (cos, sin), and
   // behind the apex it is the apex itself, farther than the radius; the signed distance
   // to the boundary ray is negative inside the cone.
-  return d2 <= r * r || (along * cosA + perp * sinA >= 0.0f && perp * cosA - along * sinA <= r);
+  // Bitwise operators, without branches, so that loops over lanes vectorise.
+  return (d2 <= r * r) | ((along * cosA + perp * sinA >= 0.0f) & (perp * cosA - along * sinA <= r));
+}
+
+// The lanes whose flag is set (-1, else 0) as a bit mask. Lane loops store flags and
+// convert them here: GCC vectorises a loop that fills an array, not one that shifts bits
+// into a mask by the lane index.
+inline uint32_t laneMask(const int32_t flags[kBvhWidth]) {
+#ifdef __AVX2__
+  return uint32_t(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_loadu_si256(reinterpret_cast<const __m256i*>(flags)))));
+#else
+  uint32_t mask = 0;
+  for (int i = 0; i < kBvhWidth; ++i) mask |= uint32_t(flags[i] & 1) << i;
+  return mask;
+#endif
 }
 
 inline bool sphereMeetsCone(const Vec3f& center, float radius, const RayCone& cone) {
@@ -67,12 +85,11 @@ struct alignas(32) PacketCones {
 // The lanes of `cones` (apex shared) whose cone the sphere (center, radius) may meet.
 inline uint32_t conesMeetingSphere(const PacketCones& cones, const Vec3f& apex, const Vec3f& center, float radius) {
   const float vx = center.x - apex.x, vy = center.y - apex.y, vz = center.z - apex.z;
-  uint32_t mask = 0;
+  alignas(32) int32_t meets[kBvhWidth];
   for (int i = 0; i < kBvhWidth; ++i)
-    mask |= uint32_t(sphereMeetsConeLane(vx, vy, vz, radius, cones.axis[0][i], cones.axis[1][i], cones.axis[2][i],
-                                         cones.cosAngle[i], cones.sinAngle[i]))
-            << i;
-  return mask;
+    meets[i] = -int32_t(sphereMeetsConeLane(vx, vy, vz, radius, cones.axis[0][i], cones.axis[1][i], cones.axis[2][i],
+                                            cones.cosAngle[i], cones.sinAngle[i]));
+  return laneMask(meets);
 }
 
 // The candidate Gaussians of one bundle, as leaf blocks in the BVH's layout (copied lanes,
