@@ -293,6 +293,13 @@ TEST(FastTracer, LaneDataMatchesTheKernelFrameAndBoxesHoldTheProxies) {
   EXPECT_FALSE(computeGaussianLane(scene, 2, settings, &lane, &box));
 }
 
+// The fast tracer over a random scene of 4000 Gaussians, for the tests of its kernels.
+struct KernelTestScene {
+  GaussianScene scene;  // before the tracer, which keeps a reference to it
+  FastGaussianTracer tracer;
+  explicit KernelTestScene(uint64_t seed) : scene(randomScene(4000, seed)) { tracer.build(scene, TraceSettings{}); }
+};
+
 // Lane i of a and lane j of b hold the same proxy test results, bit for bit.
 void expectSameLane(const Bvh8BlockCandidates& a, int i, const Bvh8BlockCandidates& b, int j) {
   ASSERT_EQ(a.tPeak[i], b.tPeak[j]);
@@ -303,11 +310,8 @@ void expectSameLane(const Bvh8BlockCandidates& a, int i, const Bvh8BlockCandidat
 
 #ifdef __AVX2__
 TEST(FastTracer, Avx2TestsAreBitIdenticalToTheScalarOnes) {
-  GaussianScene scene = randomScene(4000, 71);
-  TraceSettings settings;
-  FastGaussianTracer tracer;
-  tracer.build(scene, settings);
-  const Bvh8& bvh = tracer.bvh();
+  KernelTestScene built(71);
+  const Bvh8& bvh = built.tracer.bvh();
   std::vector<TraceRay> rays = randomRays(200, 72);
   rays.push_back({{0.1f, 0.2f, -3}, {0, 0, 1}});  // zero direction components
   rays.push_back({{0.3f, -4, 0.2f}, {0, 1, 0}});
@@ -342,11 +346,8 @@ TEST(FastTracer, Avx2TestsAreBitIdenticalToTheScalarOnes) {
 // A Gaussian tested against a packet of 8 rays gives each ray, bit for bit, what the ray
 // gets testing the Gaussian's block (with AVX2 too: both against the scalar tests).
 TEST(FastTracer, PacketTestsAgreeWithBlockTestsBitForBit) {
-  GaussianScene scene = randomScene(4000, 73);
-  TraceSettings settings;
-  FastGaussianTracer tracer;
-  tracer.build(scene, settings);
-  const Bvh8& bvh = tracer.bvh();
+  KernelTestScene built(73);
+  const Bvh8& bvh = built.tracer.bvh();
   std::vector<TraceRay> rays = randomRays(160, 74);
   int hits = 0;
   for (size_t first = 0; first + kBvhWidth <= rays.size(); first += kBvhWidth) {
