@@ -43,15 +43,21 @@ class LaneHits {
     float response = this->response(c.r2[i]);
     float alpha = kMaxAlpha * block.opacity[i] * response;
     if (alpha < settings_.alphaMin) return false;
-    fill(block.id[i], c, i, tMin, response, alpha, h);
+    h->id = block.id[i];
+    h->tPeak = c.tPeak[i];
+    h->tEnter = h->tPeak - c.half[i];
+    h->tExit = h->tPeak + c.half[i];
+    h->key = key(c, i, tMin);
+    h->response = response;
+    h->alpha = alpha;
+    for (int a = 0; a < 3; ++a) h->localPoint[a] = c.localPoint[a][i];
     return true;
   }
 
-  // The responses and alphas of the lanes of c (one Gaussian of the given opacity against a
-  // packet of rays), bit for bit those of make; returns the lanes of `mask` whose alpha
-  // reaches alphaMin. All 8 lanes at once for the integer powers.
-  uint32_t alphas(const Bvh8BlockCandidates& c, uint32_t mask, float opacity, float response[kBvhWidth],
-                  float alpha[kBvhWidth]) const {
+  // The alphas of the lanes of c (one Gaussian of the given opacity against a packet of
+  // rays), bit for bit those of make; returns the lanes of `mask` whose alpha reaches
+  // alphaMin. All 8 lanes at once for the integer powers.
+  uint32_t alphas(const Bvh8BlockCandidates& c, uint32_t mask, float opacity, float alpha[kBvhWidth]) const {
 #ifdef __AVX2__
     if (integerPower_ != 0) {
       __m256 r2 = _mm256_load_ps(c.r2);
@@ -61,7 +67,6 @@ class LaneHits {
       if (integerPower_ == 4) r2p = _mm256_mul_ps(_mm256_mul_ps(r2, r2), _mm256_mul_ps(r2, r2));
       __m256 g = expNonPositiveAvx2(_mm256_mul_ps(r2p, _mm256_set1_ps(exponentScale_)));
       __m256 a = _mm256_mul_ps(_mm256_set1_ps(kMaxAlpha * opacity), g);
-      _mm256_store_ps(response, g);
       _mm256_store_ps(alpha, a);
       return mask & uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(a, _mm256_set1_ps(settings_.alphaMin), _CMP_GE_OQ)));
     }
@@ -69,30 +74,16 @@ class LaneHits {
     uint32_t passing = 0;
     for (uint32_t m = mask; m; m &= m - 1) {
       int i = std::countr_zero(m);
-      response[i] = this->response(c.r2[i]);
-      alpha[i] = kMaxAlpha * opacity * response[i];
+      alpha[i] = kMaxAlpha * opacity * response(c.r2[i]);
       passing |= uint32_t(!(alpha[i] < settings_.alphaMin)) << i;
     }
     return passing;
   }
 
-  // The hit of Gaussian `id` in lane i of c, given its response and alpha.
   // The sort key of lane i: the peak clamped into the proxy's chord beyond tMin.
   static float key(const Bvh8BlockCandidates& c, int i, float tMin) {
     float tEnter = c.tPeak[i] - c.half[i], tExit = c.tPeak[i] + c.half[i];
     return std::clamp(c.tPeak[i], std::max(tEnter, tMin), tExit);
-  }
-
-  static void fill(uint32_t id, const Bvh8BlockCandidates& c, int i, float tMin, float response, float alpha,
-                   BufferedHit* h) {
-    h->id = id;
-    h->tPeak = c.tPeak[i];
-    h->tEnter = h->tPeak - c.half[i];
-    h->tExit = h->tPeak + c.half[i];
-    h->key = key(c, i, tMin);
-    h->response = response;
-    h->alpha = alpha;
-    for (int a = 0; a < 3; ++a) h->localPoint[a] = c.localPoint[a][i];
   }
 
  private:
@@ -348,23 +339,25 @@ class BundleStreams {
     packets_.resize(packetCount);
     active_.assign(packetCount, 0);
     cones_.resize((packetCount + kBvhWidth - 1) / kBvhWidth);
+    activePackets_.assign(cones_.size(), 0);
     for (size_t p = 0; p < packetCount; ++p) {
       std::span<const uint32_t> packetRays = members.subspan(p * kBvhWidth, std::min<size_t>(kBvhWidth, n - p * kBvhWidth));
       for (int i = 0; i < kBvhWidth; ++i) {
-        const TraceRay& ray = rays[packetRays[size_t(i) < packetRays.size() ? size_t(i) : 0]];
-        Vec3f d = normalize(ray.direction);  // as Bvh8Ray
-        for (int a = 0; a < 3; ++a) packets_[p].direction[a][i] = d[a];
+        // The per-ray test's constants, so both tests see the same direction bit for bit.
+        Bvh8Ray ray(rays[packetRays[size_t(i) < packetRays.size() ? size_t(i) : 0]]);
+        for (int a = 0; a < 3; ++a) packets_[p].direction[a][i] = ray.direction[a];
         packets_[p].tMin[i] = ray.tMin;
       }
       active_[p] = uint8_t((1u << packetRays.size()) - 1);
+      activePackets_[p / kBvhWidth] |= 1u << (p % kBvhWidth);
       // A packet of a bundle lies in the bundle's cone; its own is usually much narrower.
       RayCone packetCone;
       if (!boundingCone(rays, packetRays, &packetCone)) packetCone = cone;
-      PacketCones& lanes = cones_[p / kBvhWidth];
+      PacketCones& group = cones_[p / kBvhWidth];
       int lane = int(p % kBvhWidth);
-      for (int a = 0; a < 3; ++a) lanes.axis[a][lane] = packetCone.axis[a];
-      lanes.cosAngle[lane] = packetCone.cosAngle;
-      lanes.sinAngle[lane] = packetCone.sinAngle;
+      for (int a = 0; a < 3; ++a) group.axis[a][lane] = packetCone.axis[a];
+      group.cosAngle[lane] = packetCone.cosAngle;
+      group.sinAngle[lane] = packetCone.sinAngle;
     }
     streaming_ = n;
   }
@@ -373,6 +366,7 @@ class BundleStreams {
   void stop(size_t p, int i, State s) {
     states_[p * kBvhWidth + size_t(i)] = s;
     active_[p] &= uint8_t(~(1u << i));
+    if (active_[p] == 0) activePackets_[p / kBvhWidth] &= ~(1u << (p % kBvhWidth));
     --streaming_;
   }
 
@@ -389,14 +383,6 @@ class BundleStreams {
       }
   }
 
-  // The packets (of cone group `group`) with a streaming ray, as a lane mask.
-  uint32_t activePackets(size_t group) const {
-    uint32_t mask = 0;
-    size_t first = group * kBvhWidth, count = std::min<size_t>(kBvhWidth, packets_.size() - first);
-    for (size_t j = 0; j < count; ++j) mask |= uint32_t(active_[first + j] != 0) << j;
-    return mask;
-  }
-
   // Tests every candidate of the chunk against the packets its bounding sphere meets.
   void streamChunk(const TraceSettings& settings, const BundleCandidates& candidates, const LaneHits& lanes,
                    const GaussianScene& scene) {
@@ -408,15 +394,15 @@ class BundleStreams {
         if (!(block.radius2[g] >= 0.0f)) continue;  // an empty lane
         Vec3f mean(block.mean[0][g], block.mean[1][g], block.mean[2][g]);
         for (size_t group = 0; group < cones_.size(); ++group) {
-          uint32_t packets = activePackets(group);
+          uint32_t packets = activePackets_[group];
           if (packets) packets &= conesMeetingSphere(cones_[group], origin_, mean, block.boundRadius[g]);
           for (; packets; packets &= packets - 1) {
             size_t p = group * kBvhWidth + size_t(std::countr_zero(packets));
             Bvh8BlockCandidates c;
             uint32_t rays = intersectPacket(block, g, &origin_.x, packets_[p], &c) & active_[p];
             if (!rays) continue;
-            alignas(32) float response[kBvhWidth], alpha[kBvhWidth];
-            for (rays = lanes.alphas(c, rays, block.opacity[g], response, alpha); rays; rays &= rays - 1) {
+            alignas(32) float alpha[kBvhWidth];
+            for (rays = lanes.alphas(c, rays, block.opacity[g], alpha); rays; rays &= rays - 1) {
               int i = std::countr_zero(rays);
               KeyedHit h{LaneHits::key(c, i, packets_[p].tMin[i]), block.id[g], alpha[i]};
               size_t k = p * kBvhWidth + size_t(i);
@@ -441,6 +427,7 @@ class BundleStreams {
   std::vector<RayPacket> packets_;
   std::vector<uint8_t> active_;  // per packet: the rays still streaming
   std::vector<PacketCones> cones_;  // cones_[j] lane l: packet 8 j + l
+  std::vector<uint32_t> activePackets_;  // per group of cones: the packets with a streaming ray
   size_t streaming_ = 0;
   std::vector<BundleHitBuffer> buffers_;
   std::vector<FastCompositor> compositors_;

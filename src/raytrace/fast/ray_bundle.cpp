@@ -27,6 +27,12 @@ uint32_t spreadBits(uint32_t x) {
 
 bool sameOrigin(const Vec3f& a, const Vec3f& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
+// No point of a sphere of this radius whose centre lies this far from the apex is nearer to
+// it than the result (lowered for rounding): a lower bound on the key of anything inside.
+float nearestDistanceBound(float distance, float radius) {
+  return distance - radius - kRelativeMargin * (distance + radius);
+}
+
 }  // namespace
 
 bool boundingCone(std::span<const TraceRay> rays, std::span<const uint32_t> order, RayCone* cone) {
@@ -92,7 +98,7 @@ uint32_t childrenMeetingCone(const Bvh8Node& node, const RayCone& cone, float* b
     bool meets = sphereMeetsConeLane(vx, vy, vz, radius, cone.axis.x, cone.axis.y, cone.axis.z, cone.cosAngle,
                                      cone.sinAngle);
     float distance = std::sqrt(vx * vx + vy * vy + vz * vz);
-    bound[c] = distance - radius - kRelativeMargin * (distance + radius);
+    bound[c] = nearestDistanceBound(distance, radius);
     flags[c] = -int32_t(box & meets & (node.child[c] != Bvh8Node::kNoChild));
   }
   return laneMask(flags);
@@ -145,9 +151,7 @@ void BundleCandidates::collectLeaf(int32_t code) {
       int lane = std::countr_zero(mask);
       // Every point of the proxy is at least |mean - apex| - radius from the apex, so no
       // ray of the cone enters it (and its key) before that.
-      float radius = block.boundRadius[lane];
-      float bound = distance[lane] - radius - kRelativeMargin * (distance[lane] + radius);
-      append(block, lane, std::max(bound, cone_.tMin));
+      append(block, lane, std::max(nearestDistanceBound(distance[lane], block.boundRadius[lane]), cone_.tMin));
     }
   }
 }
