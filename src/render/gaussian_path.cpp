@@ -5,7 +5,7 @@
 
 #include "bsdf/cook_torrance.h"
 #include "math/frame.h"
-#include "math/rng.h"
+#include "math/owen_sobol.h"
 
 namespace glint {
 
@@ -41,8 +41,10 @@ PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, cons
     Vec3f wo = frame.toLocal(-ray.direction);
     float rho = std::max(std::clamp(current.roughness, 0.0f, 1.0f), settings.minRoughness);
     CookTorranceLobe lobe(current.f0, rho * rho);
-    Rng rng = Rng::forKeys({seed, view, pixel, sample, uint64_t(k)});
-    BsdfSample s = lobe.sample(wo, rng.uniform2());
+    // Dimension k of the pixel's stratified stream: a pixel's samples spread their
+    // directions of segment k evenly over the lobe, which at 64 samples leaves far less
+    // noise on glossy surfaces than independent numbers.
+    BsdfSample s = lobe.sample(wo, stratifiedSample2(hashKeys({seed, view, pixel, uint64_t(k)}), uint32_t(sample)));
     if (!s.valid) break;
     throughput = throughput * s.weight;
     TraceRay next;

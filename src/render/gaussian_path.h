@@ -47,8 +47,9 @@ struct PathSegment {
   HitList hits;    // its composited hits, front to back
 };
 
-// Random numbers of segment k come from Rng::forKeys({keys..., k}), so any path can be
-// re-run alone from its keys (seed, view, pixel, sample). With `segments`, every segment
+// The direction of segment k is drawn with sample `sample` of the stratified stream
+// hashKeys({seed, view, pixel, k}) (math/owen_sobol.h), so any path can be re-run alone
+// from its keys (seed, view, pixel, sample), and the samples of one pixel are stratified. With `segments`, every segment
 // is traced with its hit list and recorded in the first PathResult::segments entries
 // (entries beyond them are left from earlier paths, so their memory is reused).
 PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, const PathSettings& settings,

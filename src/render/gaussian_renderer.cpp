@@ -5,23 +5,24 @@
 #include <array>
 
 #include "core/parallel.h"
-#include "math/rng.h"
+#include "math/owen_sobol.h"
 
 namespace glint {
 
 namespace {
 
-// The sub-pixel positions of a pixel's samples, drawn from its own stream.
+// The sub-pixel positions of a pixel's samples: dimension 0 of its stratified stream (the
+// path's segments use dimensions 1, 2, ...), so they cover the pixel evenly.
 class PixelSamples {
  public:
   PixelSamples(const RenderSettings& settings, uint64_t viewKey, uint64_t pixel)
-      : rng_(Rng::forKeys({settings.seed, viewKey, pixel})), jitter_(settings.jitter) {
-    if (jitter_) rng_.advance(2 * uint64_t(settings.firstSample));  // the positions of earlier samples
-  }
-  Vec2f next() { return jitter_ ? rng_.uniform2() : Vec2f(0.5f, 0.5f); }
+      : stream_(hashKeys({settings.seed, viewKey, pixel, 0})), index_(uint32_t(settings.firstSample)),
+        jitter_(settings.jitter) {}
+  Vec2f next() { return jitter_ ? stratifiedSample2(stream_, index_++) : Vec2f(0.5f, 0.5f); }
 
  private:
-  Rng rng_;
+  uint64_t stream_;
+  uint32_t index_;
   bool jitter_;
 };
 

@@ -30,15 +30,16 @@ std::string frameName(const std::string& split, int index) {
 
 ViewBuffers renderView(const PathTracer& tracer, const Camera& camera, const SynthSettings& settings, uint64_t viewKey,
                        ProgressBar* progress) {
+  const int spp = settings.spp;
   const int width = camera.width, height = camera.height;
   ViewBuffers out = ViewBuffers::allocate(width, height);
-  const float invSpp = 1.0f / float(settings.spp);
+  const float invSpp = 1.0f / float(spp);
   parallelForChunks(height, 1, [&](int64_t rowBegin, int64_t rowEnd) {
     for (int64_t y = rowBegin; y < rowEnd; ++y) {
       for (int x = 0; x < width; ++x) {
         Rng rng = Rng::forKeys({settings.seed, viewKey, uint64_t(y) * width + x});
         Rgb diffuse(0.0f), specular(0.0f);
-        for (int s = 0; s < settings.spp; ++s) {
+        for (int s = 0; s < spp; ++s) {
           Vec2f jitter = rng.uniform2();
           Ray ray = camera.generateRay(x + jitter.x, y + jitter.y);
           RadianceSample sample = tracer.trace(Vec3f(ray.origin), Vec3f(ray.direction), rng);
@@ -60,7 +61,7 @@ ViewBuffers renderView(const PathTracer& tracer, const Camera& camera, const Syn
         out[Buffer::Roughness].at(x, int(y)) = first.roughness;
         out[Buffer::F0].setRgb(x, int(y), first.F0);
       }
-      if (progress) progress->advance(width);
+      if (progress) progress->advance(int64_t(width) * spp);
     }
   });
   return out;
@@ -104,11 +105,16 @@ void generateDataset(const MeshScene& scene, const SynthSettings& settings, cons
     int count;
     const OrbitPath* path;
     uint64_t key;
+    int spp;
   };
-  const SplitPlan plans[] = {{"train", settings.trainViews, &rig.train, 1}, {"test", settings.testViews, &rig.test, 2}};
+  const int testSpp = settings.testSpp > 0 ? settings.testSpp : settings.spp;
+  const SplitPlan plans[] = {{"train", settings.trainViews, &rig.train, 1, settings.spp},
+                             {"test", settings.testViews, &rig.test, 2, testSpp}};
 
-  int64_t totalPixels = int64_t(settings.width) * settings.height * (settings.trainViews + settings.testViews);
-  ProgressBar progress("synth", totalPixels, "px");
+  // Progress counts path samples, so that the ETA holds when the splits' spp differ.
+  const int64_t pixelsPerView = int64_t(settings.width) * settings.height;
+  ProgressBar progress("synth", pixelsPerView * (int64_t(settings.trainViews) * settings.spp + int64_t(settings.testViews) * testSpp),
+                       "samples");
   std::vector<DepthView> depthViews;  // training views only: the point cloud must not see test views
   for (const SplitPlan& plan : plans) {
     DatasetSplit split;
@@ -116,11 +122,13 @@ void generateDataset(const MeshScene& scene, const SynthSettings& settings, cons
     split.cameraAngleX = rig.fovX;
     split.width = settings.width;
     split.height = settings.height;
+    SynthSettings splitSettings = settings;
+    splitSettings.spp = plan.spp;
     std::vector<Mat4> poses = orbitCameras(*plan.path, plan.count);
     for (int i = 0; i < plan.count; ++i) {
       DatasetView view{frameName(plan.name, i), poses[i]};
       Camera camera{poses[i], rig.fovX, settings.width, settings.height};
-      ViewBuffers buffers = renderView(tracer, camera, settings, (plan.key << 32) | uint64_t(i), &progress);
+      ViewBuffers buffers = renderView(tracer, camera, splitSettings, (plan.key << 32) | uint64_t(i), &progress);
       writeViewBuffers(outDir, view, buffers, settings.format);
       split.views.push_back(view);
       if (plan.name == "train")

@@ -59,6 +59,29 @@ TEST(DatasetGenerator, BuiltinSpheresDatasetValidatesClean) {
   EXPECT_TRUE(fs::exists(pngFolder.path() / "x" / "train" / "depth" / "depth_0000.exr"));
 }
 
+// --test-spp renders the test split alone at its own sample count, with the same random
+// streams as a dataset rendered at that count throughout; the training split keeps --spp.
+TEST(DatasetGenerator, TestSplitUsesItsOwnSampleCount) {
+  SynthSettings settings;
+  settings.trainViews = 1;
+  settings.testViews = 1;
+  settings.width = 8;
+  settings.height = 6;
+  settings.spp = 16;
+  TempFolder temp;
+  const fs::path uniform = temp.path() / "uniform", split = temp.path() / "split";
+  generateDataset(makeBuiltinScene("spheres"), settings, uniform);
+  settings.spp = 1;
+  settings.testSpp = 16;
+  generateDataset(makeBuiltinScene("spheres"), settings, split);
+  auto pixels = [](const fs::path& dataset, const char* file) { return readImage(dataset / file).pixels; };
+  EXPECT_EQ(pixels(uniform, "test/render/render_0000.exr"), pixels(split, "test/render/render_0000.exr"));
+  EXPECT_EQ(pixels(uniform, "test/specular/specular_0000.exr"),
+            pixels(split, "test/specular/specular_0000.exr"));
+  EXPECT_NE(pixels(uniform, "train/render/render_0000.exr"),
+            pixels(split, "train/render/render_0000.exr"));
+}
+
 TEST(DatasetGenerator, PointCloudLiesOnTheDepthSurfaces) {
   ViewBuffers buffers = ViewBuffers::allocate(4, 3);
   for (int y = 0; y < 3; ++y)
