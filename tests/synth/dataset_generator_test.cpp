@@ -62,12 +62,7 @@ TEST(DatasetGenerator, BuiltinSpheresDatasetValidatesClean) {
 // --test-spp renders the test split alone at its own sample count, with the same random
 // streams as a dataset rendered at that count throughout; the training split keeps --spp.
 TEST(DatasetGenerator, TestSplitUsesItsOwnSampleCount) {
-  SynthSettings settings;
-  settings.trainViews = 1;
-  settings.testViews = 1;
-  settings.width = 8;
-  settings.height = 6;
-  settings.spp = 16;
+  SynthSettings settings{.trainViews = 1, .testViews = 1, .width = 8, .height = 6, .spp = 16};
   TempFolder temp;
   const fs::path uniform = temp.path() / "uniform", split = temp.path() / "split";
   generateDataset(makeBuiltinScene("spheres"), settings, uniform);
