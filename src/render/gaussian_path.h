@@ -49,9 +49,10 @@ struct PathSegment {
 
 // The direction of segment k is drawn with sample `sample` of the stratified stream
 // hashKeys({seed, view, pixel, k}) (math/owen_sobol.h), so any path can be re-run alone
-// from its keys (seed, view, pixel, sample), and the samples of one pixel are stratified. With `segments`, every segment
-// is traced with its hit list and recorded in the first PathResult::segments entries
-// (entries beyond them are left from earlier paths, so their memory is reused).
+// from its keys (seed, view, pixel, sample), and the samples of one pixel are stratified.
+// With `segments`, every segment is traced with its hit list and recorded in the first
+// PathResult::segments entries (entries beyond them are left from earlier paths, so their
+// memory is reused).
 PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, const PathSettings& settings,
                      uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample,
                      std::vector<PathSegment>* segments = nullptr);
