@@ -2,7 +2,7 @@
 # The demo of `make demo`: generates the built-in spheres scene, checks it, draws its contact
 # sheets, trains a Gaussian scene on it with path-traced reflections, evaluates it on the
 # test views and writes a self-contained HTML report. Outputs go to out/demo/ (the demo's
-# own folder). About 50 minutes on 2 cores, most of it in synth and train.
+# own folder). About 40-45 minutes on 2 cores after the build, most of it in synth and train.
 set -euo pipefail
 build="${1:-build}"
 glint="$build/glint"
