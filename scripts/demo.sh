@@ -37,7 +37,7 @@ echo "== 5/7 glint eval: rendering the 20 test views at 64 spp, 4 bounces, and c
 "$glint" eval "$run" --spp 64 --bounces 4 --save-images
 
 # The paper scores its renders at 128 spp after the OptiX denoiser; ours is the a-trous filter
-# guided by the G-buffers, on the specular pass. The report shows the 64-spp metrics above.
+# guided by the G-buffers, on the specular pass. The report compares both evaluations in one table.
 echo "== 6/7 glint eval: the paper's protocol, 128 spp and denoised (specular pass), 4 bounces"
 "$glint" eval "$run" --spp 128 --bounces 4 --denoise specular -o "$run/eval/metrics_128spp_denoised.json"
 

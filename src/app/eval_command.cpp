@@ -177,6 +177,7 @@ void runEval(const EvalOptions& o) {
       {"width", split.width},
       {"height", split.height},
       {"spp", o.spp},
+      {"bounces", o.trace.path().bounces},
       {"denoise", o.denoise},
       {"tracer", tracer->name()},
       {"trace",

@@ -114,6 +114,47 @@ double lastValue(const TrainingLog& log, const char* column) {
   return log.rows() == 0 ? std::nan("") : log.column(column).back();
 }
 
+// How an evaluation was made, from its metrics file: "64 spp, 4 bounces, denoised specular".
+std::string evaluationSettings(const nlohmann::json& m) {
+  std::string text;
+  auto add = [&](const std::string& part) { text += (text.empty() ? "" : ", ") + part; };
+  if (m.contains("spp") && m["spp"].is_number_integer()) add(std::to_string(m["spp"].get<int>()) + " spp");
+  if (m.contains("bounces") && m["bounces"].is_number_integer())
+    add(std::to_string(m["bounces"].get<int>()) + " bounces");
+  if (m.contains("denoise") && m["denoise"].is_string() && m["denoise"] != "none")
+    add("denoised " + m["denoise"].get<std::string>());
+  if (m.contains("edits") && m["edits"].is_string()) add("edits " + m["edits"].get<std::string>());
+  return text;
+}
+
+// The run's other metrics files (RUN/eval/*.json but `primary`) made on the same views, by
+// name. A file that is not such a metrics file is skipped with a warning: the folder is
+// the user's too.
+std::vector<OtherEvaluation> otherEvaluations(const fs::path& primary, const DatasetSplit& split) {
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(primary.parent_path()))
+    if (entry.is_regular_file() && entry.path().extension() == ".json" && entry.path() != primary)
+      files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  std::vector<OtherEvaluation> others;
+  for (const fs::path& file : files) {
+    try {
+      EvalMetrics m = readEvalMetrics(file);
+      bool sameViews = m.split == split.name && m.perView.size() == split.views.size();
+      for (size_t v = 0; sameViews && v < split.views.size(); ++v) sameViews = m.perView[v].first == split.views[v].filePath;
+      if (!sameViews) {
+        std::fprintf(stderr, "glint report: note: %s is left out: it evaluated other views\n", file.string().c_str());
+        continue;
+      }
+      others.push_back({file.filename().string() + ": " + evaluationSettings(m.all), m.mean});
+    } catch (const Error& e) {
+      // The error names the file already.
+      std::fprintf(stderr, "glint report: note: left out of the evaluations: %s\n", e.what());
+    }
+  }
+  return others;
+}
+
 std::vector<std::pair<std::string, std::string>> headerFacts(const ReportOptions& o, const fs::path& datasetPath,
                                                              const DatasetSplit& split, const nlohmann::json& config,
                                                              const TrainingLog& log, const EvalMetrics& metrics) {
@@ -131,8 +172,7 @@ std::vector<std::pair<std::string, std::string>> headerFacts(const ReportOptions
   facts.emplace_back("Gaussians at the end", formatMetric(lastValue(log, "gaussians"), 0));
   facts.emplace_back("training wall time", formatSeconds(lastValue(log, "wall_s")));
   const nlohmann::json& m = metrics.all;
-  std::string evaluation;
-  if (m.contains("spp") && m["spp"].is_number()) evaluation += std::to_string(m["spp"].get<int>()) + " spp";
+  std::string evaluation = evaluationSettings(m);
   if (m.contains("tracer") && m["tracer"].is_string())
     evaluation += (evaluation.empty() ? "" : ", ") + m["tracer"].get<std::string>() + " tracer";
   if (m.contains("seconds") && m["seconds"].is_number())
@@ -190,6 +230,8 @@ void runReport(const ReportOptions& o) {
   content.facts = headerFacts(o, datasetPath, split, config, log, metrics);
   content.mean = metrics.mean;
   content.perView = metrics.perView;
+  content.evaluationLabel = metricsFile.filename().string() + ": " + evaluationSettings(metrics.all);
+  content.otherEvaluations = otherEvaluations(metricsFile, split);
   size_t shown = o.views < 0 ? split.views.size() : std::min(split.views.size(), size_t(o.views));
   {
     ProgressBar progress("report", int64_t(shown), "views");
@@ -222,7 +264,8 @@ void addReportCommand(CLI::App& app) {
   CLI::App* cmd = app.add_subcommand(
       "report",
       "Write RUN/report.html, one self-contained page (no network, no other files) of a training run: its "
-      "settings, the mean and per-view metrics of `glint eval`, ground truth against ours for the diffuse, specular "
+      "settings, the mean and per-view metrics of `glint eval` (RUN/eval/metrics.json, compared in one table with "
+      "every other metrics file of RUN/eval/ on the same views), ground truth against ours for the diffuse, specular "
       "and final passes of each test view, and the training curves. Needs RUN/config.json and RUN/log.csv (from "
       "`glint train`) and RUN/eval/ (from `glint eval RUN --save-images`).");
   cmd->add_option("run", o->run, "Training run folder")->required();

@@ -54,6 +54,24 @@ std::string meanTable(const ViewMetrics& mean) {
   return html;
 }
 
+// One row per evaluation of the run, the page's own first: the 8-bit PSNR and SSIM of
+// every pass, so that settings (spp, bounces, denoising) compare at a glance.
+std::string evaluationsTable(const HtmlReportContent& c) {
+  std::string html = "<table><thead><tr><th>evaluation</th>";
+  for (const char* pass : {"diffuse", "specular", "final"})
+    html += std::string("<th>") + pass + " PSNR 8-bit</th><th>" + pass + " SSIM 8-bit</th>";
+  html += "</tr></thead><tbody>\n";
+  auto row = [&](const std::string& label, const ViewMetrics& m) {
+    html += "<tr>" + cell(label);
+    for (const PassMetrics* p : {&m.diffuse, &m.specular, &m.final})
+      html += cell(formatMetric(p->psnrTonemapped, 2)) + cell(formatMetric(p->ssimTonemapped, 4));
+    html += "</tr>\n";
+  };
+  row(c.evaluationLabel + " (this page)", c.mean);
+  for (const OtherEvaluation& e : c.otherEvaluations) row(e.label, e.mean);
+  return html + "</tbody></table>\n";
+}
+
 std::string passCells(const PassMetrics& p) {
   return cell(formatMetric(p.psnr, 2)) + cell(formatMetric(p.psnrTonemapped, 2)) +
          cell(formatMetric(p.ssimTonemapped, 4));
@@ -117,6 +135,10 @@ std::string renderHtmlReport(const HtmlReportContent& c) {
   html += "<p class=\"hint\">PSNR and SSIM in linear space (data range 1) and on 8-bit images made with the filmic "
           "tonemap, as shown below. SSIM: 11x11 Gaussian window, sigma 1.5. Depth and normals where the ground "
           "truth has a surface.</p>\n</section>\n";
+  if (!c.otherEvaluations.empty())
+    html += "<section><h2>All evaluations of this run</h2>\n" + evaluationsTable(c) +
+            "<p class=\"hint\">Every metrics file of <code>glint eval</code> in the run's eval folder, on the same "
+            "views.</p>\n</section>\n";
   html += "<section><h2>Per view</h2>\n" + perViewTable(c.perView, c.mean) + "</section>\n";
 
   if (!c.views.empty()) {

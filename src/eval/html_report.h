@@ -26,11 +26,20 @@ struct ReportView {
   std::vector<ReportPass> passes;
 };
 
+// The means of another evaluation of the same run (e.g. `glint eval RUN --spp 128
+// --denoise specular -o RUN/eval/other.json`), shown as one row of a comparison table.
+struct OtherEvaluation {
+  std::string label;  // what was evaluated: file, spp, bounces, denoising
+  ViewMetrics mean;
+};
+
 struct HtmlReportContent {
   std::string title;
   std::vector<std::pair<std::string, std::string>> facts;  // header lines: label, value
   ViewMetrics mean;
   std::vector<std::pair<std::string, ViewMetrics>> perView;  // view name, its metrics
+  std::string evaluationLabel;                               // how `mean` was evaluated
+  std::vector<OtherEvaluation> otherEvaluations;             // more rows of the comparison
   std::vector<ReportView> views;                             // the views shown as images
   std::vector<LineChart> charts;
   std::string chartNote;  // a line under the charts (how to read them)

@@ -102,6 +102,27 @@ TEST_F(ReportCliTest, WritesTheRunsPageAndNamesMissingInputs) {
   EXPECT_EQ(countOf(readBytes(path("page.html")), "<section class=\"view\">"), 2);
   // The run's own page is rewritten without --force.
   EXPECT_EQ(runGlint("report " + path("R")).status, 0);
+  EXPECT_EQ(html.find("All evaluations of this run"), std::string::npos);  // only one so far
+
+  // Other metrics files of the run become rows of a comparison table, with their settings;
+  // a JSON file that is not one is left out with a note naming it.
+  Outcome second =
+      runGlint("eval " + path("R") + " --spp 3 --bounces 1 --denoise specular -o " + path("R") + "/eval/second.json");
+  ASSERT_EQ(second.status, 0) << second.output;
+  std::ofstream(path("R") + "/eval/notes.json") << "{\"mine\": 1}";
+  Outcome compared = runGlint("report " + path("R"));
+  ASSERT_EQ(compared.status, 0) << compared.output;
+  EXPECT_NE(compared.output.find("notes.json: key \"mean\" is missing"), std::string::npos) << compared.output;
+  html = readBytes(path("R") + "/report.html");
+  EXPECT_NE(html.find("All evaluations of this run"), std::string::npos);
+  EXPECT_NE(html.find("<td>metrics.json: 2 spp, 2 bounces (this page)</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td>second.json: 3 spp, 1 bounces, denoised specular</td>"), std::string::npos);
+  nlohmann::json secondMetrics = nlohmann::json::parse(readBytes(path("R") + "/eval/second.json"));
+  EXPECT_EQ(secondMetrics["bounces"], 1);
+  char finalCell[64];
+  std::snprintf(finalCell, sizeof finalCell, "<td>%.2f</td>", secondMetrics["mean"]["final"]["psnr_tonemapped"].get<double>());
+  EXPECT_NE(html.find(finalCell), std::string::npos) << finalCell;
+  EXPECT_EQ(html.find("notes.json"), std::string::npos);
 }
 
 TEST_F(ReportCliTest, CorruptInputsAreNamed) {
