@@ -70,6 +70,20 @@ EvalMetrics readEvalMetrics(const fs::path& file) {
   return m;
 }
 
+// Why metrics m were not made on the views of split (of the dataset at datasetPath), or ""
+// when they were.
+std::string viewsMismatch(const EvalMetrics& m, const DatasetSplit& split, const fs::path& datasetPath) {
+  if (m.split != split.name) return "evaluated the " + m.split + " split, not " + split.name;
+  if (m.perView.size() != split.views.size())
+    return "has " + std::to_string(m.perView.size()) + " views but the " + split.name + " split of " +
+           datasetPath.string() + " has " + std::to_string(split.views.size());
+  for (size_t v = 0; v < split.views.size(); ++v)
+    if (m.perView[v].first != split.views[v].filePath)
+      return "key \"per_view[" + std::to_string(v) + "].view\" is " + m.perView[v].first + " but the dataset has " +
+             split.views[v].filePath;
+  return "";
+}
+
 // The dataset: --dataset, else the "dataset" of RUN/config.json (written by glint train).
 fs::path datasetFolder(const ReportOptions& o, const fs::path& configFile, const nlohmann::json& config) {
   if (!o.dataset.empty()) return o.dataset;
@@ -130,7 +144,8 @@ std::string evaluationSettings(const nlohmann::json& m) {
 // The run's other metrics files (RUN/eval/*.json but `primary`) made on the same views, by
 // name. A file that is not such a metrics file is skipped with a warning: the folder is
 // the user's too.
-std::vector<OtherEvaluation> otherEvaluations(const fs::path& primary, const DatasetSplit& split) {
+std::vector<OtherEvaluation> otherEvaluations(const fs::path& primary, const DatasetSplit& split,
+                                              const fs::path& datasetPath) {
   std::vector<fs::path> files;
   for (const fs::directory_entry& entry : fs::directory_iterator(primary.parent_path()))
     if (entry.is_regular_file() && entry.path().extension() == ".json" && entry.path() != primary)
@@ -140,10 +155,10 @@ std::vector<OtherEvaluation> otherEvaluations(const fs::path& primary, const Dat
   for (const fs::path& file : files) {
     try {
       EvalMetrics m = readEvalMetrics(file);
-      bool sameViews = m.split == split.name && m.perView.size() == split.views.size();
-      for (size_t v = 0; sameViews && v < split.views.size(); ++v) sameViews = m.perView[v].first == split.views[v].filePath;
-      if (!sameViews) {
-        std::fprintf(stderr, "glint report: note: %s is left out: it evaluated other views\n", file.string().c_str());
+      const std::string mismatch = viewsMismatch(m, split, datasetPath);
+      if (!mismatch.empty()) {
+        std::fprintf(stderr, "glint report: note: left out of the evaluations: %s: %s\n", file.string().c_str(),
+                     mismatch.c_str());
         continue;
       }
       others.push_back({file.filename().string() + ": " + evaluationSettings(m.all), m.mean});
@@ -214,15 +229,8 @@ void runReport(const ReportOptions& o) {
   const fs::path datasetPath = datasetFolder(o, configFile, config);
   Dataset dataset = Dataset::open(datasetPath);
   const DatasetSplit& split = dataset.split(metrics.split);
-  if (metrics.perView.size() != split.views.size())
-    throw Error(metricsFile.string(), "has " + std::to_string(metrics.perView.size()) + " views but the " +
-                                          split.name + " split of " + datasetPath.string() + " has " +
-                                          std::to_string(split.views.size()) + "; was it evaluated on another dataset?");
-  for (size_t v = 0; v < split.views.size(); ++v)
-    if (metrics.perView[v].first != split.views[v].filePath)
-      throw Error(metricsFile.string(), "key \"per_view[" + std::to_string(v) + "].view\" is " +
-                                            metrics.perView[v].first + " but the dataset has " +
-                                            split.views[v].filePath + "; was it evaluated on another dataset?");
+  if (std::string mismatch = viewsMismatch(metrics, split, datasetPath); !mismatch.empty())
+    throw Error(metricsFile.string(), mismatch + "; was it evaluated on another dataset?");
 
   HtmlReportContent content;
   content.title = "Glint report: " + run.lexically_normal().filename().string();
@@ -231,7 +239,7 @@ void runReport(const ReportOptions& o) {
   content.mean = metrics.mean;
   content.perView = metrics.perView;
   content.evaluationLabel = metricsFile.filename().string() + ": " + evaluationSettings(metrics.all);
-  content.otherEvaluations = otherEvaluations(metricsFile, split);
+  content.otherEvaluations = otherEvaluations(metricsFile, split, datasetPath);
   size_t shown = o.views < 0 ? split.views.size() : std::min(split.views.size(), size_t(o.views));
   {
     ProgressBar progress("report", int64_t(shown), "views");

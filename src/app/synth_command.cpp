@@ -131,11 +131,11 @@ void runSynth(const SynthOptions& o) {
   checkOutputFolder(o.output, o.force);
 
   ThreadLimit limit(o.threads);
-  const int testSpp = o.testSpp > 0 ? o.testSpp : o.spp;
   std::fprintf(stderr,
                "glint synth: %s -> %s: %d train views at %d spp + %d test views at %d spp, %dx%d, %d bounces, %d "
                "threads\n",
-               o.scene.c_str(), o.output.c_str(), o.train, o.spp, o.test, testSpp, res.x, res.y, o.bounces, maxThreads());
+               o.scene.c_str(), o.output.c_str(), o.train, o.spp, o.test, settings.testSamplesPerPixel(), res.x, res.y,
+               o.bounces, maxThreads());
   auto start = std::chrono::steady_clock::now();
   generateDataset(scene, settings, o.output);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

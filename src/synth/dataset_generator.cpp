@@ -107,14 +107,14 @@ void generateDataset(const MeshScene& scene, const SynthSettings& settings, cons
     uint64_t key;
     int spp;
   };
-  const int testSpp = settings.testSpp > 0 ? settings.testSpp : settings.spp;
+  const int testSpp = settings.testSamplesPerPixel();
   const SplitPlan plans[] = {{"train", settings.trainViews, &rig.train, 1, settings.spp},
                              {"test", settings.testViews, &rig.test, 2, testSpp}};
 
   // Progress counts path samples, so that the ETA holds when the splits' spp differ.
   const int64_t pixelsPerView = int64_t(settings.width) * settings.height;
-  ProgressBar progress("synth", pixelsPerView * (int64_t(settings.trainViews) * settings.spp + int64_t(settings.testViews) * testSpp),
-                       "samples");
+  const int64_t samplesOfAllViews = int64_t(settings.trainViews) * settings.spp + int64_t(settings.testViews) * testSpp;
+  ProgressBar progress("synth", pixelsPerView * samplesOfAllViews, "samples");
   std::vector<DepthView> depthViews;  // training views only: the point cloud must not see test views
   for (const SplitPlan& plan : plans) {
     DatasetSplit split;

@@ -31,6 +31,9 @@ struct SynthSettings {
   ImageFormat format = ImageFormat::Exr;
   float exposure = 1.0f;  // multiplies render, diffuse and specular
   int pointCloudMaxPoints = 300000;
+
+  // The test split's samples per pixel, with 0 resolved to spp.
+  int testSamplesPerPixel() const { return testSpp > 0 ? testSpp : spp; }
 };
 
 // Renders one view: radiance buffers average spp jittered samples per pixel (box filter);

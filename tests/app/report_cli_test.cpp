@@ -110,9 +110,14 @@ TEST_F(ReportCliTest, WritesTheRunsPageAndNamesMissingInputs) {
       runGlint("eval " + path("R") + " --spp 3 --bounces 1 --denoise specular -o " + path("R") + "/eval/second.json");
   ASSERT_EQ(second.status, 0) << second.output;
   std::ofstream(path("R") + "/eval/notes.json") << "{\"mine\": 1}";
+  nlohmann::json trainSplit = nlohmann::json::parse(readBytes(path("R") + "/eval/second.json"));
+  trainSplit["split"] = "train";
+  std::ofstream(path("R") + "/eval/train_split.json") << trainSplit.dump();
   Outcome compared = runGlint("report " + path("R"));
   ASSERT_EQ(compared.status, 0) << compared.output;
   EXPECT_NE(compared.output.find("notes.json: key \"mean\" is missing"), std::string::npos) << compared.output;
+  EXPECT_NE(compared.output.find("train_split.json: evaluated the train split, not test"), std::string::npos)
+      << compared.output;
   html = readBytes(path("R") + "/report.html");
   EXPECT_NE(html.find("All evaluations of this run"), std::string::npos);
   EXPECT_NE(html.find("<td>metrics.json: 2 spp, 2 bounces (this page)</td>"), std::string::npos);
@@ -120,9 +125,11 @@ TEST_F(ReportCliTest, WritesTheRunsPageAndNamesMissingInputs) {
   nlohmann::json secondMetrics = nlohmann::json::parse(readBytes(path("R") + "/eval/second.json"));
   EXPECT_EQ(secondMetrics["bounces"], 1);
   char finalCell[64];
-  std::snprintf(finalCell, sizeof finalCell, "<td>%.2f</td>", secondMetrics["mean"]["final"]["psnr_tonemapped"].get<double>());
+  std::snprintf(finalCell, sizeof finalCell, "<td>%.2f</td>",
+                secondMetrics["mean"]["final"]["psnr_tonemapped"].get<double>());
   EXPECT_NE(html.find(finalCell), std::string::npos) << finalCell;
   EXPECT_EQ(html.find("notes.json"), std::string::npos);
+  EXPECT_EQ(html.find("train_split.json"), std::string::npos);
 }
 
 TEST_F(ReportCliTest, CorruptInputsAreNamed) {
