@@ -46,9 +46,6 @@ constexpr uint32_t owenScramble(uint32_t x, uint32_t seed) {
   return reverseBits32(x);
 }
 
-// Maps 32 random bits to [0, 1) exactly, never 1 (as Rng::uniform).
-constexpr float fractionToFloat(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
-
 // Sample `index` of the stratified stream named by streamKey (e.g. hashKeys({seed, view,
 // pixel, dimension})). Samples [2^m k, 2^m (k+1)) of a stream form a (0,m,2)-net; for other
 // counts the points are still well spread. Each sample on its own is uniform on [0,1)^2,
@@ -59,8 +56,8 @@ constexpr float fractionToFloat(uint32_t x) { return float(x >> 8) * 0x1p-24f; }
 inline Vec2f stratifiedSample2(uint64_t streamKey, uint32_t index) {
   const uint64_t seeds = mix64(streamKey);
   const uint32_t shuffled = owenScramble(index, uint32_t(streamKey));
-  return {fractionToFloat(owenScramble(sobolDimension0(shuffled), uint32_t(seeds))),
-          fractionToFloat(owenScramble(sobolDimension1(shuffled), uint32_t(seeds >> 32)))};
+  return {unitFloatFromBits(owenScramble(sobolDimension0(shuffled), uint32_t(seeds))),
+          unitFloatFromBits(owenScramble(sobolDimension1(shuffled), uint32_t(seeds >> 32)))};
 }
 
 }  // namespace glint

@@ -23,6 +23,9 @@ constexpr uint64_t hashKeys(std::initializer_list<uint64_t> keys) {
   return h;
 }
 
+// Maps 32 random bits to [0, 1), never 1: the top 24 bits scaled exactly.
+constexpr float unitFloatFromBits(uint32_t bits) { return static_cast<float>(bits >> 8) * 0x1p-24f; }
+
 // PCG32 (O'Neill 2014, "PCG: A Family of Simple Fast Space-Efficient Statistically Good
 // Algorithms for Random Number Generation"): small state, good statistics, fast.
 class Rng {
@@ -66,8 +69,8 @@ class Rng {
     state_ = totalMultiplier * state_ + totalIncrement;
   }
 
-  // Uniform in [0, 1), never 1: 24 random bits scaled exactly.
-  float uniform() { return static_cast<float>(nextUint() >> 8) * 0x1p-24f; }
+  // Uniform in [0, 1), never 1.
+  float uniform() { return unitFloatFromBits(nextUint()); }
   double uniformDouble() {
     uint64_t bits = (uint64_t(nextUint()) << 21) ^ uint64_t(nextUint() >> 11);
     return static_cast<double>(bits & ((1ull << 53) - 1)) * 0x1p-53;
