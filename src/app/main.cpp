@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "core/activity.h"
 #include "core/error.h"
 
 int main(int argc, char** argv) {
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "glint: error: %s\n", e.what());
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "glint: error: %s\n", e.what());
+    std::fprintf(stderr, "glint: error: %s\n", glint::describeUnexpectedException(e).c_str());
     return 1;
   }
   return 0;

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/json_file.h"
+#include "core/activity.h"
 #include "core/error.h"
 #include "scene/gaussian_ply.h"
 
@@ -67,6 +68,7 @@ void readRunConfig(const fs::path& file, SceneSource& source) {
 }  // namespace
 
 SceneSource loadSceneSource(const fs::path& p) {
+  ActivityScope activity("reading the scene " + p.string());
   SceneSource source;
   if (fs::is_directory(p)) {
     fs::path scene = p / "scene.ply";

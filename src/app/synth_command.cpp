@@ -6,6 +6,7 @@
 
 #include "app/cli_parsing.h"
 #include "app/commands.h"
+#include "core/activity.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -55,6 +56,7 @@ MeshScene loadScene(const std::string& spec) {
   std::string ext = lowercaseExtension(path);
   if (ext != ".gltf" && ext != ".glb")
     throw Error(spec, "a scene is builtin:NAME or a .gltf/.glb file (unknown extension '" + ext + "')");
+  ActivityScope activity("importing " + path.string());
   return loadGltfScene(path);
 }
 
@@ -90,6 +92,7 @@ void applyEnvironment(MeshScene& scene, const SynthOptions& o) {
 // rig is fixed from the unedited scene first, so an edited dataset has exactly the cameras
 // of the unedited one even when the edit changes the scene's bounds.
 void applyEditFile(MeshScene& scene, const std::string& path) {
+  ActivityScope activity("applying the edits of " + path);
   EditDocument document = readEditFile(path);
   scene.cameras = sceneCameraRig(scene);
   scene.hasCameraRig = true;

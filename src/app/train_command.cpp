@@ -11,15 +11,18 @@
 
 #include "app/commands.h"
 #include "app/viewer/viewer_setup.h"
+#include "core/activity.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "eval/training_log.h"
 #include "scene/dataset.h"
 #include "scene/gaussian_ply.h"
 #include "train/camera_culling.h"
 #include "train/checkpoint.h"
 #include "train/dense_init.h"
+#include "train/divergence_monitor.h"
 #include "train/scene_extent.h"
 #include "train/train_config.h"
 #include "train/trainer.h"
@@ -56,25 +59,27 @@ constexpr const char* kLogHeader =
 fs::path checkpointFile(const fs::path& run) { return run / "checkpoint" / "state.bin"; }
 
 // Keeps the log rows up to `step` (a resumed run rewrites what came after its checkpoint)
-// and returns the wall time of the last kept row.
+// and returns the wall time of the last kept row. A last row without its newline was cut
+// short by a crash or a full disk and is dropped; any other row that does not parse is an
+// error naming the file and line, since the run's history would be lost with it.
 double truncateLog(const fs::path& log, int64_t step) {
+  std::string text = fs::exists(log) ? readTextFile(log) : std::string(kLogHeader);
+  if (!text.empty() && text.back() != '\n') text.erase(text.rfind('\n') + 1);
+  if (text.empty()) text = kLogHeader;
+  TrainingLog parsed = parseTrainingLog(text, log.string(), {"step", "wall_s"});
+  const std::vector<double>& steps = parsed.column("step");
+  const std::vector<double>& walls = parsed.column("wall_s");
   std::string kept = kLogHeader;
   double wall = 0;
-  std::ifstream in(log);
+  std::istringstream lines(text);
   std::string line;
-  bool header = true;
-  while (std::getline(in, line)) {
-    if (header) {
-      header = false;
-      continue;
-    }
-    std::istringstream row(line);
-    std::string field;
-    std::getline(row, field, ',');
-    if (field.empty() || std::stoll(field) > step) break;
-    for (int k = 0; k < 11; ++k) std::getline(row, field, ',');  // wall_s is the 12th column
-    wall = std::atof(field.c_str());
+  std::getline(lines, line);  // the header, rewritten as today's
+  for (size_t row = 0; row < parsed.rows() && std::getline(lines, line);) {
+    if (line.empty() || line == "\r") continue;  // rows the parser skips too
+    if (!(steps[row] <= double(step))) break;
+    wall = walls[row];
     kept += line + "\n";
+    ++row;
   }
   writeTextAtomically(log, kept);
   return wall;
@@ -116,16 +121,27 @@ void saveRun(const fs::path& run, const Trainer& trainer) {
 
 void runTrain(TrainOptions& o, const CLI::App& cmd) {
   const fs::path run = o.output;
+  ActivityScope activity("preparing the training run " + run.string());
   TrainConfig config;
+  // A run killed (or failed) before its first checkpoint has its config.json but no state:
+  // --resume starts it again from step 0 with that config, as the advice below promises.
+  const bool haveCheckpoint = fs::exists(checkpointFile(run));
   if (o.resume) {
     if (!fs::exists(run / "config.json"))
       throw Error(run.string(), "has no config.json: not a training run to resume");
     config = readTrainConfig(run / "config.json");
     if (cmd.get_option("--iters")->count() > 0) config.iters = o.config.iters;  // a resumed run may run longer
+    if (!haveCheckpoint)
+      std::fprintf(stderr, "glint train: %s has no checkpoint yet; starting it from step 0 with its config.json\n",
+                   run.string().c_str());
   } else {
     if (fs::exists(run) && !fs::is_directory(run)) throw Error(run.string(), "exists and is not a folder");
     if (fs::exists(run) && !fs::is_empty(run) && !o.force)
-      throw Error(run.string(), "is not empty; resume it with --resume, choose another -o folder, or pass --force");
+      throw Error(run.string(), fs::exists(run / "config.json")
+                                    ? "holds a training run; continue it with --resume, choose another -o folder, "
+                                      "or pass --force to start over (its files are overwritten)"
+                                    : "is not empty and holds no training run; choose another -o folder, or pass "
+                                      "--force to write into it");
     config = o.configFile.empty() ? TrainConfig() : readTrainConfig(o.configFile);
     // Explicit flags win over the config file.
     auto given = [&](const char* flag) { return cmd.get_option(flag)->count() > 0; };
@@ -156,6 +172,7 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
     throw Error(run.string(), "was trained on " + config.dataset + ", not " + o.dataset);
 
   ThreadLimit threads(config.threads);
+  activity.describe("loading the dataset " + config.dataset);
   Dataset dataset = Dataset::open(config.dataset);
   TrainingViews views = TrainingViews::load(dataset, dataset.train(),
                                             config.baseline == "rgb" ? ColourTarget::Render : ColourTarget::Diffuse);
@@ -164,7 +181,8 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
 
   std::unique_ptr<Trainer> trainer;
   double wallOffset = 0;
-  if (o.resume) {
+  activity.describe("setting up the training of " + run.string());
+  if (o.resume && haveCheckpoint) {
     TrainingState state = readCheckpoint(checkpointFile(run));
     TrainConfig saved = config;
     applyJson(nlohmann::json::parse(state.configJson), &saved, checkpointFile(run).string());
@@ -207,8 +225,23 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
   ProgressBar progress("train", config.iters, "steps");
   progress.advance(trainer->stepCount());
   double lastPsnr = NAN;
+  DivergenceMonitor divergence;
+  bool saveDue = false;  // a checkpoint waits while the monitor suspects a collapse
+  int64_t lastSaved = trainer->stepCount();
+  bool checkpointOnDisk = o.resume && haveCheckpoint;
   while (trainer->stepCount() < config.iters) {
+    activity.describe("training step " + std::to_string(trainer->stepCount() + 1) + " of " + run.string());
     StepReport r = trainer->step();
+    if (std::optional<std::string> problem = divergence.check(r, trainer->scene())) {
+      progress.finish();
+      std::string kept = checkpointOnDisk
+                             ? "the last good checkpoint (step " + std::to_string(lastSaved) + ") is kept in " +
+                                   checkpointFile(run).string()
+                             : "no checkpoint was written";
+      throw Error(run.string(), "training diverged " + *problem + "; " + kept +
+                                    ". Likely cause: learning rates (lr.* in --config) or loss weights too large "
+                                    "for this scene; start again with smaller ones");
+    }
     double wall = wallOffset + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::string psnrField, normalField;
     if (!testViews.empty() && (r.step % config.evalEvery == 0 || r.step == config.iters)) {
@@ -238,7 +271,13 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
     if (r.overflowedRays > 0)
       std::fprintf(stderr, "glint train: warning: %lld rays overflowed their hit list at step %lld\n",
                    (long long)r.overflowedRays, (long long)r.step);
-    if (r.step % config.saveEvery == 0 || r.step == config.iters) saveRun(run, *trainer);
+    saveDue = saveDue || r.step % config.saveEvery == 0 || r.step == config.iters;
+    if (saveDue && (divergence.clean() || r.step == config.iters)) {
+      saveRun(run, *trainer);
+      saveDue = false;
+      lastSaved = r.step;
+      checkpointOnDisk = true;
+    }
     auto now = std::chrono::steady_clock::now();
     if (viewer && (std::chrono::duration<double>(now - lastSnapshot).count() >= o.viewEvery || r.step == config.iters)) {
       viewer->showScene(trainer->scene());
@@ -274,17 +313,17 @@ void addTrainCommand(CLI::App& app) {
   const TrainConfig defaults;
   cmd->add_option("dataset", o->dataset, "Dataset folder (transforms_train.json, train/...); optional with --resume");
   cmd->add_option("-o,--output", o->output, "Run folder to create (or to continue with --resume)")->required();
-  cmd->add_option("--iters", o->config.iters, "Training steps")->check(CLI::Range(1, 100000000))->default_val(defaults.iters);
+  cmd->add_option("--iters", o->config.iters, "Training steps")->check(CLI::Range(kItersRange.min, kItersRange.max))->default_val(defaults.iters);
   cmd->add_option("--config", o->configFile, "JSON file of hyper-parameters (the layout of RUN/config.json); flags "
                                              "given explicitly override it")->check(CLI::ExistingFile);
   cmd->add_option("--seed", o->config.seed, "Seed of the ray batches")->default_val(defaults.seed);
   cmd->add_option("--threads", o->config.threads, "Worker threads (0 = all cores); a run is reproducible for a "
                                                   "given seed and thread count")
-      ->check(CLI::Range(0, 1024))
+      ->check(CLI::Range(kThreadsRange.min, kThreadsRange.max))
       ->default_val(defaults.threads);
   cmd->add_option("--bounces", o->config.bounces, "Reflected segments trained with L_r after the warm-up "
                                                   "(reflection_warmup steps); 0 = first segment only")
-      ->check(CLI::Range(0, 8))
+      ->check(CLI::Range(kBouncesRange.min, kBouncesRange.max))
       ->default_val(defaults.bounces);
   cmd->add_option("--baseline", o->config.baseline,
                   "rgb: the ray-traced RGB-only baseline, for comparison: the same tracer and schedule, the colours "
@@ -293,13 +332,13 @@ void addTrainCommand(CLI::App& app) {
       ->check(CLI::IsMember({"none", "rgb"}))
       ->default_val(defaults.baseline);
   cmd->add_option("--batch-rays", o->config.batchRays, "Rays per step")
-      ->check(CLI::Range(1, 1 << 24))
+      ->check(CLI::Range(kBatchRaysRange.min, kBatchRaysRange.max))
       ->default_val(defaults.batchRays);
   cmd->add_option("--batch-views", o->config.batchViews, "Training views each step's rays are drawn from")
-      ->check(CLI::Range(1, 1 << 20))
+      ->check(CLI::Range(kBatchViewsRange.min, kBatchViewsRange.max))
       ->default_val(defaults.batchViews);
   cmd->add_option("--eval-every", o->config.evalEvery, "Steps between test-view scores in the log")
-      ->check(CLI::Range(1, 100000000))
+      ->check(CLI::Range(kEveryStepsRange.min, kEveryStepsRange.max))
       ->default_val(defaults.evalEvery);
   cmd->add_option("--eval-views", o->evalViews, "Test views scored during training (evenly spaced; 0 = none)")
       ->check(CLI::Range(0, 100000))
@@ -309,7 +348,7 @@ void addTrainCommand(CLI::App& app) {
       ->check(CLI::Range(1, 1024))
       ->default_val(o->evalSpp);
   cmd->add_option("--save-every", o->config.saveEvery, "Steps between checkpoints (and scene.ply)")
-      ->check(CLI::Range(1, 100000000))
+      ->check(CLI::Range(kEveryStepsRange.min, kEveryStepsRange.max))
       ->default_val(defaults.saveEvery);
   cmd->add_option("--init", o->config.initSource, "Initialisation: auto (point_cloud_dense.ply if present, else "
                                                    "the depth buffers), depth, point-cloud")

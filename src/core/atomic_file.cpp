@@ -1,12 +1,17 @@
 // Atomic writes by rename, and whole-file reads with clear errors.
 #include "core/atomic_file.h"
 
+#include <signal.h>
 #include <unistd.h>
 
 #include <atomic>
 #include <cerrno>
+#include <charconv>
 #include <cstring>
 #include <fstream>
+#include <mutex>
+#include <optional>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
@@ -15,6 +20,56 @@ namespace glint {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// Temporary files are named ".STEM.tmpPID_N.EXT": the real extension stays last because
+// some writers pick the format from it, and the PID tells whose file it is.
+std::string temporaryName(const fs::path& path, int counter) {
+  return "." + path.stem().string() + ".tmp" + std::to_string(getpid()) + "_" + std::to_string(counter) +
+         path.extension().string();
+}
+
+// The PID in a temporary file's name, or nothing when the name is not one of ours.
+std::optional<pid_t> temporaryOwner(const std::string& name) {
+  if (name.empty() || name[0] != '.') return std::nullopt;
+  for (size_t at = name.find(".tmp", 1); at != std::string::npos; at = name.find(".tmp", at + 1)) {
+    const char* first = name.data() + at + 4;
+    const char* last = name.data() + name.size();
+    pid_t pid = 0;
+    auto [afterPid, pidError] = std::from_chars(first, last, pid);
+    if (pidError != std::errc() || afterPid == first || pid <= 0 || afterPid == last || *afterPid != '_') continue;
+    unsigned counter = 0;
+    auto [afterCounter, counterError] = std::from_chars(afterPid + 1, last, counter);
+    if (counterError != std::errc() || afterCounter == afterPid + 1) continue;
+    if (afterCounter == last || *afterCounter == '.') return pid;
+  }
+  return std::nullopt;
+}
+
+bool processIsGone(pid_t pid) { return kill(pid, 0) != 0 && errno == ESRCH; }
+
+// Removes the temporaries that killed processes left in a folder (a checkpoint's can be
+// hundreds of MB). A live process's, ours included, are kept: it may still rename them.
+// Each folder is swept once per process, so writing many files into one folder stays linear.
+void removeStaleTemporaries(const fs::path& folder) {
+  static std::mutex mutex;
+  static std::set<fs::path> swept;
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (!swept.insert(folder.empty() ? fs::path(".") : folder).second) return;
+  }
+  std::error_code ec;
+  for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end;
+       it.increment(ec)) {
+    std::optional<pid_t> owner = temporaryOwner(it->path().filename().string());
+    if (!owner || !processIsGone(*owner)) continue;
+    std::error_code ignored;
+    if (it->is_regular_file(ignored)) fs::remove(it->path(), ignored);
+  }
+}
+
+}  // namespace
+
 void writeAtomically(const fs::path& path, const std::function<void(const std::string&)>& write) {
   static std::atomic<int> counter{0};
   if (path.has_parent_path()) {
@@ -22,10 +77,8 @@ void writeAtomically(const fs::path& path, const std::function<void(const std::s
     fs::create_directories(path.parent_path(), ec);
     if (ec) throw Error(path.parent_path().string(), "cannot create folder: " + ec.message());
   }
-  // Keep the real extension last: some writers pick the format from it.
-  std::string tempName = "." + path.stem().string() + ".tmp" + std::to_string(getpid()) + "_" +
-                         std::to_string(counter.fetch_add(1)) + path.extension().string();
-  fs::path temp = path.parent_path() / tempName;
+  removeStaleTemporaries(path.parent_path());
+  fs::path temp = path.parent_path() / temporaryName(path, counter.fetch_add(1));
   try {
     write(temp.string());
   } catch (...) {
@@ -33,11 +86,12 @@ void writeAtomically(const fs::path& path, const std::function<void(const std::s
     fs::remove(temp, ignored);
     throw;
   }
-  std::error_code ec;
-  fs::rename(temp, path, ec);
-  if (ec) {
-    fs::remove(temp, ec);
-    throw Error(path.string(), "cannot move the finished file into place: " + ec.message());
+  std::error_code renameError;
+  fs::rename(temp, path, renameError);
+  if (renameError) {
+    std::error_code ignored;  // the rename's error is the one to report
+    fs::remove(temp, ignored);
+    throw Error(path.string(), "cannot move the finished file into place: " + renameError.message());
   }
 }
 

@@ -9,7 +9,8 @@
 namespace glint {
 
 // Calls write(tempPath) to produce the file, then renames it over path. If write throws,
-// the temporary file is removed and the exception propagates; path is untouched.
+// the temporary file is removed and the exception propagates; path is untouched. The
+// first write into a folder also removes the temporaries of processes that died there.
 void writeAtomically(const std::filesystem::path& path, const std::function<void(const std::string& tempPath)>& write);
 
 // Writes text (or bytes) atomically.

@@ -35,9 +35,16 @@ const std::vector<double>& TrainingLog::column(const std::string& name) const {
 }
 
 TrainingLog readTrainingLog(const std::filesystem::path& path, std::initializer_list<const char*> required) {
-  const std::string file = path.string();
-  std::ifstream in(path);
-  if (!in) throw Error(file, "cannot be opened for reading");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path.string(), "cannot be opened for reading");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseTrainingLog(text.str(), path.string(), required);
+}
+
+TrainingLog parseTrainingLog(const std::string& text, const std::string& file,
+                             std::initializer_list<const char*> required) {
+  std::istringstream in(text);
   TrainingLog log;
   std::string line;
   int lineNumber = 0;

@@ -23,5 +23,8 @@ struct TrainingLog {
 // with as many fields as the header. The header must hold every required name. Throws
 // Error naming the file and the line (and column) that is wrong.
 TrainingLog readTrainingLog(const std::filesystem::path& path, std::initializer_list<const char*> required = {});
+// The same for the text of such a file; `file` names it in errors.
+TrainingLog parseTrainingLog(const std::string& text, const std::string& file,
+                             std::initializer_list<const char*> required = {});
 
 }  // namespace glint

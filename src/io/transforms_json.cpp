@@ -22,6 +22,10 @@ using Json = nlohmann::json;
 // while rotations stored as text with 6-8 digits drift from orthonormal by ~1e-6.
 constexpr double kLastRowTolerance = 1e-4;
 constexpr double kOrthonormalTolerance = 1e-3;
+// Fields of view narrower than 0.01 degrees (a 1000 mm lens on a 35 mm sensor still sees
+// 2 degrees) put every pixel's ray within float precision of the next: the renders are
+// black or one colour, so such a value is a unit mistake, not a camera.
+constexpr double kMinFieldOfView = 0.01 * std::numbers::pi / 180.0;
 
 // nlohmann's messages start with "[json.exception.parse_error.101] "; drop that tag.
 std::string withoutExceptionTag(const std::string& what) {
@@ -115,9 +119,10 @@ TransformsFile parseTransformsJson(const std::string& text, const std::string& f
   if (angle == root.end()) throw Error(fileName, "camera_angle_x is missing (horizontal field of view in radians)");
   if (!angle->is_number()) throw Error(fileName, "camera_angle_x must be a number (radians)");
   result.cameraAngleX = angle->get<double>();
-  if (!(result.cameraAngleX > 0 && result.cameraAngleX < std::numbers::pi)) {
+  if (!(result.cameraAngleX >= kMinFieldOfView && result.cameraAngleX < std::numbers::pi)) {
     std::ostringstream s;
-    s << "camera_angle_x is " << result.cameraAngleX << ", but must lie in (0, pi) radians";
+    s << "camera_angle_x is " << result.cameraAngleX
+      << ", but must lie in [0.000175, pi) radians (0.01 to 180 degrees; it is in radians, not degrees)";
     throw Error(fileName, s.str());
   }
 
@@ -136,6 +141,12 @@ TransformsFile parseTransformsJson(const std::string& text, const std::string& f
     if (parsed.filePath.empty()) throw Error(fileName, where + "file_path is empty");
     if (parsed.filePath.front() == '/')
       throw Error(fileName, where + "file_path \"" + parsed.filePath + "\" must be relative to the dataset folder");
+    // A dataset is one folder: its files never lie outside it, so ".." is refused outright
+    // (a downloaded dataset must not make Glint read, or synth write, elsewhere).
+    for (const auto& part : std::filesystem::path(parsed.filePath))
+      if (part == "..")
+        throw Error(fileName, where + "file_path \"" + parsed.filePath +
+                                  "\" leaves the dataset folder (\"..\"); every file must lie inside it");
     auto matrix = frame.find("transform_matrix");
     if (matrix == frame.end()) throw Error(fileName, where + "transform_matrix is missing");
     parsed.transformMatrix = parseMatrix(*matrix, fileName, where);

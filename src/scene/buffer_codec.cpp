@@ -71,6 +71,55 @@ Image readBufferFile(const std::filesystem::path& path, Buffer buffer) {
   return image;
 }
 
+namespace {
+
+// Normals must be unit length within this where depth says there is a surface
+// (8-bit PNG normals are off by up to ~0.01; anything beyond 0.1 is a wrong encoding).
+constexpr float kNormalLengthTolerance = 0.1f;
+// Roughness and f0 must lie in [0, 1] up to this (rounding in conversions).
+constexpr float kUnitRangeTolerance = 1e-3f;
+
+std::string pixelName(const Image& image, size_t valueIndex) {
+  size_t pixel = valueIndex / image.channels;
+  std::ostringstream s;
+  s << "pixel (" << pixel % image.width << ", " << pixel / image.width << ")";
+  if (image.channels > 1) s << " channel " << valueIndex % image.channels;
+  return s.str();
+}
+
+std::optional<std::string> findOutsideUnitRange(const Image& image) {
+  size_t bad = 0, first = 0;
+  for (size_t i = 0; i < image.pixels.size(); ++i) {
+    float v = image.pixels[i];
+    if ((v < -kUnitRangeTolerance || v > 1.0f + kUnitRangeTolerance) && bad++ == 0) first = i;
+  }
+  if (bad == 0) return std::nullopt;
+  std::ostringstream s;
+  s << bad << " of " << image.pixels.size() << " values lie outside [0, 1]; the first is "
+    << pixelName(image, first) << " = " << image.pixels[first];
+  return s.str();
+}
+
+}  // namespace
+
+std::optional<std::string> findNonUnitNormal(const Image& normal, const Image& depth) {
+  size_t bad = 0, surface = 0, first = 0;
+  float firstLength = 0;
+  for (int y = 0; y < normal.height; ++y)
+    for (int x = 0; x < normal.width; ++x) {
+      if (!hasSurface(depth.at(x, y))) continue;
+      ++surface;
+      float len = length(normal.rgb(x, y));
+      if (std::abs(len - 1.0f) > kNormalLengthTolerance && bad++ == 0)
+        first = normal.index(x, y), firstLength = len;
+    }
+  if (bad == 0) return std::nullopt;
+  std::ostringstream s;
+  s << bad << " of " << surface << " surface pixels (depth > 0) have normals that are not unit length within "
+    << kNormalLengthTolerance << "; the first is " << pixelName(normal, first) << " with length " << firstLength;
+  return s.str();
+}
+
 std::optional<std::string> findInvalidValue(const Image& image, Buffer buffer) {
   size_t bad = 0;
   size_t first = 0;
@@ -79,7 +128,7 @@ std::optional<std::string> findInvalidValue(const Image& image, Buffer buffer) {
     bool invalid = !std::isfinite(v) || (buffer == Buffer::Depth && v < 0.0f);
     if (invalid && bad++ == 0) first = i;
   }
-  if (bad == 0) return std::nullopt;
+  if (bad == 0) return buffer == Buffer::Roughness || buffer == Buffer::F0 ? findOutsideUnitRange(image) : std::nullopt;
 
   int c = int(first % image.channels);
   size_t pixel = first / image.channels;

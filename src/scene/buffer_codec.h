@@ -34,8 +34,13 @@ Image encodeBuffer(const Image& linear, Buffer buffer, ImageFormat format);
 // file, a PNG depth or a channel count other than bufferChannels(buffer).
 Image readBufferFile(const std::filesystem::path& path, Buffer buffer);
 
-// The first value a loader must reject (NaN or infinite, negative depth) as a message
-// naming the pixel (x, y), the channel and how many values are bad; nullopt when none.
+// The first value a loader must reject (NaN or infinite, negative depth, roughness or F0
+// outside [0, 1]) as a message naming the pixel (x, y), the channel and how many values
+// are bad; nullopt when none.
 std::optional<std::string> findInvalidValue(const Image& image, Buffer buffer);
+
+// Where depth records a surface, normals must be unit length (within 0.1): a message
+// naming the first pixel that is not and how many are not; nullopt when all are.
+std::optional<std::string> findNonUnitNormal(const Image& normal, const Image& depth);
 
 }  // namespace glint

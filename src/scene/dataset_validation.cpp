@@ -19,57 +19,12 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Normals must be unit length within this where depth says there is a surface
-// (8-bit PNG normals are off by up to ~0.01; anything beyond 0.1 is a wrong encoding).
-constexpr float kNormalLengthTolerance = 0.1f;
-// Roughness and f0 must lie in [0, 1] up to this (rounding in conversions).
-constexpr float kUnitRangeTolerance = 1e-3f;
-
 // An Error's message without the "file: " prefix it carries.
 DatasetProblem problemFrom(const Error& e, const fs::path& fallbackFile) {
   std::string file = e.file().empty() ? fallbackFile.string() : e.file();
   std::string message = e.what();
   if (!e.file().empty() && message.rfind(e.file() + ": ", 0) == 0) message.erase(0, e.file().size() + 2);
   return {file, message};
-}
-
-std::string pixelName(const Image& image, size_t valueIndex) {
-  size_t pixel = valueIndex / image.channels;
-  std::ostringstream s;
-  s << "pixel (" << pixel % image.width << ", " << pixel / image.width << ")";
-  if (image.channels > 1) s << " channel " << valueIndex % image.channels;
-  return s.str();
-}
-
-std::optional<std::string> checkUnitRange(const Image& image) {
-  size_t bad = 0, first = 0;
-  for (size_t i = 0; i < image.pixels.size(); ++i) {
-    float v = image.pixels[i];
-    if ((v < -kUnitRangeTolerance || v > 1.0f + kUnitRangeTolerance) && bad++ == 0) first = i;
-  }
-  if (bad == 0) return std::nullopt;
-  std::ostringstream s;
-  s << bad << " of " << image.pixels.size() << " values lie outside [0, 1]; the first is "
-    << pixelName(image, first) << " = " << image.pixels[first];
-  return s.str();
-}
-
-std::optional<std::string> checkUnitNormals(const Image& normal, const Image& depth) {
-  size_t bad = 0, surface = 0, first = 0;
-  float firstLength = 0;
-  for (int y = 0; y < normal.height; ++y)
-    for (int x = 0; x < normal.width; ++x) {
-      if (!hasSurface(depth.at(x, y))) continue;
-      ++surface;
-      float len = length(normal.rgb(x, y));
-      if (std::abs(len - 1.0f) > kNormalLengthTolerance && bad++ == 0)
-        first = normal.index(x, y), firstLength = len;
-    }
-  if (bad == 0) return std::nullopt;
-  std::ostringstream s;
-  s << bad << " of " << surface << " surface pixels (depth > 0) have normals that are not unit length within "
-    << kNormalLengthTolerance << "; the first is " << pixelName(normal, first) << " with length " << firstLength;
-  return s.str();
 }
 
 // What validation found for one buffer file of one view.
@@ -97,8 +52,6 @@ std::array<BufferCheck, kBufferCount> checkView(const fs::path& root, const std:
       check.width = image.width;
       check.height = image.height;
       if (auto problem = findInvalidValue(image, b)) check.problems.push_back(*problem);
-      if (b == Buffer::Roughness || b == Buffer::F0)
-        if (auto problem = checkUnitRange(image)) check.problems.push_back(*problem);
       if (b == Buffer::Depth || b == Buffer::Normal) images[int(b)] = std::move(image);
     } catch (const Error& e) {
       check.problems.push_back(problemFrom(e, check.file).message);
@@ -109,7 +62,7 @@ std::array<BufferCheck, kBufferCount> checkView(const fs::path& root, const std:
   const Image& depth = images[int(Buffer::Depth)];
   const Image& normal = images[int(Buffer::Normal)];
   if (!depth.empty() && !normal.empty() && depth.width == normal.width && depth.height == normal.height)
-    if (auto problem = checkUnitNormals(normal, depth)) checks[int(Buffer::Normal)].problems.push_back(*problem);
+    if (auto problem = findNonUnitNormal(normal, depth)) checks[int(Buffer::Normal)].problems.push_back(*problem);
   return checks;
 }
 

@@ -14,6 +14,10 @@
 
 namespace glint {
 
+// The most depth samples the dense initialisation may take (init.max_pixel_samples): 100x
+// the default, about 4 GB of samples before voxelisation.
+inline constexpr int64_t kMaxInitialSamples = 100'000'000;
+
 struct DenseInitSettings {
   // Unproject every pixelStride-th pixel along x and y (a reduced resolution). 0 picks the
   // smallest stride that keeps at most maxPixelSamples pixels over all training views:

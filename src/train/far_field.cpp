@@ -16,19 +16,19 @@
 namespace glint {
 
 void checkFarFieldSettings(const FarFieldSettings& s, const std::string& where) {
-  if (s.count < 0) throw Error(where, "far_field.count must be 0 or more");
+  if (s.count < 0 || s.count > kMaxFarFieldCount) throw Error(where, "far_field.count must be in [0, 10000000]");
   if (!(s.sigmaFactor > 0.0f && std::isfinite(s.sigmaFactor))) throw Error(where, "far_field.sigma_factor must be positive");
   if (!(s.truncation > 0.0f && std::isfinite(s.truncation))) throw Error(where, "far_field.truncation must be positive");
   if (!(s.opacity > 0.0f && s.opacity < 1.0f)) throw Error(where, "far_field.opacity must lie in (0, 1)");
   if (!(s.diffuse >= 0.0f && std::isfinite(s.diffuse))) throw Error(where, "far_field.diffuse must be 0 or more");
-  if (s.neighbours < 1) throw Error(where, "far_field.neighbours must be at least 1");
+  if (s.neighbours < 1 || s.neighbours > 64) throw Error(where, "far_field.neighbours must be in [1, 64]");
   for (size_t b = 0; b < s.boxes.size(); ++b) {
     const FarFieldBox& box = s.boxes[b];
     const std::string name = "far_field.boxes[" + std::to_string(b) + "]";
     for (int axis = 0; axis < 3; ++axis)
       if (!(std::isfinite(box.min[axis]) && std::isfinite(box.max[axis]) && box.min[axis] < box.max[axis]))
         throw Error(where, name + ": min must be below max on every axis, and both finite");
-    if (box.count < 1) throw Error(where, name + ": count must be at least 1");
+    if (box.count < 1 || box.count > kMaxFarFieldCount) throw Error(where, name + ": count must be in [1, 10000000]");
   }
 }
 

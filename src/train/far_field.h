@@ -22,6 +22,10 @@ struct FarFieldBox {
   int count = 0;
 };
 
+// The most far-field Gaussians a run may add, in the cloud and in each box: far more than
+// any scene needs (the default is 75,000), and a bound on what a config file can allocate.
+inline constexpr int kMaxFarFieldCount = 10'000'000;
+
 struct FarFieldSettings {
   int count = 75000;          // M; 0 adds none
   float sigmaFactor = 4.0f;   // positions ~ N(centre, (sigmaFactor x S)^2) per axis

@@ -3,6 +3,8 @@
 #include "train/train_config.h"
 
 #include <array>
+#include <cmath>
+#include <limits>
 #include <set>
 #include <stdexcept>
 
@@ -21,14 +23,22 @@ void from_json(const nlohmann::json& j, FarFieldBox& b) {
     if (it.key() != "min" && it.key() != "max" && it.key() != "count")
       throw std::invalid_argument("unknown key \"" + it.key() + "\" (a box has min, max and count)");
   auto corner = [&](const char* key) {
-    if (!j.at(key).is_array() || j.at(key).size() != 3)
+    const nlohmann::json& c = j.at(key);
+    if (!c.is_array() || c.size() != 3 || !c[0].is_number() || !c[1].is_number() || !c[2].is_number())
       throw std::invalid_argument(std::string("\"") + key + "\" must be an array of 3 numbers");
-    auto v = j.at(key).get<std::array<float, 3>>();
+    for (const nlohmann::json& v : c)
+      if (!(std::abs(v.get<double>()) <= double(std::numeric_limits<float>::max())))
+        throw std::invalid_argument(std::string("\"") + key + "\" must hold finite numbers");
+    auto v = c.get<std::array<float, 3>>();
     return Vec3f(v[0], v[1], v[2]);
   };
   b.min = corner("min");
   b.max = corner("max");
-  b.count = j.at("count").get<int>();
+  const nlohmann::json& count = j.at("count");
+  if (!count.is_number_integer() || (count.is_number_unsigned() ? count.get<uint64_t>() > uint64_t(kMaxFarFieldCount)
+                                                                  : count.get<int64_t>() > kMaxFarFieldCount))
+    throw std::invalid_argument("\"count\" must be an integer of at most " + std::to_string(kMaxFarFieldCount));
+  b.count = count.get<int>();
 }
 
 namespace {
@@ -103,6 +113,25 @@ void forEachField(Config& c, F&& f) {
   f("trace", "exact_tail", c.trace.exactTail);
 }
 
+// Whether a JSON integer fits the field's type (nlohmann's get<> would wrap it:
+// 4294967297 becomes 1 in an int).
+template <typename Field>
+bool integerFits(const nlohmann::json& v) {
+  if (v.is_number_unsigned()) return v.get<uint64_t>() <= uint64_t(std::numeric_limits<Field>::max());
+  const int64_t x = v.get<int64_t>();
+  if constexpr (std::is_signed_v<Field>)
+    return x >= int64_t(std::numeric_limits<Field>::min()) && x <= int64_t(std::numeric_limits<Field>::max());
+  else
+    return x >= 0;
+}
+
+// Whether a JSON number is finite in the field's type (1e39 is a finite double but an
+// infinite float).
+template <typename Field>
+bool numberFits(const nlohmann::json& v) {
+  return std::abs(v.get<double>()) <= double(std::numeric_limits<Field>::max());
+}
+
 std::string keyName(const char* section, const char* key) {
   return std::string(section).empty() ? std::string(key) : std::string(section) + "." + key;
 }
@@ -150,6 +179,14 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
       problem.append(keyName(section, key)).append("\" has the wrong type (").append(v->type_name()).append(")");
       throw Error(source, problem);
     }
+    bool fits = true;
+    if constexpr (std::is_integral_v<Field> && !std::is_same_v<Field, bool>) fits = integerFits<Field>(*v);
+    if constexpr (std::is_floating_point_v<Field>) fits = numberFits<Field>(*v);
+    if (!fits) {
+      std::string problem = "\"";
+      problem.append(keyName(section, key)).append("\" is ").append(v->dump()).append(", out of the range of its type");
+      throw Error(source, problem);
+    }
     try {
       field = v->get<Field>();
     } catch (const std::exception& e) {  // malformed elements of an array setting
@@ -169,14 +206,24 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
 }
 
 void TrainConfig::validate(const std::string& source) const {
+  // Every number first: a NaN passes any comparison written as "refuse if v < lo".
+  forEachField(*this, [&](const char* section, const char* key, const auto& field) {
+    using Field = std::decay_t<decltype(field)>;
+    if constexpr (std::is_floating_point_v<Field>)
+      require(std::isfinite(field), source, keyName(section, key) + " must be a finite number");
+  });
   auto positive = [&](double v, const char* name) { require(v > 0, source, std::string(name) + " must be positive"); };
-  positive(iters, "iters");
-  positive(batchRays, "batch_rays");
-  positive(batchViews, "batch_views");
-  positive(evalEvery, "eval_every");
-  positive(saveEvery, "save_every");
-  require(threads >= 0 && threads <= 1024, source, "threads must be in [0, 1024]");
-  require(bounces >= 0 && bounces <= 8, source, "bounces must be in [0, 8]");
+  auto inRange = [&](int64_t v, IntRange range, const char* name) {
+    require(v >= range.min && v <= range.max, source,
+            std::string(name) + " must be in [" + std::to_string(range.min) + ", " + std::to_string(range.max) + "]");
+  };
+  inRange(iters, kItersRange, "iters");
+  inRange(batchRays, kBatchRaysRange, "batch_rays");
+  inRange(batchViews, kBatchViewsRange, "batch_views");
+  inRange(evalEvery, kEveryStepsRange, "eval_every");
+  inRange(saveEvery, kEveryStepsRange, "save_every");
+  inRange(threads, kThreadsRange, "threads");
+  inRange(bounces, kBouncesRange, "bounces");
   require(baseline == "none" || baseline == "rgb", source, "baseline must be \"none\" or \"rgb\"");
   if (baseline == "rgb")
     require(bounces == 0 && loss.depth == 0 && loss.normal == 0 && loss.roughness == 0 && loss.f0 == 0 &&
@@ -188,19 +235,21 @@ void TrainConfig::validate(const std::string& source) const {
   require(invalidNormalLength >= 0 && invalidNormalLength <= 1, source, "invalid_normal_length must be in [0, 1]");
   require(backfaceSkip >= 0, source, "backface_skip must be non-negative");
   require(scaleDecay > 0 && scaleDecay <= 1, source, "scale_decay must be in (0, 1]");
+  require(reflectionWarmup <= kItersRange.max, source,
+          "reflection_warmup must be at most " + std::to_string(kItersRange.max));
   for (float w : {loss.diffuse, loss.depth, loss.normal, loss.roughness, loss.f0, loss.specular})
-    require(w >= 0, source, "loss weights must be non-negative");
+    require(w >= 0 && w <= kMaxLossWeight, source, "loss weights must be in [0, 1e6]");
   for (float r : {lr.positionInit, lr.positionFinal, lr.rotation, lr.scale, lr.opacity, lr.diffuse, lr.normal,
                   lr.normalFinal, lr.roughness, lr.f0})
-    require(r >= 0 && r < 10, source, "learning rates must be in [0, 10)");
-  positive(lr.positionDecaySteps, "lr.position_decay_steps");
+    require(r >= 0 && r < kMaxLearningRate, source, "learning rates must be in [0, 10)");
+  inRange(lr.positionDecaySteps, kEveryStepsRange, "lr.position_decay_steps");
   require(lr.positionFinal <= lr.positionInit, source, "lr.position_final must not exceed lr.position_init");
-  positive(lr.normalDecaySteps, "lr.normal_decay_steps");
+  inRange(lr.normalDecaySteps, kEveryStepsRange, "lr.normal_decay_steps");
   require(lr.normalFinal <= lr.normal, source, "lr.normal_final must not exceed lr.normal");
   require(adam.beta1 >= 0 && adam.beta1 < 1 && adam.beta2 >= 0 && adam.beta2 < 1, source,
           "adam.beta1 and adam.beta2 must be in [0, 1)");
-  positive(adam.epsilon, "adam.epsilon");
-  positive(prune.every, "prune.every");
+  require(adam.epsilon > 0 && adam.epsilon <= 1, source, "adam.epsilon must be in (0, 1]");
+  inRange(prune.every, kEveryStepsRange, "prune.every");
   require(prune.start >= 0, source, "prune.start must be non-negative");
   require(prune.weightThreshold >= 0, source, "prune.weight_threshold must be non-negative");
   require(prune.cameraSphereFactor >= 0 && prune.cameraSphereFactor < 1, source,
@@ -209,10 +258,11 @@ void TrainConfig::validate(const std::string& source) const {
           "prune.camera_cull_region must be \"in-view\" or \"whole-sphere\"");
   require(initSource == "auto" || initSource == "depth" || initSource == "point-cloud", source,
           "init.source must be \"auto\", \"depth\" or \"point-cloud\"");
-  require(init.pixelStride >= 0, source, "init.pixel_stride must be non-negative (0 = automatic)");
-  positive(double(init.maxPixelSamples), "init.max_pixel_samples");
+  require(init.pixelStride >= 0 && init.pixelStride <= 16384, source,
+          "init.pixel_stride must be in [0, 16384] (0 = automatic)");
+  inRange(init.maxPixelSamples, {1, kMaxInitialSamples}, "init.max_pixel_samples");
   require(init.neighbours >= 1 && init.neighbours <= 64, source, "init.neighbours must be in [1, 64]");
-  positive(init.voxelFraction, "init.voxel_fraction");
+  require(init.voxelFraction > 0 && init.voxelFraction <= 1, source, "init.voxel_fraction must be in (0, 1]");
   positive(init.minSamplesPerVoxel, "init.min_samples_per_voxel");
   require(init.opacity > 0 && init.opacity < 1, source, "init.opacity must be in (0, 1)");
   require(init.roughness >= 0 && init.roughness <= 1, source, "init.roughness must be in [0, 1]");

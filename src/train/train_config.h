@@ -69,6 +69,22 @@ struct PruneSettings {
   std::string cameraCullRegion = "in-view";
 };
 
+// The allowed range of an integer setting, shared by the flag of `glint train` and the
+// field of a config file, so that neither path accepts what the other refuses.
+struct IntRange {
+  int64_t min, max;
+};
+inline constexpr IntRange kItersRange{1, 100'000'000};
+inline constexpr IntRange kThreadsRange{0, 1024};
+inline constexpr IntRange kBouncesRange{0, 8};
+inline constexpr IntRange kBatchRaysRange{1, 1 << 24};
+inline constexpr IntRange kBatchViewsRange{1, 1 << 20};
+inline constexpr IntRange kEveryStepsRange{1, 100'000'000};  // eval_every, save_every, prune.every, decay steps
+// Loss weights above this would overflow Adam's second moment (gradients squared in float).
+inline constexpr float kMaxLossWeight = 1e6f;
+// Learning rates are in [0, this): an Adam step moves a parameter by about its rate.
+inline constexpr float kMaxLearningRate = 10.0f;
+
 struct TrainConfig {
   std::string dataset;  // absolute path of the dataset
   int iters = 8000;

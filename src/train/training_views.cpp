@@ -8,6 +8,7 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "math/rng.h"
+#include "scene/buffer_codec.h"
 
 namespace glint {
 
@@ -37,6 +38,14 @@ TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& sp
     Image roughness = dataset.loadBuffer(split, size_t(v), Buffer::Roughness);
     Image f0 = dataset.loadBuffer(split, size_t(v), Buffer::F0);
     Image specular = haveSpecular ? dataset.loadBuffer(split, size_t(v), Buffer::Specular) : Image();
+    // Training reads neither the render buffer (beside the RGB baseline) nor unit normals
+    // alone, but it refuses every view `glint info` refuses: a broken file is a broken
+    // dataset, and a run trained on one would be scored against it.
+    if (colour != ColourTarget::Render) dataset.loadBuffer(split, size_t(v), Buffer::Render);
+    if (std::optional<std::string> problem = findNonUnitNormal(normal, depth)) {
+      std::optional<std::filesystem::path> file = dataset.findBufferFile(split.views[v], Buffer::Normal);
+      throw Error(file ? file->string() : split.views[v].filePath, *problem);
+    }
     for (const Image* image : {&diffuse, &depth, &normal, &roughness, &f0})
       if (image->width != tv.width_ || image->height != tv.height_)
         throw Error(dataset.root().string(), "view " + split.views[v].filePath + " has buffers of size " +

@@ -137,5 +137,67 @@ TEST_F(TrainCliTest, RefusesBadInput) {
   EXPECT_NE(noRun.output.find("config.json"), std::string::npos) << noRun.output;
 }
 
+TEST_F(TrainCliTest, DivergenceStopsWithAMessageAndKeepsTheLastGoodCheckpoint) {
+  // Every learning rate at the largest value allowed: the Gaussians blow up within steps.
+  std::ofstream(path("wild.json"))
+      << R"({"lr": {"position_init": 9.99, "position_final": 9.99, "rotation": 9.99, "scale": 9.99, "opacity": 9.99,
+                    "diffuse": 9.99, "normal": 9.99, "normal_final": 9.99, "roughness": 9.99, "f0": 9.99}})";
+  Outcome run = runGlint("train " + path("D") + " -o " + path("wild") + " --config " + path("wild.json") +
+                         " --iters 2000 --batch-rays 512 --save-every 50 --threads 2");
+  EXPECT_NE(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("training diverged"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("learning rates"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("glint train: done"), std::string::npos) << run.output;
+  // The checkpoint kept is one the message names, from before the collapse was noticed.
+  size_t at = run.output.find("the last good checkpoint (step ");
+  ASSERT_NE(at, std::string::npos) << run.output;
+  EXPECT_TRUE(fs::exists(path("wild") + "/checkpoint/state.bin"));
+}
+
+TEST_F(TrainCliTest, ARunWithoutCheckpointResumesFromTheStartAndTheAdviceSaysSo) {
+  // A dataset whose second render image is broken: info refuses it, and so must train,
+  // after writing config.json (the state a failed start leaves).
+  fs::copy(path("D"), path("D_broken"), fs::copy_options::recursive);
+  std::ofstream(path("D_broken") + "/train/render/render_0001.exr", std::ios::trunc) << "not an EXR";
+  Outcome failed = runGlint("train " + path("D_broken") + " -o " + path("early") + " --iters 5 --batch-rays 256");
+  EXPECT_NE(failed.status, 0);
+  EXPECT_NE(failed.output.find("render_0001.exr"), std::string::npos) << failed.output;
+  ASSERT_TRUE(fs::exists(path("early") + "/config.json"));
+  EXPECT_FALSE(fs::exists(path("early") + "/checkpoint/state.bin"));
+
+  Outcome again = runGlint("train " + path("D_broken") + " -o " + path("early") + " --iters 5");
+  EXPECT_NE(again.status, 0);
+  EXPECT_NE(again.output.find("continue it with --resume"), std::string::npos) << again.output;
+
+  // Repaired, the run resumes as the advice says: from step 0, with its config.
+  fs::copy_file(path("D") + "/train/render/render_0001.exr", path("D_broken") + "/train/render/render_0001.exr",
+                fs::copy_options::overwrite_existing);
+  Outcome resumed = runGlint("train -o " + path("early") + " --resume");
+  EXPECT_EQ(resumed.status, 0) << resumed.output;
+  EXPECT_NE(resumed.output.find("has no checkpoint yet; starting it from step 0"), std::string::npos)
+      << resumed.output;
+  EXPECT_TRUE(fs::exists(path("early") + "/scene.ply"));
+}
+
+TEST_F(TrainCliTest, ADamagedLogOnResumeIsAnErrorNamingItsLine) {
+  Outcome first = runGlint("train " + path("D") + " -o " + path("logged") + " --iters 6 --save-every 3 --batch-rays 256");
+  ASSERT_EQ(first.status, 0) << first.output;
+  std::string log = readBytes(path("logged") + "/log.csv");
+  size_t third = log.find('\n', log.find('\n') + 1) + 1;  // start of line 3 (step 2)
+  log.replace(third, log.find('\n', third) - third, "2,garbage");
+  std::ofstream(path("logged") + "/log.csv", std::ios::trunc) << log;
+  Outcome resumed = runGlint("train -o " + path("logged") + " --resume --iters 8");
+  EXPECT_NE(resumed.status, 0);
+  EXPECT_NE(resumed.output.find("log.csv: line 3"), std::string::npos) << resumed.output;
+  EXPECT_EQ(resumed.output.find("stoll"), std::string::npos) << resumed.output;
+
+  // A last row cut short (no newline: a crash mid-write) is dropped, not an error.
+  Outcome second = runGlint("train " + path("D") + " -o " + path("cut") + " --iters 6 --save-every 3 --batch-rays 256");
+  ASSERT_EQ(second.status, 0) << second.output;
+  std::ofstream(path("cut") + "/log.csv", std::ios::app) << "7,0.5,0.1";
+  Outcome cutResumed = runGlint("train -o " + path("cut") + " --resume --iters 8");
+  EXPECT_EQ(cutResumed.status, 0) << cutResumed.output;
+}
+
 }  // namespace
 }  // namespace glint

@@ -3,6 +3,7 @@
 #include "core/atomic_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -133,6 +134,48 @@ TEST_F(AtomicFileTest, WritingWhereAFileBlocksTheFolderThrowsError) {
   fs::path path = root_ / "blocker" / "child.txt";
   EXPECT_THROW(writeTextAtomically(path, "y"), Error);
   EXPECT_EQ(readTextFile(root_ / "blocker"), "x");
+}
+
+TEST_F(AtomicFileTest, RenameFailureReportsItsOwnCause) {
+  // A non-empty folder where the file should go: the rename fails. The message must give
+  // that cause, not the outcome of removing the temporary afterwards ("Success").
+  fs::create_directories(root_ / "taken" / "inside");
+  try {
+    writeTextAtomically(root_ / "taken", "x");
+    FAIL() << "expected Error";
+  } catch (const Error& e) {
+    std::string message = e.what();
+    EXPECT_NE(message.find("cannot move the finished file into place"), std::string::npos) << message;
+    EXPECT_EQ(message.find("Success"), std::string::npos) << message;
+  }
+  EXPECT_TRUE(fs::is_directory(root_ / "taken" / "inside"));
+  EXPECT_EQ(allFiles().size(), 0u);
+}
+
+// The PID of a child that has exited and been reaped: no process has it (until reused).
+pid_t deadPid() {
+  pid_t child = fork();
+  if (child == 0) _exit(0);
+  int status = 0;
+  waitpid(child, &status, 0);
+  return child;
+}
+
+TEST_F(AtomicFileTest, RemovesTemporariesOfDeadProcessesAndKeepsLiveOnes) {
+  fs::path folder = root_ / "run";
+  fs::create_directories(folder);
+  const pid_t dead = deadPid();
+  const fs::path stale = folder / (".state.tmp" + std::to_string(dead) + "_3.bin");
+  const fs::path staleNoExtension = folder / (".log.tmp" + std::to_string(dead) + "_0");
+  const fs::path live = folder / (".state.tmp" + std::to_string(getpid()) + "_99.bin");
+  const fs::path notOurs = folder / ".state.tmpfoo_1.bin";  // not a PID: left alone
+  for (const fs::path& p : {stale, staleNoExtension, live, notOurs}) std::ofstream(p) << "partial";
+  writeTextAtomically(folder / "state.bin", "complete");
+  EXPECT_FALSE(fs::exists(stale));
+  EXPECT_FALSE(fs::exists(staleNoExtension));
+  EXPECT_TRUE(fs::exists(live));
+  EXPECT_TRUE(fs::exists(notOurs));
+  EXPECT_EQ(readTextFile(folder / "state.bin"), "complete");
 }
 
 }  // namespace

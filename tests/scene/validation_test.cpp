@@ -96,7 +96,7 @@ const Malformed kMalformed[] = {
      "transforms_train.json", "camera_angle_x is missing", RejectedBy::Open},
     {"CameraAngleOutOfRange",
      [](const fs::path& r) { editJson(r / "transforms_test.json", [](Json& j) { j["camera_angle_x"] = 3.5; }); },
-     "transforms_test.json", "(0, pi)", RejectedBy::Open},
+     "transforms_test.json", "must lie in [0.000175, pi)", RejectedBy::Open},
     {"MatrixWithThreeRows",
      [](const fs::path& r) {
        editJson(r / "transforms_train.json", [](Json& j) { j["frames"][1]["transform_matrix"].erase(3); });
@@ -194,11 +194,10 @@ const Malformed kMalformed[] = {
      [](const fs::path& r) {
        editImage(r / "test/roughness/roughness_0000.exr", [](Image& im) { im.at(4, 4) = 1.5f; });
      },
-     "roughness_0000.exr", "1 of 48 values lie outside [0, 1]; the first is pixel (4, 4) = 1.5",
-     RejectedBy::ValidationOnly},
+     "roughness_0000.exr", "1 of 48 values lie outside [0, 1]; the first is pixel (4, 4) = 1.5", RejectedBy::Load},
     {"F0BelowZero",
      [](const fs::path& r) { editImage(r / "train/f0/f0_0000.exr", [](Image& im) { im.at(1, 1, 2) = -0.2f; }); },
-     "f0_0000.exr", "pixel (1, 1) channel 2 = -0.2", RejectedBy::ValidationOnly},
+     "f0_0000.exr", "pixel (1, 1) channel 2 = -0.2", RejectedBy::Load},
     {"CorruptPointCloud",
      [](const fs::path& r) { test::writeBytes(r / "point_cloud_dense.ply", "ply\nformat binary_little_endian 1.0\n"); },
      "point_cloud_dense.ply", "", RejectedBy::ValidationOnly},

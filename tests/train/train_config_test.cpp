@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "common/expect_error.h"
 #include "core/atomic_file.h"
 #include "io/temp_folder.h"
@@ -60,13 +62,16 @@ TEST(TrainConfig, DefaultsAreThePapers) {
   EXPECT_EQ(j["batch_rays"], 16384);
 }
 
-TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
+// Writes `text` as a config file and expects readTrainConfig to refuse it, naming the file
+// and saying `detail`.
+void expectRejected(const std::string& text, const std::string& detail) {
   test::TempFolder temp;
-  auto expectRejected = [&](const std::string& text, const std::string& detail) {
-    std::filesystem::path file = temp.path() / "config.json";
-    writeTextAtomically(file, text);
-    test::expectErrorNaming([&] { readTrainConfig(file); }, file, detail);
-  };
+  std::filesystem::path file = temp.path() / "config.json";
+  writeTextAtomically(file, text);
+  test::expectErrorNaming([&] { readTrainConfig(file); }, file, detail);
+}
+
+TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   expectRejected("{\"iters\": 10,", "not valid JSON");
   expectRejected("[1, 2]", "not a JSON object");
   expectRejected("{\"itres\": 10}", "unknown setting \"itres\"");
@@ -74,7 +79,7 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   expectRejected("{\"iters\": \"many\"}", "\"iters\" has the wrong type");
   expectRejected("{\"iters\": 1.5}", "\"iters\" has the wrong type");
   expectRejected("{\"lr\": 3}", "\"lr\" must be an object");
-  expectRejected("{\"iters\": 0}", "iters must be positive");
+  expectRejected("{\"iters\": 0}", "iters must be in [1, 100000000]");
   expectRejected("{\"trace\": {\"alpha_min\": 0.7}}", "alpha_min");
   expectRejected("{\"init\": {\"source\": \"magic\"}}", "init.source");
   expectRejected("{\"adam\": {\"beta1\": 1.0}}", "beta1");
@@ -93,6 +98,44 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
                  "min must be below max");
   expectRejected("{\"baseline\": \"rgbd\"}", "baseline");
   expectRejected("{\"baseline\": \"rgb\"}", "G-buffer");  // bounces and G-buffer weights left on
+}
+
+TEST(TrainConfig, RejectsWhatTheFlagsRejectAndNeverWrapsOrOverflows) {
+  // 2^32 + 1 read into an int was 1; the flag's bound (2^24) was not checked either.
+  expectRejected("{\"batch_rays\": 4294967297}", "\"batch_rays\" is 4294967297, out of the range of its type");
+  expectRejected("{\"batch_rays\": 16777217}", "batch_rays must be in [1, 16777216]");
+  expectRejected("{\"iters\": -4294967295}", "\"iters\" is -4294967295");
+  expectRejected("{\"seed\": -1}", "\"seed\" is -1");
+  expectRejected("{\"threads\": 1025}", "threads must be in [0, 1024]");
+  expectRejected("{\"batch_views\": 1048577}", "batch_views must be in [1, 1048576]");
+  expectRejected("{\"save_every\": 100000001}", "save_every must be in [1, 100000000]");
+  // 1e39 is a finite double but an infinite float: it trained to NaN and wrote null.
+  expectRejected("{\"loss\": {\"diffuse\": 1e39}}", "\"loss.diffuse\" is 1e+39, out of the range of its type");
+  expectRejected("{\"loss\": {\"diffuse\": 1e30}}", "loss weights must be in [0, 1e6]");
+  expectRejected("{\"adam\": {\"epsilon\": 1e30}}", "adam.epsilon");
+  expectRejected("{\"far_field\": {\"count\": 2147483647}}", "far_field.count must be in [0, 10000000]");
+  expectRejected("{\"far_field\": {\"boxes\": [{\"min\": [0, 0, 0], \"max\": [1, 1, 1e39], \"count\": 5}]}}",
+                 "finite");
+  expectRejected("{\"far_field\": {\"boxes\": [{\"min\": [0, 0, 0], \"max\": [1, 1, 1], \"count\": 4294967297}]}}",
+                 "\"count\" must be an integer of at most 10000000");
+  expectRejected("{\"init\": {\"max_pixel_samples\": 1000000000000}}", "init.max_pixel_samples");
+}
+
+TEST(TrainConfig, ValidateRefusesNonFiniteNumbersOfEveryField) {
+  TrainConfig c;
+  c.farField.sigmaFactor = NAN;
+  EXPECT_THROW(c.validate("test"), Error);
+  c = TrainConfig();
+  c.trace.kernelPower = INFINITY;
+  EXPECT_THROW(c.validate("test"), Error);
+  c = TrainConfig();
+  c.lr.scale = NAN;  // "r >= 0 && r < 10" alone lets no NaN through either; the finite check names it first
+  try {
+    c.validate("test");
+    FAIL() << "expected Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("lr.scale must be a finite number"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

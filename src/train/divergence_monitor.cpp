@@ -1,0 +1,87 @@
+// Divergence checks of a training run: non-finite numbers, rays that hit nothing, a loss
+// grown by orders of magnitude.
+#include "train/divergence_monitor.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+
+#include "core/parallel.h"
+
+namespace glint {
+
+namespace {
+
+bool finite(const Vec3f& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const Quatf& q) { return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z); }
+bool finite(float v) { return std::isfinite(v); }
+
+// The name of the first non-finite parameter of Gaussian i, or nullptr.
+const char* nonFiniteParameterOf(const GaussianScene& s, size_t i) {
+  if (!finite(s.position[i])) return "position";
+  if (!finite(s.rotation[i])) return "rotation";
+  if (!finite(s.logScale[i])) return "scale";
+  if (!finite(s.opacityLogit[i])) return "opacity";
+  if (!finite(s.diffuse[i])) return "diffuse colour";
+  if (!finite(s.normal[i])) return "normal";
+  if (!finite(s.roughness[i])) return "roughness";
+  if (!finite(s.f0[i])) return "F0";
+  return nullptr;
+}
+
+std::string formatLoss(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof(buf), "%.4g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::optional<NonFiniteParameter> findNonFiniteParameter(const GaussianScene& scene) {
+  // The lowest index over all chunks, so that the answer does not depend on thread timing.
+  std::atomic<size_t> first{scene.size()};
+  parallelForChunks(int64_t(scene.size()), 16384, [&](int64_t begin, int64_t end) {
+    for (int64_t i = begin; i < end && size_t(i) < first.load(std::memory_order_relaxed); ++i)
+      if (nonFiniteParameterOf(scene, size_t(i))) {
+        size_t seen = first.load();
+        while (size_t(i) < seen && !first.compare_exchange_weak(seen, size_t(i))) {
+        }
+        return;
+      }
+  });
+  if (first == scene.size()) return std::nullopt;
+  return NonFiniteParameter{first, nonFiniteParameterOf(scene, first)};
+}
+
+std::optional<std::string> DivergenceMonitor::check(const StepReport& report, const GaussianScene& scene) {
+  const std::string at = "at step " + std::to_string(report.step) + ": ";
+  if (!std::isfinite(report.loss))
+    return at + "the loss is " + formatLoss(report.loss) + " (a gradient or parameter overflowed)";
+  if (std::optional<NonFiniteParameter> bad = findNonFiniteParameter(scene))
+    return at + "Gaussian " + std::to_string(bad->gaussian) + " has a non-finite " + bad->name;
+
+  if (report.rays > 0 && report.hits == 0) {
+    if (stepsWithoutHits_++ == 0) firstStepWithoutHits_ = report.step;
+  } else {
+    stepsWithoutHits_ = 0;
+  }
+  if (stepsWithoutHits_ >= kSustainedSteps)
+    return "from step " + std::to_string(firstStepWithoutHits_) + " to " + std::to_string(report.step) +
+           ", no ray hit any Gaussian (the Gaussians have collapsed, vanished or flown off)";
+
+  if (haveLoss_ && report.loss > kLossGrowth * std::max(lowestLoss_, 1e-9)) {
+    if (stepsLossHigh_++ == 0) firstStepLossHigh_ = report.step;
+  } else {
+    stepsLossHigh_ = 0;
+  }
+  if (stepsLossHigh_ >= kSustainedSteps)
+    return "from step " + std::to_string(firstStepLossHigh_) + " to " + std::to_string(report.step) +
+           ", the loss stayed above " + formatLoss(kLossGrowth) + " times its lowest (" + formatLoss(lowestLoss_) +
+           "; now " + formatLoss(report.loss) + ")";
+  lowestLoss_ = haveLoss_ ? std::min(lowestLoss_, report.loss) : report.loss;
+  haveLoss_ = true;
+  return std::nullopt;
+}
+
+}  // namespace glint

@@ -1,0 +1,46 @@
+// Notices a training run that has diverged, so that it stops with a message naming the
+// step and the likely cause instead of running on to "done" with a broken scene.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "scene/gaussians.h"
+#include "train/trainer.h"
+
+namespace glint {
+
+class DivergenceMonitor {
+ public:
+  // Rays that hit no Gaussian, or a loss this many times its lowest, for this many steps in
+  // a row count as collapse. One step of either happens in healthy runs (a batch of rays
+  // through a gap; a noisy batch); twenty in a row do not.
+  static constexpr int kSustainedSteps = 20;
+  static constexpr double kLossGrowth = 1000.0;
+
+  // Looks at a finished step and the scene after it. Returns why the run has diverged, or
+  // nothing while it is healthy. Non-finite losses and parameters are reported at once.
+  std::optional<std::string> check(const StepReport& report, const GaussianScene& scene);
+
+  // False while a collapse may be under way (a sustained condition has begun but not yet
+  // lasted kSustainedSteps): checkpoints wait, so that the last one kept is a good one.
+  bool clean() const { return stepsWithoutHits_ == 0 && stepsLossHigh_ == 0; }
+
+ private:
+  double lowestLoss_ = 0;
+  bool haveLoss_ = false;
+  int stepsWithoutHits_ = 0;
+  int stepsLossHigh_ = 0;
+  int64_t firstStepWithoutHits_ = 0;
+  int64_t firstStepLossHigh_ = 0;
+};
+
+// The first Gaussian with a non-finite parameter, and that parameter's name.
+struct NonFiniteParameter {
+  size_t gaussian = 0;
+  const char* name = "";
+};
+std::optional<NonFiniteParameter> findNonFiniteParameter(const GaussianScene& scene);
+
+}  // namespace glint
