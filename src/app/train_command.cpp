@@ -225,7 +225,7 @@ void runTrain(TrainOptions& o, const CLI::App& cmd) {
   ProgressBar progress("train", config.iters, "steps");
   progress.advance(trainer->stepCount());
   double lastPsnr = NAN;
-  DivergenceMonitor divergence;
+  DivergenceMonitor divergence(trainer->sceneExtent());
   bool saveDue = false;  // a checkpoint waits while the monitor suspects a collapse
   int64_t lastSaved = trainer->stepCount();
   bool checkpointOnDisk = o.resume && haveCheckpoint;

@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "core/parallel.h"
 
@@ -54,12 +55,29 @@ std::optional<NonFiniteParameter> findNonFiniteParameter(const GaussianScene& sc
   return NonFiniteParameter{first, nonFiniteParameterOf(scene, first)};
 }
 
+float medianLargestScale(const GaussianScene& scene, size_t samples) {
+  const size_t n = scene.size();
+  if (n == 0) return 0.0f;
+  const size_t stride = std::max<size_t>(1, n / samples);
+  std::vector<float> largest;
+  for (size_t i = 0; i < n; i += stride) {
+    const Vec3f& s = scene.logScale[i];
+    largest.push_back(std::max({s.x, s.y, s.z}));
+  }
+  auto middle = largest.begin() + ptrdiff_t(largest.size() / 2);
+  std::nth_element(largest.begin(), middle, largest.end());
+  return std::exp(*middle);
+}
+
 std::optional<std::string> DivergenceMonitor::check(const StepReport& report, const GaussianScene& scene) {
   const std::string at = "at step " + std::to_string(report.step) + ": ";
   if (!std::isfinite(report.loss))
     return at + "the loss is " + formatLoss(report.loss) + " (a gradient or parameter overflowed)";
   if (std::optional<NonFiniteParameter> bad = findNonFiniteParameter(scene))
     return at + "Gaussian " + std::to_string(bad->gaussian) + " has a non-finite " + bad->name;
+  if (const float median = medianLargestScale(scene); median > kScaleExplosion * sceneExtent_)
+    return at + "the scales have exploded: half the Gaussians are larger than " + formatLoss(median) +
+           ", over " + formatLoss(kScaleExplosion) + " times the scene's radius (" + formatLoss(sceneExtent_) + ")";
 
   if (report.rays > 0 && report.hits == 0) {
     if (stepsWithoutHits_++ == 0) firstStepWithoutHits_ = report.step;

@@ -18,9 +18,18 @@ class DivergenceMonitor {
   // through a gap; a noisy batch); twenty in a row do not.
   static constexpr int kSustainedSteps = 20;
   static constexpr double kLossGrowth = 1000.0;
+  // Scales explode when the median Gaussian (its largest axis) outgrows the scene this many
+  // times. Healthy runs stay far below: scene Gaussians are millimetres to centimetres, and
+  // even the far-field cloud, spread over 12 scene radii, is spaced (and sized) at about a
+  // third of one.
+  static constexpr float kScaleExplosion = 10.0f;
+
+  // sceneExtent: the scene's radius (3DGS camera extent, Trainer::sceneExtent()).
+  explicit DivergenceMonitor(float sceneExtent) : sceneExtent_(sceneExtent) {}
 
   // Looks at a finished step and the scene after it. Returns why the run has diverged, or
-  // nothing while it is healthy. Non-finite losses and parameters are reported at once.
+  // nothing while it is healthy. Non-finite losses and parameters, and exploded scales,
+  // are reported at once.
   std::optional<std::string> check(const StepReport& report, const GaussianScene& scene);
 
   // False while a collapse may be under way (a sustained condition has begun but not yet
@@ -28,6 +37,7 @@ class DivergenceMonitor {
   bool clean() const { return stepsWithoutHits_ == 0 && stepsLossHigh_ == 0; }
 
  private:
+  float sceneExtent_;
   double lowestLoss_ = 0;
   bool haveLoss_ = false;
   int stepsWithoutHits_ = 0;
@@ -42,5 +52,9 @@ struct NonFiniteParameter {
   const char* name = "";
 };
 std::optional<NonFiniteParameter> findNonFiniteParameter(const GaussianScene& scene);
+
+// The median over Gaussians of the largest standard deviation, from at most `samples`
+// Gaussians evenly spaced by index (deterministic); 0 for an empty scene.
+float medianLargestScale(const GaussianScene& scene, size_t samples = 8192);
 
 }  // namespace glint

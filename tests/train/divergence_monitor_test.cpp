@@ -9,6 +9,8 @@
 namespace glint {
 namespace {
 
+constexpr float kExtent = 3.0f;
+
 GaussianScene sceneOf(size_t n) {
   GaussianScene scene;
   for (size_t i = 0; i < n; ++i) {
@@ -34,7 +36,7 @@ StepReport report(int64_t step, double loss, int64_t hits = 1000) {
 }
 
 TEST(DivergenceMonitor, AHealthyNoisyRunPasses) {
-  DivergenceMonitor monitor;
+  DivergenceMonitor monitor(kExtent);
   GaussianScene scene = sceneOf(10);
   for (int64_t s = 1; s <= 500; ++s) {
     double loss = 1.0 / double(s) * (s % 7 == 0 ? 30.0 : 1.0);  // falling, with spikes
@@ -45,7 +47,7 @@ TEST(DivergenceMonitor, AHealthyNoisyRunPasses) {
 }
 
 TEST(DivergenceMonitor, NonFiniteLossStopsAtOnce) {
-  DivergenceMonitor monitor;
+  DivergenceMonitor monitor(kExtent);
   GaussianScene scene = sceneOf(4);
   EXPECT_FALSE(monitor.check(report(1, 0.5), scene));
   std::optional<std::string> problem = monitor.check(report(2, NAN), scene);
@@ -54,7 +56,7 @@ TEST(DivergenceMonitor, NonFiniteLossStopsAtOnce) {
 }
 
 TEST(DivergenceMonitor, NonFiniteParameterNamesTheGaussianAndAttribute) {
-  DivergenceMonitor monitor;
+  DivergenceMonitor monitor(kExtent);
   GaussianScene scene = sceneOf(40000);  // several chunks: the lowest index must win
   scene.logScale[30001].y = INFINITY;
   scene.diffuse[20002].x = NAN;
@@ -63,8 +65,29 @@ TEST(DivergenceMonitor, NonFiniteParameterNamesTheGaussianAndAttribute) {
   EXPECT_EQ(*problem, "at step 7: Gaussian 20002 has a non-finite diffuse colour");
 }
 
+TEST(DivergenceMonitor, ExplodedScalesStopAtOnceButAFarFieldDoesNot) {
+  DivergenceMonitor monitor(kExtent);
+  GaussianScene scene = sceneOf(1000);
+  // Most Gaussians far-field sized (a third of the radius), the rest tiny: healthy.
+  for (size_t i = 0; i < 900; ++i) scene.logScale[i] = Vec3f(std::log(kExtent / 3.0f));
+  EXPECT_FALSE(monitor.check(report(1, 0.5), scene));
+  for (size_t i = 0; i < 600; ++i) scene.logScale[i] = Vec3f(-3.0f, 5.0f, -3.0f);  // e^5 = 148 along one axis
+  std::optional<std::string> problem = monitor.check(report(2, 0.5), scene);
+  ASSERT_TRUE(problem);
+  EXPECT_NE(problem->find("at step 2: the scales have exploded: half the Gaussians are larger than 148.4"),
+            std::string::npos)
+      << *problem;
+}
+
+TEST(DivergenceMonitor, MedianLargestScaleSamplesEvenly) {
+  GaussianScene scene = sceneOf(100001);
+  for (size_t i = 0; i < scene.size(); ++i) scene.logScale[i] = Vec3f(-9.0f, std::log(float(i + 1)), -9.0f);
+  EXPECT_NEAR(medianLargestScale(scene), 50000.0f, 50.0f);  // 8334 samples 12 apart: their median is the middle
+  EXPECT_EQ(medianLargestScale(GaussianScene()), 0.0f);
+}
+
 TEST(DivergenceMonitor, RaysHittingNothingForTwentyStepsIsCollapse) {
-  DivergenceMonitor monitor;
+  DivergenceMonitor monitor(kExtent);
   GaussianScene scene = sceneOf(4);
   EXPECT_FALSE(monitor.check(report(15, 0.5), scene));
   for (int64_t s = 16; s < 16 + DivergenceMonitor::kSustainedSteps - 1; ++s) {
@@ -77,7 +100,7 @@ TEST(DivergenceMonitor, RaysHittingNothingForTwentyStepsIsCollapse) {
 }
 
 TEST(DivergenceMonitor, LossGrownAThousandfoldForTwentyStepsIsCollapse) {
-  DivergenceMonitor monitor;
+  DivergenceMonitor monitor(kExtent);
   GaussianScene scene = sceneOf(4);
   for (int64_t s = 1; s <= 10; ++s) EXPECT_FALSE(monitor.check(report(s, 0.01), scene));
   std::optional<std::string> problem;
@@ -89,7 +112,7 @@ TEST(DivergenceMonitor, LossGrownAThousandfoldForTwentyStepsIsCollapse) {
 }
 
 TEST(DivergenceMonitor, ARecoveryResetsTheCount) {
-  DivergenceMonitor monitor;
+  DivergenceMonitor monitor(kExtent);
   GaussianScene scene = sceneOf(4);
   for (int round = 0; round < 5; ++round) {
     for (int k = 0; k < DivergenceMonitor::kSustainedSteps - 1; ++k)
