@@ -18,6 +18,7 @@
 #include "app/scene_source.h"
 #include "app/trace_flags.h"
 #include "core/atomic_file.h"
+#include "core/activity.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -150,6 +151,7 @@ void runEval(const EvalOptions& o) {
   {
     ProgressBar progress("eval", int64_t(split.views.size()), "views");
     for (size_t v = 0; v < split.views.size(); ++v) {
+      ActivityScope activity("rendering view " + split.views[v].filePath);
       ViewBuffers rendered = renderGaussianView(*tracer, split.camera(v), settings, uint64_t(v));
       if (settings.jitter) {
         RenderSettings centre;

@@ -12,6 +12,7 @@
 #include "app/scene_source.h"
 #include "app/trace_flags.h"
 #include "app/video_encoder.h"
+#include "core/activity.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "io/image.h"
@@ -214,6 +215,7 @@ void runRender(const RenderOptions& o) {
   }
   ProgressBar progress("render", int64_t(split.views.size()), "views");
   for (size_t v = 0; v < split.views.size(); ++v) {
+    ActivityScope activity("rendering view " + split.views[v].filePath);
     Camera camera{split.views[v].cameraToWorld, split.cameraAngleX, width, height};
     auto write = [&](const ViewBuffers& buffers, int /*samples*/) {
       writeRenderedBuffers(o.output, split.views[v].filePath, buffers,
