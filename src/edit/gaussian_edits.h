@@ -23,10 +23,10 @@ struct EditReport {
   bool countChanged() const { return countBefore != countAfter; }
 };
 
-// The Gaussians an edit may leave in a scene unless told otherwise (--max-gaussians). An
-// edited scene costs about 1 kB a Gaussian where it is shown (scene copies and the
-// tracer's BVH, see README "Viewer"): 10 million fit in the memory of a workstation, and
-// trained scenes hold a few million at most.
+// The Gaussians an edit may leave in a scene unless told otherwise (--max-gaussians). The
+// viewer holds about 230 bytes a Gaussian shown (scene copies and the tracer), 390 at the
+// peak of a rebuild (measured, README "Viewer"): 10 million stay near 4 GB, and trained
+// scenes hold a few million at most.
 constexpr size_t kDefaultMaxGaussians = 10'000'000;
 
 // An operation that would leave more Gaussians than allowed. Thrown before the operation
