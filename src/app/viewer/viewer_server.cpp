@@ -5,6 +5,7 @@
 
 #include <httplib.h>
 
+#include "app/viewer/connection_limits.h"
 #include "app/viewer/edit_session.h"
 #include "app/viewer/frame_encoding.h"
 #include "app/viewer/progressive_renderer.h"
@@ -50,10 +51,9 @@ ViewerServer::~ViewerServer() {
 int ViewerServer::bind() {
   http_->set_payload_max_length(kMaxRequestBytes);
   http_->set_tcp_nodelay(true);  // headers and body go out in separate writes: no Nagle delay between them
-  http_->set_read_timeout(5, 0);
-  http_->set_write_timeout(5, 0);
-  port_ = options_.port == 0 ? http_->bind_to_any_port(options_.host) : options_.port;
-  if (options_.port != 0 && !http_->bind_to_port(options_.host, options_.port)) port_ = -1;
+  ConnectionLimits limits;
+  applyConnectionLimits(*http_, limits);
+  port_ = bindWithBacklog(*http_, options_.host, options_.port, limits.backlog);
   access_.port = port_;
   if (port_ <= 0)
     throw Error("glint view", "cannot listen on " + options_.host + ":" + std::to_string(options_.port) +

@@ -2,7 +2,8 @@
 // progressive renderer, and JSON endpoints for the camera, display settings, training
 // cameras and edits. Every request is validated; a bad one gets a 4xx JSON error
 // ({"error": "..."}) and changes nothing. Requests pass the access policy first
-// (access_policy.h: Host, Origin, JSON bodies, the per-launch token).
+// (access_policy.h: Host, Origin, JSON bodies, the per-launch token), and connections are
+// served under connection_limits.h.
 #pragma once
 
 #include <filesystem>
