@@ -130,12 +130,15 @@ TEST_F(ServerFixture, SaveAndExportNeverReplaceTheRunsFiles) {
   std::ofstream(root_ / "scene.ply") << scene;
   std::ofstream(root_ / "config.json") << config;
   httplib::Client client = pageClient();
-  for (auto [path, name] : {std::pair{"/api/edits/save", "config.json"}, std::pair{"/api/edits/export", "scene.ply"},
-                            std::pair{"/api/edits/save", "metrics.json"}, std::pair{"/api/edits/save", "transforms_train.json"},
-                            std::pair{"/api/edits/save", "../config.json"}}) {
+  using Request = std::pair<const char*, const char*>;  // the endpoint and the name asked for
+  for (auto [path, name] : {Request{"/api/edits/save", "config.json"}, Request{"/api/edits/export", "scene.ply"},
+                            Request{"/api/edits/save", "metrics.json"},
+                            Request{"/api/edits/save", "transforms_train.json"},
+                            Request{"/api/edits/save", "../config.json"}}) {
     httplib::Result result = client.Post(path, nlohmann::json{{"name", name}}.dump(), "application/json");
     ASSERT_TRUE(result) << name;
-    EXPECT_TRUE(result->status == 403 || result->status == 400) << name << ": " << result->status << " " << result->body;
+    EXPECT_TRUE(result->status == 403 || result->status == 400)
+        << name << ": " << result->status << " " << result->body;
   }
   EXPECT_EQ(contents(root_ / "scene.ply"), scene);
   EXPECT_EQ(contents(root_ / "config.json"), config);

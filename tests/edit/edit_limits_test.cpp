@@ -32,7 +32,8 @@ GaussianScene lineOfGaussians(size_t count) {
 }
 
 TEST(EditLimits, FortyDuplicationsAreRefusedNamingTheFileAndTheLimit) {
-  nlohmann::json document = {{"glint_edits", 1}, {"selections", {{"all", "everything"}}}, {"operations", nlohmann::json::array()}};
+  nlohmann::json document = {
+      {"glint_edits", 1}, {"selections", {{"all", "everything"}}}, {"operations", nlohmann::json::array()}};
   for (int i = 0; i < 40; ++i)
     document["operations"].push_back({{"op", "duplicate"}, {"selection", "all"}, {"offset", {0, 0, 0.001 * i}}});
   test::TempFolder folder;
@@ -52,7 +53,8 @@ TEST(EditLimits, FortyDuplicationsAreRefusedNamingTheFileAndTheLimit) {
 TEST(EditLimits, OperationsThatAddNothingApplyAboveTheLimit) {
   EditDocument edits = parseEditDocument(
       {{"glint_edits", 1}, {"selections", {{"all", "everything"}}},
-       {"operations", {{{"op", "roughness"}, {"selection", "all"}, {"set", 0.5}}, {{"op", "delete"}, {"selection", "all"}}}}},
+       {"operations",
+        {{{"op", "roughness"}, {"selection", "all"}, {"set", 0.5}}, {{"op", "delete"}, {"selection", "all"}}}}},
       "inline");
   GaussianScene scene = lineOfGaussians(50);
   EditReport report = applyEdits(edits, scene, 10);
@@ -73,7 +75,8 @@ nlohmann::json chainDocument(int length, int ladder) {
   }
   return {{"glint_edits", 1},
           {"selections", selections},
-          {"operations", {{{"op", "translate"}, {"selection", "d" + std::to_string(ladder - 1)}, {"offset", {0, 1, 0}}}}}};
+          {"operations",
+           {{{"op", "translate"}, {"selection", "d" + std::to_string(ladder - 1)}, {"offset", {0, 1, 0}}}}}};
 }
 
 // Parses and applies a chain of 10^5 selections ending in a ladder of 60; exits 0 when it

@@ -3,6 +3,8 @@
 
 #include <sys/socket.h>
 
+#include <memory>
+
 #include <httplib.h>
 
 #include "app/viewer/worker_pool.h"

@@ -12,8 +12,8 @@ namespace {
 
 // What train (scene, config, log, checkpoint/), eval (eval/metrics.json), report
 // (report.html) and dataset folders (point cloud, cameras) write: see src/app/*_command.cpp.
-constexpr const char* kRunFileNames[] = {"scene.ply",   "config.json",  "log.csv",  "checkpoint",
-                                         "state.bin",   "eval",         "metrics.json", "report.html",
+constexpr const char* kRunFileNames[] = {"scene.ply", "config.json",  "log.csv",     "checkpoint",
+                                         "state.bin", "eval",         "metrics.json", "report.html",
                                          "point_cloud_dense.ply"};
 
 }  // namespace
