@@ -54,10 +54,6 @@ TEST_F(ServerFixture, RefusesAForeignHostEvenForReading) {
     ASSERT_TRUE(page);
     EXPECT_EQ(page->status, 403) << host;
   }
-  // Another port than the viewer's is another origin too.
-  httplib::Result otherPort = client.Get("/api/state", {{"Host", "127.0.0.1:1"}});
-  ASSERT_TRUE(otherPort);
-  EXPECT_EQ(otherPort->status, 403);
   // The server's own names answer.
   for (std::string host : {"127.0.0.1", "localhost", "LOCALHOST"}) {
     httplib::Result state = client.Get("/api/state", {{"Host", host + ":" + std::to_string(port_)}});

@@ -83,10 +83,10 @@ std::optional<AccessRefusal> checkAccess(const AccessPolicy& policy, const Reque
   if (!host || !isAllowedHostName(policy, host->name))
     return AccessRefusal{403, "refused: the Host header \"" + request.host.substr(0, 100) +
                                   "\" is not this viewer's address (open the URL that glint printed)"};
-  bool portMatches = host->port.empty() ? policy.port == 80 : host->port == std::to_string(policy.port);
-  if (!portMatches)
-    return AccessRefusal{403, "refused: the Host header \"" + request.host.substr(0, 100) +
-                                  "\" names another port than this viewer's"};
+  // Any port: rebinding needs a DNS name, whatever the port, and a forwarded port (ssh -L
+  // 9000:127.0.0.1:PORT) names its own.
+  if (host->port.find_first_not_of("0123456789") != std::string::npos)
+    return AccessRefusal{403, "refused: the Host header \"" + request.host.substr(0, 100) + "\" is malformed"};
   if (request.origin && lowercase(*request.origin) != "http://" + lowercase(request.host))
     return AccessRefusal{403, "refused: a page of another origin (" + request.origin->substr(0, 100) +
                                   ") may not use this viewer"};

@@ -14,7 +14,6 @@ constexpr const char* kTokenHeader = "X-Glint-Token";
 
 struct AccessPolicy {
   std::string boundHost;  // the address the server listens on, as given to --host
-  int port = 0;
   std::string token;  // required on every POST
 };
 

@@ -54,7 +54,6 @@ int ViewerServer::bind() {
   ConnectionLimits limits;
   applyConnectionLimits(*http_, limits);
   port_ = bindWithBacklog(*http_, options_.host, options_.port, limits.backlog);
-  access_.port = port_;
   if (port_ <= 0)
     throw Error("glint view", "cannot listen on " + options_.host + ":" + std::to_string(options_.port) +
                                   " (in use, or not an address of this machine)");
