@@ -23,6 +23,7 @@ struct EditOptions {
   std::string edits;
   std::string output;
   bool force = false;
+  size_t maxGaussians = kDefaultMaxGaussians;
 };
 
 void runEdit(const EditOptions& o) {
@@ -30,7 +31,7 @@ void runEdit(const EditOptions& o) {
     throw Error(o.output, "already exists; choose another -o file or pass --force to replace it");
   EditDocument document = readEditFile(o.edits);  // validate before loading a large scene
   SceneSource source = loadSceneSource(o.scene);
-  EditReport report = applyEdits(document, source.scene);
+  EditReport report = applyEdits(document, source.scene, o.maxGaussians);
   std::fprintf(stderr, "glint edit: %s with %s\n%s", o.scene.c_str(), o.edits.c_str(),
                formatEditReport(report).c_str());
   writeGaussianPly(o.output, source.scene);
@@ -51,6 +52,11 @@ void addEditCommand(CLI::App& app) {
   cmd->add_option("edits", o->edits, "Edit file (JSON, \"glint_edits\": 1)")->required();
   cmd->add_option("-o,--output", o->output, "Output .ply file (written atomically)")->required();
   cmd->add_flag("--force", o->force, "Replace the output file if it exists");
+  cmd->add_option("--max-gaussians", o->maxGaussians,
+                  "Most Gaussians the edits may leave in the scene; a file whose duplications would make more is "
+                  "refused before they allocate")
+      ->check(CLI::Range(size_t(1), size_t(1) << 40))
+      ->capture_default_str();
   cmd->callback([o]() { runEdit(*o); });
 }
 

@@ -13,6 +13,11 @@ void EditsFlag::add(CLI::App* cmd) {
   cmd->add_option("--edits", path_,
                   "Edit file (docs/edit-files.md) applied to the scene right after loading it; the tracer is then "
                   "refitted or rebuilt, whichever is measured to be faster, and both costs are printed");
+  cmd->add_option("--max-gaussians", maxGaussians_,
+                  "Most Gaussians the --edits may leave in the scene; a file whose duplications would make more is "
+                  "refused before they allocate")
+      ->check(CLI::Range(size_t(1), size_t(1) << 40))
+      ->capture_default_str();
 }
 
 std::unique_ptr<GaussianTracer> EditsFlag::prepareTracer(GaussianScene& scene, const TraceSettings& settings,
@@ -25,7 +30,7 @@ std::unique_ptr<GaussianTracer> EditsFlag::prepareTracer(GaussianScene& scene, c
   }
   EditDocument document = readEditFile(path_);  // before any work: a bad file fails fast
   tracer->build(scene, settings);
-  EditReport report = applyEdits(document, scene);
+  EditReport report = applyEdits(document, scene, maxGaussians_);
   std::fprintf(stderr, "%s: edits from %s\n%s", command, path_.c_str(), formatEditReport(report).c_str());
   UpdatedTracer updated =
       updateTracerAfterEdit(std::move(tracer), scene, settings, kind, !report.countChanged(), probeCamera, workRays);

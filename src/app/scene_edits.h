@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "edit/gaussian_edits.h"
 #include "raytrace/gaussian_tracer.h"
 #include "scene/camera.h"
 #include "scene/gaussians.h"
@@ -29,6 +30,7 @@ class EditsFlag {
 
  private:
   std::string path_;
+  size_t maxGaussians_ = kDefaultMaxGaussians;
 };
 
 }  // namespace glint

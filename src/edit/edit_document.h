@@ -86,6 +86,7 @@ struct Operation {
 
 struct EditDocument {
   static constexpr int kVersion = 1;  // "glint_edits": 1
+  std::string source;  // where it came from (the file), for errors found while applying it
   std::map<std::string, Selection> selections;
   std::vector<Operation> operations;
 };

@@ -4,7 +4,6 @@
 #include "edit/edit_file.h"
 
 #include <cmath>
-#include <functional>
 #include <set>
 
 #include "core/atomic_file.h"
@@ -70,6 +69,7 @@ class Parser {
       fail(kVersionKey, "unsupported version " + version->dump() + " (this Glint reads version 1)");
 
     EditDocument doc;
+    doc.source = source_;
     if (auto s = j.find("selections"); s != j.end()) {
       if (!s->is_object()) fail("selections", "must be an object of named selections");
       for (auto it = s->begin(); it != s->end(); ++it) {
@@ -273,17 +273,43 @@ class Parser {
       for (const std::string& operand : s.operands)
         if (!doc.selections.count(operand))
           fail("selections." + name + "." + combinationName(s.kind), "unknown selection \"" + operand + "\"");
+    // Depth-first, with an explicit stack: a chain of 10^5 selections must neither overflow
+    // the call stack nor copy the chain at every level. The chain is spelt out only for a cycle.
     enum class Mark { Unvisited, Visiting, Done };
     std::map<std::string, Mark> marks;
-    std::function<void(const std::string&, std::string)> visit = [&](const std::string& name, std::string chain) {
-      Mark& mark = marks[name];
-      if (mark == Mark::Done) return;
-      if (mark == Mark::Visiting) fail("selections", "selections refer to each other in a cycle: " + chain);
-      mark = Mark::Visiting;
-      for (const std::string& operand : doc.selections.at(name).operands) visit(operand, chain + " -> " + operand);
-      marks[name] = Mark::Done;
+    struct Visit {
+      const std::string* name;
+      size_t nextOperand = 0;
     };
-    for (const auto& [name, s] : doc.selections) visit(name, name);
+    for (const auto& [start, unused] : doc.selections) {
+      if (marks[start] == Mark::Done) continue;
+      std::vector<Visit> stack{{&start}};
+      marks[start] = Mark::Visiting;
+      while (!stack.empty()) {
+        Visit& top = stack.back();
+        const std::vector<std::string>& operands = doc.selections.at(*top.name).operands;
+        if (top.nextOperand == operands.size()) {
+          marks[*top.name] = Mark::Done;
+          stack.pop_back();
+          continue;
+        }
+        const std::string& operand = operands[top.nextOperand++];
+        Mark& mark = marks[operand];
+        if (mark == Mark::Visiting) {
+          std::string chain;
+          bool inCycle = false;
+          for (const Visit& v : stack) {
+            inCycle = inCycle || *v.name == operand;
+            if (inCycle) chain += *v.name + " -> ";
+          }
+          fail("selections", "selections refer to each other in a cycle: " + chain + operand);
+        }
+        if (mark == Mark::Unvisited) {
+          mark = Mark::Visiting;
+          stack.push_back({&operand});
+        }
+      }
+    }
   }
 
   // Exactly one of `modes` must be present; returns its index.

@@ -85,7 +85,7 @@ void applyOperation(const EditDocument& document, const Operation& op, const Gau
   }
 }
 
-EditReport applyEdits(const EditDocument& document, GaussianScene& scene) {
+EditReport applyEdits(const EditDocument& document, GaussianScene& scene, size_t maxGaussians) {
   EditReport report;
   report.countBefore = scene.size();
   for (size_t k = 0; k < document.operations.size(); ++k) {
@@ -96,6 +96,14 @@ EditReport applyEdits(const EditDocument& document, GaussianScene& scene) {
         "operations[" + std::to_string(k) + "] " + operationName(op.kind) + " \"" + op.selection + "\"";
     entry.selected = countSelected(mask);
     if (entry.selected == 0) report.warnings.push_back(entry.description + ": the selection holds no Gaussians");
+    // Duplication doubles a selection that holds its own copies: 40 of them in a 3 kB file
+    // would ask for 2^40 Gaussians. The count is known before anything is allocated.
+    size_t added = op.kind == Operation::Kind::Duplicate ? entry.selected : 0;
+    if (added > 0 && scene.size() + added > maxGaussians)
+      throw GaussianLimitError(document.source.empty() ? "edits" : document.source,
+                               entry.description + " would make " + std::to_string(scene.size() + added) +
+                                   " Gaussians, more than the limit of " + std::to_string(maxGaussians) +
+                                   " (--max-gaussians)");
     applyOperation(document, op, mask, scene);
     report.operations.push_back(entry);
   }

@@ -1,9 +1,11 @@
-// Selections are evaluated recursively into masks; shape tests and filters run in parallel
-// over the Gaussians, since trained scenes hold millions of them.
+// Selections are evaluated into masks in the order of a SelectionPlan (each reached
+// selection once); shape tests and filters run in parallel over the Gaussians, since trained
+// scenes hold millions of them.
 #include "edit/gaussian_selection.h"
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "edit/selection_plan.h"
 #include "edit/shape.h"
 
 namespace glint {
@@ -12,28 +14,36 @@ namespace {
 
 constexpr int64_t kGrain = 4096;
 
-// The selection before its filters.
-GaussianMask unfiltered(const EditDocument& document, const Selection& selection, const GaussianScene& scene) {
+// One selection's mask from its operands' masks, then its filters.
+GaussianMask evaluateSelection(const Selection& selection, const std::vector<const GaussianMask*>& operands,
+                               const GaussianScene& scene) {
   size_t n = scene.size();
+  GaussianMask mask;
   switch (selection.kind) {
-    case Selection::Kind::Everything: return GaussianMask(n, 1);
-    case Selection::Kind::Shape: {
-      GaussianMask mask(n, 0);
+    case Selection::Kind::Everything: mask.assign(n, 1); break;
+    case Selection::Kind::Shape:
+      mask.assign(n, 0);
       parallelFor(int64_t(n), kGrain, [&](int64_t i) { mask[i] = shapeContains(selection.shape, scene.position[i]); });
-      return mask;
-    }
+      break;
     case Selection::Kind::Union:
     case Selection::Kind::Intersection:
-    case Selection::Kind::Difference: break;
+    case Selection::Kind::Difference:
+      mask = *operands.at(0);
+      for (size_t k = 1; k < operands.size(); ++k) {
+        const GaussianMask& other = *operands[k];
+        for (size_t i = 0; i < n; ++i) {
+          if (selection.kind == Selection::Kind::Union) mask[i] |= other[i];
+          else if (selection.kind == Selection::Kind::Intersection) mask[i] &= other[i];
+          else mask[i] &= !other[i];
+        }
+      }
+      break;
   }
-  GaussianMask mask = selectGaussians(document, selection.operands.at(0), scene);
-  for (size_t k = 1; k < selection.operands.size(); ++k) {
-    GaussianMask other = selectGaussians(document, selection.operands[k], scene);
-    for (size_t i = 0; i < n; ++i) {
-      if (selection.kind == Selection::Kind::Union) mask[i] |= other[i];
-      else if (selection.kind == Selection::Kind::Intersection) mask[i] &= other[i];
-      else mask[i] &= !other[i];
-    }
+  if (!selection.filters.empty()) {
+    parallelFor(int64_t(mask.size()), kGrain, [&](int64_t i) {
+      for (const AttributeFilter& filter : selection.filters)
+        if (mask[i] && !passesFilter(filter, scene, size_t(i))) mask[i] = 0;
+    });
   }
   return mask;
 }
@@ -45,17 +55,10 @@ bool passesFilter(const AttributeFilter& filter, const GaussianScene& scene, siz
 }
 
 GaussianMask selectGaussians(const EditDocument& document, const std::string& name, const GaussianScene& scene) {
-  auto it = document.selections.find(name);
-  GLINT_CHECK(it != document.selections.end(), "selectGaussians: unknown selection " + name);
-  const Selection& selection = it->second;
-  GaussianMask mask = unfiltered(document, selection, scene);
-  if (!selection.filters.empty()) {
-    parallelFor(int64_t(mask.size()), kGrain, [&](int64_t i) {
-      for (const AttributeFilter& filter : selection.filters)
-        if (mask[i] && !passesFilter(filter, scene, size_t(i))) mask[i] = 0;
-    });
-  }
-  return mask;
+  return evaluatePlan<GaussianMask>(planSelection(document, name),
+                                    [&](const Selection& selection, const std::vector<const GaussianMask*>& operands) {
+                                      return evaluateSelection(selection, operands, scene);
+                                    });
 }
 
 size_t countSelected(const GaussianMask& mask) {

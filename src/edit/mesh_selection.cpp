@@ -4,32 +4,35 @@
 #include <limits>
 
 #include "core/error.h"
+#include "edit/selection_plan.h"
 #include "edit/shape.h"
 
 namespace glint {
 
 namespace {
 
-NodeMask unfilteredNodes(const EditDocument& document, const Selection& selection, const MeshScene& scene) {
+// One selection's mask from its operands' masks, then its filters.
+NodeMask evaluateNodes(const Selection& selection, const std::vector<const NodeMask*>& operands,
+                       const MeshScene& scene) {
   size_t n = nodeCount(scene);
   NodeMask mask(n, 0);
-  switch (selection.kind) {
-    case Selection::Kind::Everything: return NodeMask(n, 1);
-    case Selection::Kind::Shape:
-      for (size_t i = 0; i < n; ++i) mask[i] = shapeContains(selection.shape, nodeCenter(scene, i));
-      return mask;
-    case Selection::Kind::Union:
-    case Selection::Kind::Intersection:
-    case Selection::Kind::Difference: break;
-  }
-  std::vector<NodeMask> operands;
-  for (const std::string& operand : selection.operands) operands.push_back(selectNodes(document, operand, scene));
   for (size_t i = 0; i < n; ++i) {
-    bool inFirst = operands.at(0)[i], inAny = false, inAll = true;
-    for (size_t k = 1; k < operands.size(); ++k) inAny |= bool(operands[k][i]), inAll &= bool(operands[k][i]);
-    if (selection.kind == Selection::Kind::Union) mask[i] = inFirst || inAny;
-    else if (selection.kind == Selection::Kind::Intersection) mask[i] = inFirst && inAll;
-    else mask[i] = inFirst && !inAny;  // Difference: the first minus all the others
+    switch (selection.kind) {
+      case Selection::Kind::Everything: mask[i] = 1; break;
+      case Selection::Kind::Shape: mask[i] = shapeContains(selection.shape, nodeCenter(scene, i)); break;
+      case Selection::Kind::Union:
+      case Selection::Kind::Intersection:
+      case Selection::Kind::Difference: {
+        bool inFirst = (*operands.at(0))[i], inAny = false, inAll = true;
+        for (size_t k = 1; k < operands.size(); ++k) inAny |= bool((*operands[k])[i]), inAll &= bool((*operands[k])[i]);
+        if (selection.kind == Selection::Kind::Union) mask[i] = inFirst || inAny;
+        else if (selection.kind == Selection::Kind::Intersection) mask[i] = inFirst && inAll;
+        else mask[i] = inFirst && !inAny;  // Difference: the first minus all the others
+        break;
+      }
+    }
+    for (const AttributeFilter& filter : selection.filters)
+      if (mask[i] && !materialPassesFilter(filter, scene.materials[nodeMaterial(scene, i)])) mask[i] = 0;
   }
   return mask;
 }
@@ -65,14 +68,10 @@ bool materialPassesFilter(const AttributeFilter& filter, const Material& materia
 }
 
 NodeMask selectNodes(const EditDocument& document, const std::string& name, const MeshScene& scene) {
-  auto it = document.selections.find(name);
-  GLINT_CHECK(it != document.selections.end(), "selectNodes: unknown selection " + name);
-  const Selection& selection = it->second;
-  NodeMask mask = unfilteredNodes(document, selection, scene);
-  for (size_t i = 0; i < mask.size(); ++i)
-    for (const AttributeFilter& filter : selection.filters)
-      if (mask[i] && !materialPassesFilter(filter, scene.materials[nodeMaterial(scene, i)])) mask[i] = 0;
-  return mask;
+  return evaluatePlan<NodeMask>(planSelection(document, name),
+                                [&](const Selection& selection, const std::vector<const NodeMask*>& operands) {
+                                  return evaluateNodes(selection, operands, scene);
+                                });
 }
 
 }  // namespace glint

@@ -103,6 +103,23 @@ TEST_F(EditCliTest, EditBakesTheEditsIntoANewScene) {
   EXPECT_EQ(readGaussianPly(path("out.ply")).size(), 40u);
 }
 
+// Issue 19: 40 duplications of everything (2.7 kB) asked for 40 x 2^40 Gaussians and ended
+// in std::bad_alloc; the file is refused, naming it and the limit, and nothing is written.
+TEST_F(EditCliTest, FortyDuplicationsAreRefusedNamingTheFileAndTheLimit) {
+  std::string operations;
+  for (int i = 0; i < 40; ++i)
+    operations += std::string(i ? ", " : "") + R"({"op": "duplicate", "selection": "all", "offset": [0, 0, 0.01]})";
+  std::ofstream(folder_ / "forty.json") << R"({"glint_edits": 1, "selections": {"all": "everything"}, "operations": [)"
+                                        << operations << "]}";
+  Outcome edit = runGlint("edit " + path("scene.ply") + " " + path("forty.json") + " -o " + path("o.ply") +
+                          " --max-gaussians 5000");
+  EXPECT_NE(edit.status, 0) << edit.output;
+  // 40 Gaussians double at each operation: the 7th would make 5120.
+  for (const char* part : {"forty.json", "operations[6] duplicate", "5120", "limit of 5000", "--max-gaussians"})
+    EXPECT_NE(edit.output.find(part), std::string::npos) << part << " in " << edit.output;
+  EXPECT_FALSE(fs::exists(folder_ / "o.ply"));
+}
+
 TEST_F(EditCliTest, BadEditFilesAreNamedWithANonZeroExit) {
   std::ofstream(folder_ / "typo.json") << R"({"glint_edits": 1, "selections": {"all": "everything"},
     "operations": [{"op": "rotat", "selection": "all", "axis": [0, 1, 0], "angle_degrees": 5, "pivot": [0, 0, 0]}]})";

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "common/random_gaussians.h"
+#include "edit/gaussian_edits.h"
 
 namespace glint {
 namespace {
@@ -16,7 +17,7 @@ nlohmann::json editOf(const char* operation) {
 
 TEST(EditSession, RefitsInPlaceOnlyWhenTheCountStaysAndTheSceneIsFree) {
   const GaussianScene pristine = randomScene(400, 5);
-  EditSession session(pristine, TraceSettings{});
+  EditSession session(pristine, TraceSettings{}, kDefaultMaxGaussians);
   int released = 0;
   TracerUpdateContext context;
   context.probeCamera = Camera{Mat4::lookAt(Vec3d(0, 0, 4), Vec3d(0, 0, 0), Vec3d(0, 1, 0)), 0.9, 32, 24};

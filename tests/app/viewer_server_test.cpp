@@ -14,72 +14,17 @@
 #include <nlohmann/json.hpp>
 
 #include "app/viewer/static_files.h"
-#include "app/viewer/viewer_server.h"
+#include "app/viewer_fixture.h"
+#include "common/resident_memory.h"
 #include "math/rng.h"
 
 namespace glint {
 namespace {
 
 namespace fs = std::filesystem;
-
-constexpr const char* kSecret = "top-secret-contents";
-
-// Resident memory of this process in kB (VmRSS of /proc/self/status).
-long residentKilobytes() {
-  std::ifstream status("/proc/self/status");
-  std::string line;
-  while (std::getline(status, line))
-    if (line.rfind("VmRSS:", 0) == 0) return std::atol(line.c_str() + 6);
-  return -1;
-}
-
-// A small scene: a cloud of Gaussians in the unit cube, some rough, some smooth.
-GaussianScene smallScene(int count) {
-  GaussianScene scene;
-  scene.resize(size_t(count));
-  Rng rng(7);
-  for (int i = 0; i < count; ++i) {
-    scene.position[size_t(i)] = Vec3f(rng.uniform(), rng.uniform(), rng.uniform()) * 2.0f - Vec3f(1.0f);
-    scene.logScale[size_t(i)] = Vec3f(std::log(0.08f));
-    scene.opacityLogit[size_t(i)] = 2.0f;
-    scene.diffuse[size_t(i)] = Rgb(rng.uniform(), rng.uniform(), rng.uniform());
-    scene.normal[size_t(i)] = Vec3f(0, 1, 0);
-    scene.roughness[size_t(i)] = rng.uniform();
-    scene.f0[size_t(i)] = Rgb(0.04f);
-  }
-  return scene;
-}
-
-// A temporary folder holding a web folder (index.html, a symbolic link pointing out of it)
-// and, beside it, a file the server must never serve.
-class ServerFixture : public ::testing::Test {
- protected:
-  void SetUp() override {
-    root_ = fs::temp_directory_path() / ("glint_viewer_test_" + std::to_string(::getpid()));
-    fs::remove_all(root_);
-    fs::create_directories(root_ / "web");
-    std::ofstream(root_ / "web" / "index.html") << "<html>viewer</html>";
-    std::ofstream(root_ / "secret.txt") << kSecret;
-    fs::create_directory_symlink(root_, root_ / "web" / "outside");
-    ViewerOptions options;
-    options.width = 32, options.height = 24;
-    options.maxSamples = 8;
-    options.webRoot = root_ / "web";
-    options.outputFolder = root_;
-    options.initialCamera.eye = Vec3d(0, 0, 4);
-    server_ = std::make_unique<ViewerServer>(options, smallScene(300), TraceSettings{});
-    port_ = server_->bind();
-    server_->start();
-  }
-  void TearDown() override {
-    server_.reset();
-    fs::remove_all(root_);
-  }
-
-  fs::path root_;
-  std::unique_ptr<ViewerServer> server_;
-  int port_ = 0;
-};
+using test::kSecret;
+using test::residentKilobytes;
+using test::ServerFixture;
 
 std::string randomBytes(Rng& rng, size_t n) {
   std::string s(n, '\0');
@@ -105,7 +50,7 @@ TEST(StaticFiles, ResolvesOnlyPlainPathsInsideTheFolder) {
 }
 
 TEST_F(ServerFixture, SurvivesTenThousandMalformedRequests) {
-  httplib::Client client("127.0.0.1", port_);
+  httplib::Client client = pageClient();
   client.set_keep_alive(true);
   client.set_tcp_nodelay(true);
   client.set_read_timeout(10, 0);
@@ -227,7 +172,7 @@ TEST_F(ServerFixture, SurvivesTenThousandMalformedRequests) {
 // refused with a JSON error and the settings stay; lowering the bounces below the shown
 // bounce needs a new mode in the same request.
 TEST_F(ServerFixture, BounceModesStayWithinTheBounceCount) {
-  httplib::Client client("127.0.0.1", port_);
+  httplib::Client client = pageClient();
   auto post = [&](const char* body) {
     httplib::Result r = client.Post("/api/settings", body, "application/json");
     EXPECT_TRUE(r);
@@ -260,7 +205,7 @@ TEST_F(ServerFixture, BounceModesStayWithinTheBounceCount) {
 // An edit that keeps the count lets the render thread go of the shown scene and refits it in
 // place when that is measured cheaper; the answer says which update was kept and its costs.
 TEST_F(ServerFixture, EditsReportTheTracerUpdateTheyChose) {
-  httplib::Client client("127.0.0.1", port_);
+  httplib::Client client = pageClient();
   ASSERT_TRUE(client.Get("/api/frame"));  // the render thread is busy with the scene
   auto edit = [&](const char* body) {
     httplib::Result r = client.Post("/api/edits/apply", body, "application/json");
@@ -286,7 +231,7 @@ TEST_F(ServerFixture, EditsReportTheTracerUpdateTheyChose) {
 }
 
 TEST_F(ServerFixture, AccumulatesSamplesWhenTheCameraRests) {
-  httplib::Client client("127.0.0.1", port_);
+  httplib::Client client = pageClient();
   uint64_t after = 0;
   int samples = 0;
   for (int i = 0; i < 100 && samples < 8; ++i) {

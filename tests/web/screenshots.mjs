@@ -11,7 +11,7 @@ const viewer = spawn(glint, ['view', run, '--port', '0', '--res', '320x240', '--
   { stdio: ['ignore', 'pipe', 'inherit'] });
 const url = await new Promise((resolve) => {
   let text = '';
-  viewer.stdout.on('data', (d) => { text += d; const m = text.match(/http:\/\/127\.0\.0\.1:\d+\//); if (m) resolve(m[0]); });
+  viewer.stdout.on('data', (d) => { text += d; const m = text.match(/http:\/\/127\.0\.0\.1:\d+\/(\?token=[0-9a-f]+)? /); if (m) resolve(m[0].trim()); });
 });
 const profile = mkdtempSync(join(tmpdir(), 'glint-shots-'));
 const browser = await chromium.launchPersistentContext(profile, {

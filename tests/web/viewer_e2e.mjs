@@ -35,8 +35,9 @@ function startViewer(args) {
     let out = '';
     child.stdout.on('data', (d) => {
       out += d;
-      const m = out.match(/http:\/\/127\.0\.0\.1:\d+\//);
-      if (m) resolve({ child, url: m[0] });
+      // The page's address and its token query (?token=...), which the page needs to edit.
+      const m = out.match(/(http:\/\/127\.0\.0\.1:\d+\/)(\?token=[0-9a-f]+)? /);
+      if (m) resolve({ child, url: m[1], page: m[1] + (m[2] || '') });
     });
     child.on('exit', (code) => reject(new Error(`glint view exited with ${code}`)));
   });
@@ -90,7 +91,7 @@ try {
   // Loopback only: any other request is a bug (the page must work offline).
   await page.route('**/*', (route) => (route.request().url().startsWith(viewer.url) ? route.continue() : route.abort()));
   page.on('pageerror', (e) => console.error(`page error: ${e.message}`));
-  await page.goto(viewer.url);
+  await page.goto(viewer.page);
   await page.waitForFunction(() => window.glintViewer !== undefined);
   await page.selectOption('#format', 'png');
   await page.selectOption('#training-camera', '0');

@@ -8,29 +8,11 @@
 #include "app/viewer/progressive_renderer.h"
 #include "app/viewer/request_json.h"
 #include "app/viewer/viewer_http.h"
+#include "app/viewer/viewer_outputs.h"
 #include "app/viewer/viewer_server.h"
 #include "edit/edit_file.h"
 
 namespace glint {
-
-namespace {
-
-// The file a save or export request names: a plain file name with the given extension,
-// inside the output folder (a request never chooses a folder).
-std::filesystem::path outputFile(const std::filesystem::path& folder, const nlohmann::json& request,
-                                 const char* defaultName, const char* extension) {
-  requireOnlyFields(request, {"name"});
-  std::string name = request.contains("name") ? readString(request, "name", 100) : defaultName;
-  bool plain = !name.empty() && name[0] != '.' && name.find_first_not_of("abcdefghijklmnopqrstuvwxyz"
-                                                                          "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789-_.") ==
-                                                       std::string::npos;
-  std::string ext = extension;
-  if (!plain || name.size() <= ext.size() || name.compare(name.size() - ext.size(), ext.size(), ext) != 0)
-    throw RequestError(400, "\"name\" must be a plain file name ending in " + ext);
-  return folder / name;
-}
-
-}  // namespace
 
 void ViewerServer::addEditRoutes() {
   httplib::Server& http = *http_;
@@ -77,14 +59,14 @@ void ViewerServer::addEditRoutes() {
     sendJson(res, edits_->preview(parseRequestObject(req.body, kMaxRequestBytes)));
   });
   http.Post("/api/edits/save", [this](const httplib::Request& req, httplib::Response& res) {
-    std::filesystem::path file =
-        outputFile(options_.outputFolder, parseRequestObject(req.body, kMaxRequestBytes), "viewer_edits.json", ".json");
+    std::filesystem::path file = viewerOutputFile(options_.outputFolder, parseRequestObject(req.body, kMaxRequestBytes),
+                                                  "viewer_edits.json", ".json");
     writeEditFile(file, edits_->document());
     sendJson(res, {{"saved", file.string()}});
   });
   http.Post("/api/edits/export", [this](const httplib::Request& req, httplib::Response& res) {
-    std::filesystem::path file =
-        outputFile(options_.outputFolder, parseRequestObject(req.body, kMaxRequestBytes), "viewer_edited.ply", ".ply");
+    std::filesystem::path file = viewerOutputFile(options_.outputFolder, parseRequestObject(req.body, kMaxRequestBytes),
+                                                  "viewer_edited.ply", ".ply");
     size_t gaussians = edits_->exportPly(file);
     sendJson(res, {{"saved", file.string()}, {"gaussians", gaussians}});
   });

@@ -62,9 +62,10 @@ float attributeValue(const GaussianScene& scene, size_t i, Attribute attribute) 
 
 }  // namespace
 
-EditSession::EditSession(GaussianScene pristine, const TraceSettings& trace)
+EditSession::EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians)
     : pristine_(std::make_shared<const GaussianScene>(std::move(pristine))),
       trace_(trace),
+      maxGaussians_(maxGaussians),
       shownScene_(std::make_shared<GaussianScene>(*pristine_)),
       current_(traceScene(shownScene_, trace_)) {}
 
@@ -81,6 +82,7 @@ size_t EditSession::exportPly(const std::filesystem::path& file) const {
 
 EditDocument EditSession::documentOfSteps() const {
   EditDocument document;
+  document.source = "the viewer's edits";
   for (const Step& step : steps_) {
     document.selections[step.selectionName] = step.selection;
     document.operations.push_back(step.operation);
@@ -91,7 +93,7 @@ EditDocument EditSession::documentOfSteps() const {
 void EditSession::update(const TracerUpdateContext& context) {
   // Applied to a copy first: an operation that cannot apply throws before anything shown changes.
   GaussianScene edited = *pristine_;
-  applyEdits(documentOfSteps(), edited);
+  applyEdits(documentOfSteps(), edited, maxGaussians_);
 
   // A refit needs the shown tracer and its scene object to ourselves: the render thread lets
   // go of them; a request that took them through current() just before still holds them.
@@ -132,6 +134,9 @@ std::shared_ptr<const TracedScene> EditSession::apply(const nlohmann::json& requ
   steps_.push_back(std::move(step));
   try {
     update(context);
+  } catch (const GaussianLimitError& e) {
+    steps_.pop_back();
+    throw RequestError(413, e.what());
   } catch (const Error& e) {  // the operation cannot apply (e.g. a rotation without pivot)
     steps_.pop_back();
     throw RequestError(400, e.what());

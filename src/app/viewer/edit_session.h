@@ -35,13 +35,15 @@ struct TracerUpdateContext {
 
 class EditSession {
  public:
-  EditSession(GaussianScene pristine, const TraceSettings& trace);
+  // maxGaussians: the most Gaussians an edit may leave (gaussian_edits.h).
+  EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians);
 
   std::shared_ptr<const TracedScene> current() const;
 
   // {"selection": S, "operation": O}: S a selection as in an edit file, O an operation as in
   // an edit file without its "selection" field. Returns the edited scene; throws
-  // RequestError 400 for a malformed request (nothing changes, releaseShown is not called).
+  // RequestError 400 for a malformed request (nothing changes, releaseShown is not called)
+  // and 413 for an edit that would exceed maxGaussians (nothing changes).
   std::shared_ptr<const TracedScene> apply(const nlohmann::json& request, const TracerUpdateContext& context);
   // Throw RequestError 409 when there is nothing to undo or redo.
   std::shared_ptr<const TracedScene> undo(const TracerUpdateContext& context);
@@ -79,6 +81,7 @@ class EditSession {
   mutable std::mutex mutex_;
   std::shared_ptr<const GaussianScene> pristine_;
   TraceSettings trace_;
+  size_t maxGaussians_;
   std::vector<Step> steps_;
   std::vector<Step> redo_;
   // The shown scene, a copy of the pristine one that edits overwrite in place so that its

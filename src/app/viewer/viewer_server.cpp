@@ -5,6 +5,7 @@
 
 #include <httplib.h>
 
+#include "app/viewer/connection_limits.h"
 #include "app/viewer/edit_session.h"
 #include "app/viewer/frame_encoding.h"
 #include "app/viewer/progressive_renderer.h"
@@ -25,11 +26,13 @@ constexpr std::chrono::milliseconds kFrameWait{1000};
 
 ViewerServer::ViewerServer(ViewerOptions options, GaussianScene scene, const TraceSettings& trace)
     : options_(std::move(options)), trace_(trace), http_(std::make_unique<httplib::Server>()) {
+  access_.boundHost = options_.host;
+  access_.token = options_.token.empty() ? makeAccessToken() : options_.token;
   if (options_.width < 8 || options_.height < 8 || options_.width > 8192 || options_.height > 8192)
     throw Error("glint view", "the viewer's resolution must lie between 8x8 and 8192x8192");
   renderer_ = std::make_unique<ProgressiveRenderer>(options_.width, options_.height, options_.maxSamples);
   if (options_.editable) {
-    edits_ = std::make_unique<EditSession>(std::move(scene), trace_);
+    edits_ = std::make_unique<EditSession>(std::move(scene), trace_, options_.maxGaussians);
     renderer_->setScene(edits_->current());
   } else {
     renderer_->setScene(traceScene(std::make_shared<const GaussianScene>(std::move(scene)), trace_));
@@ -48,10 +51,9 @@ ViewerServer::~ViewerServer() {
 int ViewerServer::bind() {
   http_->set_payload_max_length(kMaxRequestBytes);
   http_->set_tcp_nodelay(true);  // headers and body go out in separate writes: no Nagle delay between them
-  http_->set_read_timeout(5, 0);
-  http_->set_write_timeout(5, 0);
-  port_ = options_.port == 0 ? http_->bind_to_any_port(options_.host) : options_.port;
-  if (options_.port != 0 && !http_->bind_to_port(options_.host, options_.port)) port_ = -1;
+  ConnectionLimits limits;
+  applyConnectionLimits(*http_, limits);
+  port_ = bindWithBacklog(*http_, options_.host, options_.port, limits.backlog);
   if (port_ <= 0)
     throw Error("glint view", "cannot listen on " + options_.host + ":" + std::to_string(options_.port) +
                                   " (in use, or not an address of this machine)");
@@ -71,7 +73,7 @@ void ViewerServer::stop() {
 
 std::string ViewerServer::url() const {
   std::string host = options_.host.find(':') != std::string::npos ? "[" + options_.host + "]" : options_.host;
-  return "http://" + host + ":" + std::to_string(port_) + "/";
+  return "http://" + host + ":" + std::to_string(port_) + "/?token=" + access_.token;
 }
 
 void ViewerServer::showScene(GaussianScene scene) {
@@ -82,6 +84,18 @@ void ViewerServer::showScene(GaussianScene scene) {
 void ViewerServer::addRoutes() {
   httplib::Server& http = *http_;
   installErrorHandlers(http);
+
+  // Before routing, and before the body is read: refused requests cost nothing.
+  http.set_pre_routing_handler([this](const httplib::Request& req, httplib::Response& res) {
+    RequestFacts facts{req.method, req.get_header_value("Host"), std::nullopt, req.get_header_value("Content-Type"),
+                       req.get_header_value(kTokenHeader)};
+    if (req.has_header("Origin")) facts.origin = req.get_header_value("Origin");
+    std::optional<AccessRefusal> refusal = checkAccess(access_, facts);
+    if (!refusal) return httplib::Server::HandlerResponse::Unhandled;
+    res.set_header("Connection", "close");  // its body, if any, stays unread
+    sendJson(res, {{"error", refusal->message}}, refusal->status);
+    return httplib::Server::HandlerResponse::Handled;
+  });
 
   http.Get("/api/state", [this](const httplib::Request&, httplib::Response& res) {
     std::shared_ptr<const TracedScene> scene = renderer_->scene();

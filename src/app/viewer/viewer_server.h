@@ -1,7 +1,9 @@
 // The viewer's HTTP server (cpp-httplib): the page's static files, frames from the
 // progressive renderer, and JSON endpoints for the camera, display settings, training
 // cameras and edits. Every request is validated; a bad one gets a 4xx JSON error
-// ({"error": "..."}) and changes nothing.
+// ({"error": "..."}) and changes nothing. Requests pass the access policy first
+// (access_policy.h: Host, Origin, JSON bodies, the per-launch token), and connections are
+// served under connection_limits.h.
 #pragma once
 
 #include <filesystem>
@@ -10,7 +12,9 @@
 #include <thread>
 #include <vector>
 
+#include "app/viewer/access_policy.h"
 #include "app/viewer/viewer_camera.h"
+#include "edit/gaussian_edits.h"
 #include "raytrace/trace_settings.h"
 #include "scene/gaussians.h"
 
@@ -34,10 +38,13 @@ struct ViewerOptions {
   int width = 480, height = 360;
   int maxSamples = 1024;
   std::filesystem::path webRoot;       // the page's files
-  std::filesystem::path outputFolder;  // where "save edits" and "export PLY" write
+  std::filesystem::path outputFolder;  // where "save edits" and "export PLY" write (viewer_outputs.h)
   bool editable = true;                // false while training: the scene is the trainer's
   std::vector<TrainingCameraEntry> trainingCameras;
   ViewerCamera initialCamera;
+  std::string token;  // required on requests that change anything; empty: a random one
+  // Gaussians an edit may leave in the scene; an edit beyond is refused (413).
+  size_t maxGaussians = kDefaultMaxGaussians;
 };
 
 // Request bodies above this are refused with 413 (edit operations are a few hundred bytes).
@@ -53,7 +60,9 @@ class ViewerServer {
   // Serves on a background thread until stop() (or destruction).
   void start();
   void stop();
+  // The page's address, with the token in its query (?token=...): the page sends it back.
   std::string url() const;
+  const std::string& token() const { return access_.token; }
 
   // Replaces the scene shown (a training snapshot); only for servers that are not editable.
   // Returns at once: the render thread builds the tracer.
@@ -66,6 +75,7 @@ class ViewerServer {
 
   ViewerOptions options_;
   TraceSettings trace_;
+  AccessPolicy access_;
   int port_ = 0;
   std::unique_ptr<httplib::Server> http_;
   std::unique_ptr<ProgressiveRenderer> renderer_;

@@ -51,7 +51,8 @@ ViewerOptions makeViewerOptions(const ViewerFlags& flags, const std::optional<Da
   if (!isLoopback(flags.host))
     std::fprintf(stderr,
                  "glint view: warning: listening on %s, not loopback: anyone who can reach this machine can view "
-                 "and edit the scene and write files into %s\n",
+                 "the scene, and anyone who sees the printed URL (its token travels unencrypted) can edit it and "
+                 "write files into %s\n",
                  flags.host.c_str(), outputFolder.string().c_str());
 
   options.initialCamera = overviewCamera(scene);
