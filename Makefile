@@ -22,8 +22,16 @@ test: deps
 test-sanitize: deps
 	@cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Release -DGLINT_SANITIZE=ON -DGLINT_BUILD_BENCH=OFF >/dev/null
 	@cmake --build build-sanitize -j $(JOBS)
-	@cd build-sanitize && ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	@rm -rf build-sanitize/reports && mkdir -p build-sanitize/reports
+	@cd build-sanitize && \
+		ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:log_path=$(CURDIR)/build-sanitize/reports/asan \
+		UBSAN_OPTIONS=print_stacktrace=1:log_path=$(CURDIR)/build-sanitize/reports/ubsan \
 		ctest --output-on-failure -j $(JOBS)
+	@# Reports of the glint processes the end-to-end tests start land here too, even where
+	@# the test only expected a non-zero exit: any report fails the target.
+	@if [ -n "$$(ls -A build-sanitize/reports)" ]; then \
+		echo "test-sanitize: sanitizer reports:"; cat build-sanitize/reports/*; exit 1; fi
+	@echo "test-sanitize: no sanitizer reports"
 
 demo: deps
 	@$(MAKE) --no-print-directory build
