@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/printable_text.h"
 #include "io/json_file.h"
 
 namespace glint {
@@ -89,7 +90,8 @@ class Parser {
 
  private:
   [[noreturn]] void fail(const std::string& where, const std::string& problem) const {
-    throw Error(source_, where.empty() ? problem : where + ": " + problem);
+    // Names and keys are the file's own strings, which may hold control characters.
+    throw Error(source_, printableText(where.empty() ? problem : where + ": " + problem, std::string::npos));
   }
 
   void allowOnly(const json& object, const std::string& where, std::initializer_list<const char*> keys) const {

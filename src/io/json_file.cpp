@@ -5,6 +5,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/printable_text.h"
 
 namespace glint {
 
@@ -13,7 +14,8 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
-    throw Error(path.string(), std::string("is not valid JSON: ") + e.what());
+    // nlohmann quotes the bytes it stopped at, which need not be printable.
+    throw Error(path.string(), "is not valid JSON: " + printableText(e.what(), std::string::npos));
   }
 }
 

@@ -14,6 +14,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/printable_text.h"
 
 namespace glint {
 
@@ -115,7 +116,8 @@ std::vector<PlyElement> parseHeader(std::istream& in, const std::string& path) {
     std::istringstream words(line);
     std::string keyword;
     words >> keyword;
-    std::string where = " (header line " + std::to_string(lineNumber) + ": '" + line + "')";
+    // Quoted escaped: the "header" of a binary file that is not PLY is arbitrary bytes.
+    std::string where = " (header line " + std::to_string(lineNumber) + ": '" + printableText(line) + "')";
     if (keyword == "end_header") break;
     if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
     if (keyword == "format") {
@@ -152,16 +154,17 @@ std::vector<PlyElement> parseHeader(std::istream& in, const std::string& path) {
           throw fail("PLY list count must be an integer type" + where);
         }
       } else if (!parsePlyType(type, property.type)) {
-        throw fail("unknown PLY property type '" + type + "'" + where);
+        throw fail("unknown PLY property type '" + printableText(type) + "'" + where);
       }
       words >> property.name;
       if (property.name.empty()) throw fail("property without a name" + where);
       for (const PlyProperty& other : elements.back().properties) {
-        if (other.name == property.name) throw fail("duplicate property '" + property.name + "'" + where);
+        if (other.name == property.name)
+          throw fail("duplicate property '" + printableText(property.name) + "'" + where);
       }
       elements.back().properties.push_back(std::move(property));
     } else {
-      throw fail("unknown PLY header keyword '" + keyword + "'" + where);
+      throw fail("unknown PLY header keyword '" + printableText(keyword) + "'" + where);
     }
   }
   if (!sawFormat) throw fail("PLY header has no format line");
@@ -221,12 +224,14 @@ bool skipList(DataReader& reader, const PlyProperty& property, const std::string
   const uint8_t* p = reader.take(plyTypeSize(property.countType));
   if (!p) return false;
   double count = decodeValue(p, property.countType);
-  if (count < 0) throw Error(path, "list property '" + property.name + "' has a negative length");
+  if (count < 0) throw Error(path, "list property '" + printableText(property.name) + "' has a negative length");
   return reader.skip(uint64_t(count) * plyTypeSize(property.type));
 }
 
 void skipElement(DataReader& reader, const PlyElement& element, const std::string& path) {
-  auto truncated = [&] { return Error(path, "truncated: file ends inside element '" + element.name + "'"); };
+  auto truncated = [&] {
+    return Error(path, "truncated: file ends inside element '" + printableText(element.name) + "'");
+  };
   if (!element.hasLists()) {
     uint64_t rowSize = element.rowSize();
     if (rowSize > 0 && element.count > reader.remaining() / rowSize) throw truncated();
@@ -348,7 +353,8 @@ PlyTable readPly(const fs::path& path, const std::string& elementName) {
     float f = float(value);
     if (!std::isfinite(f)) {
       std::string what = std::isnan(value) ? "NaN" : std::isinf(value) ? "infinite" : "outside the float range";
-      throw Error(name, "property '" + table.names[column] + "' of " + elementName + " " + std::to_string(row) + " is " + what);
+      throw Error(name, "property '" + printableText(table.names[column]) + "' of " + elementName + " " +
+                            std::to_string(row) + " is " + what);
     }
     table.columns[column][row] = f;
   };

@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/printable_text.h"
 
 namespace glint {
 
@@ -62,7 +63,7 @@ Json parseJsonText(const std::string& text, const std::string& fileName) {
     std::string near = text.substr(std::min(from, text.size()), 32);
     if (near.find("NaN") != std::string::npos || near.find("Infinity") != std::string::npos)
       message += " (JSON has no NaN or Infinity: every number must be finite)";
-    throw Error(fileName, message);
+    throw Error(fileName, printableText(message, std::string::npos));  // quotes the bytes it stopped at
   } catch (const Json::exception& e) {
     // For example out_of_range 406 for a number too large for a double (1e999).
     throw Error(fileName, "invalid JSON: " + withoutExceptionTag(e.what()) + " (every number must be finite)");
@@ -140,12 +141,13 @@ TransformsFile parseTransformsJson(const std::string& text, const std::string& f
     parsed.filePath = normalizeFilePath(path->get<std::string>());
     if (parsed.filePath.empty()) throw Error(fileName, where + "file_path is empty");
     if (parsed.filePath.front() == '/')
-      throw Error(fileName, where + "file_path \"" + parsed.filePath + "\" must be relative to the dataset folder");
+      throw Error(fileName,
+                  where + "file_path \"" + printableText(parsed.filePath) + "\" must be relative to the dataset folder");
     // A dataset is one folder: its files never lie outside it, so ".." is refused outright
     // (a downloaded dataset must not make Glint read, or synth write, elsewhere).
     for (const auto& part : std::filesystem::path(parsed.filePath))
       if (part == "..")
-        throw Error(fileName, where + "file_path \"" + parsed.filePath +
+        throw Error(fileName, where + "file_path \"" + printableText(parsed.filePath) +
                                   "\" leaves the dataset folder (\"..\"); every file must lie inside it");
     auto matrix = frame.find("transform_matrix");
     if (matrix == frame.end()) throw Error(fileName, where + "transform_matrix is missing");
@@ -157,7 +159,7 @@ TransformsFile parseTransformsJson(const std::string& text, const std::string& f
                    [](const TransformsFrame& a, const TransformsFrame& b) { return a.filePath < b.filePath; });
   for (size_t i = 1; i < result.frames.size(); ++i)
     if (result.frames[i].filePath == result.frames[i - 1].filePath)
-      throw Error(fileName, "two frames have the same file_path \"" + result.frames[i].filePath + "\"");
+      throw Error(fileName, "two frames have the same file_path \"" + printableText(result.frames[i].filePath) + "\"");
   return result;
 }
 

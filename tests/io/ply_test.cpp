@@ -226,6 +226,25 @@ TEST(Ply, RejectsMalformedHeaders) {
   expectErrorNaming([&] { readPly(folder / "missing.ply"); }, folder / "missing.ply", {"not found"});
 }
 
+// Issue 19: a binary file with a PLY magic line had its bytes echoed raw to the terminal.
+TEST(Ply, BinaryHeaderBytesAreEscapedInErrors) {
+  TempFolder folder;
+  auto path = folder / "binary.ply";
+  const std::string header = "ply\nformat binary_little_endian 1.0\n";
+  test::writeBytes(path, header + std::string("\x1b[2J\x89\x01\x00junk\nend_header\n", 23));
+  try {
+    readPly(path);
+    ADD_FAILURE() << "no error for " << path;
+  } catch (const Error& e) {
+    std::string message = e.what();
+    EXPECT_NE(message.find(path.string()), std::string::npos) << message;
+    EXPECT_NE(message.find("unknown PLY header keyword '\\x1B[2J\\x89\\x01\\x00junk' (header line 3"),
+              std::string::npos)
+        << message;
+    for (char c : message) EXPECT_TRUE(c >= 0x20 && c < 0x7F) << "unescaped byte " << int(c) << " in " << message;
+  }
+}
+
 TEST(Ply, EmptyElementIsValid) {
   TempFolder folder;
   PlyTable table;
