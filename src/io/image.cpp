@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
+#include <system_error>
 
 #include "core/atomic_file.h"
 #include "core/error.h"
@@ -76,13 +78,29 @@ void writeImage(const fs::path& path, const Image& image) {
 
 namespace detail {
 
-void checkImageSize(const std::string& path, size_t width, size_t height, size_t channels) {
+size_t maxDecodedBytes(const std::string& path) {
+  std::error_code ec;
+  uintmax_t fileBytes = fs::file_size(path, ec);
+  if (ec) return kMinDecodedBytes;  // the reader itself reports the unreadable file
+  uintmax_t bound = fileBytes > SIZE_MAX / kMaxCompressionRatio ? SIZE_MAX : fileBytes * kMaxCompressionRatio;
+  return std::max(size_t(bound), kMinDecodedBytes);
+}
+
+void checkImageSize(const std::string& path, size_t width, size_t height, size_t channels, size_t bytesPerSample) {
   if (width == 0 || height == 0) {
     throw Error(path, "image has no pixels (" + std::to_string(width) + "x" + std::to_string(height) + ")");
   }
-  if (width > kMaxImagePixels / height || width * height > kMaxImagePixels / std::max<size_t>(channels, 1)) {
+  channels = std::max<size_t>(channels, 1);
+  if (width > kMaxImagePixels / height || width * height > kMaxImagePixels / channels) {
     throw Error(path, "image size " + std::to_string(width) + "x" + std::to_string(height) +
                           " is implausibly large (corrupt header?)");
+  }
+  // width * height * channels <= 2^32 here, so the product below cannot overflow.
+  size_t sampleBytes = width * height * channels * std::max<size_t>(bytesPerSample, 1);
+  if (sampleBytes > maxDecodedBytes(path)) {
+    throw Error(path, "image size " + std::to_string(width) + "x" + std::to_string(height) + " needs " +
+                          std::to_string(sampleBytes) + " bytes of samples, more than a file of " +
+                          std::to_string(fs::file_size(path)) + " bytes can hold (truncated or corrupt header?)");
   }
 }
 

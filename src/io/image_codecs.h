@@ -24,7 +24,17 @@ void writeExr(const std::string& filePath, const std::string& displayPath, const
 void writeTiff(const std::string& filePath, const std::string& displayPath, const Image& image);
 void writePng(const std::string& filePath, const std::string& displayPath, const Image& image);
 
-// Throws Error naming path unless width x height x channels is a size a reader may allocate.
-void checkImageSize(const std::string& path, size_t width, size_t height, size_t channels);
+// The most bytes of samples the file at path can decode to: kMaxCompressionRatio times its
+// size, but at least kMinDecodedBytes. No codec Glint reads expands data further (deflate
+// at most about 1032 times, LZW about 1400, PackBits and EXR's RLE and PIZ less), so a
+// header asking for more describes data that is not in the file.
+constexpr size_t kMaxCompressionRatio = 4096;
+constexpr size_t kMinDecodedBytes = size_t(64) << 20;
+size_t maxDecodedBytes(const std::string& path);
+
+// Throws Error naming path unless width x height x channels is a size a reader may allocate:
+// at most kMaxImagePixels, and, at bytesPerSample as stored, no more than maxDecodedBytes.
+// Called before allocating, so a 100-byte header cannot make the reader allocate gigabytes.
+void checkImageSize(const std::string& path, size_t width, size_t height, size_t channels, size_t bytesPerSample);
 
 }  // namespace glint::detail

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/printable_text.h"
 #include "io/image_codecs.h"
 
 namespace glint::detail {
@@ -25,7 +26,7 @@ std::vector<std::string> chooseExrChannels(const std::string& path, const Imf::C
   for (const std::string& name : names) {
     const Imf::Channel& channel = channels[name];
     if (channel.xSampling != 1 || channel.ySampling != 1) {
-      throw Error(path, "EXR channel '" + name + "' is subsampled, which is not supported");
+      throw Error(path, "EXR channel '" + printableText(name) + "' is subsampled, which is not supported");
     }
   }
   // Colour images: R, G, B; alpha and any other channels (e.g. Z stored alongside) are ignored.
@@ -33,7 +34,7 @@ std::vector<std::string> chooseExrChannels(const std::string& path, const Imf::C
   // Scalar images (depth, roughness, ...): the single channel, whatever its name.
   if (names.size() == 1) return names;
   std::string list;
-  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
+  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + printableText(name);
   throw Error(path, "unsupported EXR channels {" + list + "} (expected R, G, B [, A] or a single channel)");
 }
 
@@ -48,7 +49,7 @@ Image readExr(const std::string& path) {
     long width = long(window.max.x) - window.min.x + 1;
     long height = long(window.max.y) - window.min.y + 1;
     if (width <= 0 || height <= 0) throw Error(path, "EXR data window is empty");
-    checkImageSize(path, size_t(width), size_t(height), names.size());
+    checkImageSize(path, size_t(width), size_t(height), names.size(), 2);  // half: the smallest sample
 
     Image image(int(width), int(height), int(names.size()));
     // OpenEXR addresses the buffer with absolute pixel coordinates, so shift the base by
@@ -66,7 +67,7 @@ Image readExr(const std::string& path) {
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
-    throw Error(path, std::string("cannot read EXR: ") + e.what());
+    throw Error(path, "cannot read EXR: " + printableText(e.what(), std::string::npos));  // may quote the file
   }
 }
 

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/printable_text.h"
 #include "io/image_codecs.h"
 
 namespace glint::detail {
@@ -30,6 +31,7 @@ struct PngJob {
   png_uint_32 width = 0, height = 0;
   int channels = 0;  // after transforms: 1 grey, 3 RGB (write: also 4 RGBA)
   int bitDepth = 8;  // 8 or 16 after transforms
+  size_t maxBytes = 0;  // read: the most decoded bytes the file can justify (maxDecodedBytes)
   std::vector<png_byte> data;
   std::vector<png_bytep> rows;
 };
@@ -88,7 +90,10 @@ bool decodePng(PngJob& job) {
       size_t(job.width) * job.height > kMaxImagePixels / size_t(job.channels)) {
     png_error(png, "implausible image size");
   }
-  if (!allocateRows(job, png_get_rowbytes(png, info))) png_error(png, "out of memory");
+  // Checked before allocating: the IHDR of a 100-byte file can declare 65535 x 65535.
+  size_t rowBytes = png_get_rowbytes(png, info);
+  if (rowBytes > job.maxBytes / job.height) png_error(png, "image size larger than the file's data can hold");
+  if (!allocateRows(job, rowBytes)) png_error(png, "out of memory");
   png_read_image(png, job.rows.data());
   png_read_end(png, nullptr);  // checks the trailing chunks, so a cut-off file is noticed
   png_destroy_read_struct(&png, &info, nullptr);
@@ -159,11 +164,12 @@ Image readPng(const std::string& path) {
     throw Error(path, "not a PNG file (bad signature)");
   }
   std::rewind(job.file);
+  job.maxBytes = maxDecodedBytes(path);
   bool ok = decodePng(job);
   bool endedEarly = std::feof(job.file);
   std::fclose(job.file);
   if (!ok && endedEarly) throw Error(path, "truncated PNG: the file ends before the image data does");
-  if (!ok) throw Error(path, "cannot read PNG: " + job.error);
+  if (!ok) throw Error(path, "cannot read PNG: " + printableText(job.error, std::string::npos));
 
   Image image(int(job.width), int(job.height), job.channels);
   size_t count = image.pixels.size();

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/printable_text.h"
 #include "io/image_codecs.h"
 
 namespace glint::detail {
@@ -61,7 +62,9 @@ TiffHandle openTiff(const std::string& filePath, const char* mode, TiffMessages&
 }
 
 [[noreturn]] void throwTiffError(const std::string& path, const std::string& what, const TiffMessages& messages) {
-  throw Error(path, what + (messages.firstError.empty() ? "" : " (" + messages.firstError + ")"));
+  // libtiff's messages quote tag and field names from the file.
+  std::string detail = printableText(messages.firstError, std::string::npos);
+  throw Error(path, what + (detail.empty() ? "" : " (" + detail + ")"));
 }
 
 // One sample of a decoded scanline as float: floats as stored, unsigned scaled to [0, 1].
@@ -117,7 +120,7 @@ Image readTiff(const std::string& path) {
                           " (expected grey or RGB)");
   }
   if (TIFFIsTiled(tif.get())) throw Error(path, "tiled TIFF files are not supported (expected strips)");
-  checkImageSize(path, width, height, samples);
+  checkImageSize(path, width, height, samples, bits / 8);
 
   int channels = samples >= 3 ? 3 : 1;
   Image image(int(width), int(height), channels);

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 #include <png.h>
 #include <tiffio.h>
+#include <zlib.h>
 
 #include <algorithm>
 #include <cmath>
@@ -344,6 +345,40 @@ TEST(ImageErrors, GarbageBytesNameTheFile) {
   auto empty = folder / "empty.exr";
   test::writeBytes(empty, "");
   expectErrorNaming([&] { readImage(empty); }, empty);
+}
+
+// Issue 19: a header's size is checked against the bytes the file holds before anything
+// is allocated. A PNG of 8 x 8 pixels relabelled 30000 x 30000 (within kMaxImagePixels) made
+// the reader allocate 2.7 GB of rows and 10.8 GB of floats; so did a TIFF with one row.
+TEST(ImageErrors, HeaderSizesBeyondTheFileAreRefusedBeforeAllocating) {
+  TempFolder folder;
+  auto png = folder / "relabelled.png";
+  writeImage(png, makeImage(8, 8, 3, 0.0f, 1.0f, 7));
+  std::string bytes = test::readBytes(png);
+  // IHDR: signature (8), length (4), "IHDR" (4), width and height big-endian, CRC at 29.
+  auto put32 = [&](size_t at, uint32_t v) {
+    for (int i = 0; i < 4; ++i) bytes[at + i] = char(v >> (24 - 8 * i));
+  };
+  put32(16, 30000);
+  put32(20, 30000);
+  put32(29, uint32_t(crc32(0, reinterpret_cast<const Bytef*>(bytes.data() + 12), 17)));
+  test::writeBytes(png, bytes);
+  expectErrorNaming([&] { readImage(png); }, png, "larger than the file's data can hold");
+
+  auto tiff = folder / "one_row.tiff";
+  TIFF* out = TIFFOpen(tiff.c_str(), "w");
+  ASSERT_NE(out, nullptr);
+  TIFFSetField(out, TIFFTAG_IMAGEWIDTH, 30000u);
+  TIFFSetField(out, TIFFTAG_IMAGELENGTH, 30000u);
+  TIFFSetField(out, TIFFTAG_SAMPLESPERPIXEL, 3);
+  TIFFSetField(out, TIFFTAG_BITSPERSAMPLE, 8);
+  TIFFSetField(out, TIFFTAG_PHOTOMETRIC, PHOTOMETRIC_RGB);
+  TIFFSetField(out, TIFFTAG_PLANARCONFIG, PLANARCONFIG_CONTIG);
+  TIFFSetField(out, TIFFTAG_ROWSPERSTRIP, 30000u);
+  std::vector<uint8_t> row(30000 * 3, 0);
+  ASSERT_EQ(TIFFWriteScanline(out, row.data(), 0, 0), 1);
+  TIFFClose(out);
+  expectErrorNaming([&] { readImage(tiff); }, tiff, "more than a file of");
 }
 
 TEST(ImageErrors, BadWritesLeaveNoFile) {
