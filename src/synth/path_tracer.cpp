@@ -37,7 +37,7 @@ PathTracer::Vertex PathTracer::makeVertex(const SurfaceHit& hit, const Vec3f& di
   // nudge it up so the BRDF stays defined (the geometric side is already correct).
   if (v.wo.z <= 1e-4f) v.wo = normalize(Vec3f(v.wo.x, v.wo.y, 1e-4f));
   v.material = scene_.surfaceMaterial(hit.material, hit.uv);
-  v.brdf = PrincipledBrdf(v.material.diffuse, v.material.F0, PrincipledBrdf::alphaFromRoughness(v.material.roughness));
+  v.brdf = PrincipledBrdf{v.material.diffuse, v.material.F0, PrincipledBrdf::alphaFromRoughness(v.material.roughness)};
   return v;
 }
 
