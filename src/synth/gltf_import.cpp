@@ -4,17 +4,21 @@
 
 #include <tiny_gltf.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <initializer_list>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "core/error.h"
+#include "core/printable_text.h"
 #include "math/mat4.h"
 
 namespace glint {
@@ -95,6 +99,7 @@ bool hasGlbMagic(const std::filesystem::path& path) {
 
 // The elements of one accessor, checked to lie inside its buffer view and buffer.
 struct AccessorView {
+  std::string name;                     // "accessor 3 (primitive 'mesh#0' NORMAL)", for errors
   const unsigned char* data = nullptr;  // first element; null: no buffer view, all zeros
   size_t stride = 0;
   size_t count = 0;
@@ -146,11 +151,15 @@ class GltfImporter {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& problem) const { throw Error(source_, problem); }
+  // Problems quote the file's names, URIs and tinygltf's messages: escaped for the terminal.
+  [[noreturn]] void fail(const std::string& problem) const {
+    throw Error(source_, printableText(problem, std::string::npos));
+  }
 
   void warnOnce(const std::string& message) {
     if (warned_.insert(message).second)
-      std::fprintf(stderr, "glint: warning: %s: %s\n", source_.c_str(), message.c_str());
+      std::fprintf(stderr, "glint: warning: %s: %s\n", source_.c_str(),
+                   printableText(message, std::string::npos).c_str());
   }
 
   void load() {
@@ -237,7 +246,8 @@ class GltfImporter {
     }
   }
 
-  // Reads positions, normals, TEXCOORD_0 and indices in the primitive's local space.
+  // Reads positions, normals, TEXCOORD_0 and indices in the primitive's local space. Every
+  // accessor is checked before anything is allocated for any of them.
   void readPrimitive(const tinygltf::Primitive& primitive, TriangleMesh& out) {
     auto attribute = [&](const char* name) {
       auto it = primitive.attributes.find(name);
@@ -247,34 +257,56 @@ class GltfImporter {
     int positionAccessor = attribute("POSITION");
     if (positionAccessor < 0) fail(what + " has no POSITION attribute");
     AccessorView positions = view(positionAccessor, what + " POSITION", TINYGLTF_TYPE_VEC3, false);
+    std::optional<AccessorView> normals, uvs, indices;
+    if (int a = attribute("NORMAL"); a >= 0) {
+      normals = view(a, what + " NORMAL", TINYGLTF_TYPE_VEC3, false);
+      if (normals->count != positions.count) fail(what + " has a NORMAL count different from its POSITION count");
+    }
+    if (int a = attribute("TEXCOORD_0"); a >= 0) {
+      uvs = view(a, what + " TEXCOORD_0", TINYGLTF_TYPE_VEC2, true);
+      if (uvs->count != positions.count) fail(what + " has a TEXCOORD_0 count different from its POSITION count");
+    }
+    if (primitive.indices >= 0)
+      indices = view(primitive.indices, what + " indices", TINYGLTF_TYPE_SCALAR, false, true);
+    limitZeroAccessors({&positions, normals ? &*normals : nullptr, uvs ? &*uvs : nullptr,
+                        indices ? &*indices : nullptr});
+
     out.positions.resize(positions.count);
     for (size_t i = 0; i < positions.count; ++i)
       out.positions[i] = Vec3f(positions.component(i, 0), positions.component(i, 1), positions.component(i, 2));
-
-    if (int a = attribute("NORMAL"); a >= 0) {
-      AccessorView normals = view(a, what + " NORMAL", TINYGLTF_TYPE_VEC3, false);
-      if (normals.count != positions.count) fail(what + " has a NORMAL count different from its POSITION count");
-      out.normals.resize(normals.count);
-      for (size_t i = 0; i < normals.count; ++i)
-        out.normals[i] = Vec3f(normals.component(i, 0), normals.component(i, 1), normals.component(i, 2));
+    if (normals) {
+      out.normals.resize(normals->count);
+      for (size_t i = 0; i < normals->count; ++i)
+        out.normals[i] = Vec3f(normals->component(i, 0), normals->component(i, 1), normals->component(i, 2));
     }
-    if (int a = attribute("TEXCOORD_0"); a >= 0) {
-      AccessorView uvs = view(a, what + " TEXCOORD_0", TINYGLTF_TYPE_VEC2, true);
-      if (uvs.count != positions.count) fail(what + " has a TEXCOORD_0 count different from its POSITION count");
-      out.uvs.resize(uvs.count);
-      for (size_t i = 0; i < uvs.count; ++i) out.uvs[i] = Vec2f(uvs.component(i, 0), uvs.component(i, 1));
+    if (uvs) {
+      out.uvs.resize(uvs->count);
+      for (size_t i = 0; i < uvs->count; ++i) out.uvs[i] = Vec2f(uvs->component(i, 0), uvs->component(i, 1));
     }
-
-    if (primitive.indices >= 0) {
-      AccessorView indices = view(primitive.indices, what + " indices", TINYGLTF_TYPE_SCALAR, false, true);
-      out.indices.resize(indices.count);
-      for (size_t i = 0; i < indices.count; ++i) out.indices[i] = indices.index(i);
+    if (indices) {
+      out.indices.resize(indices->count);
+      for (size_t i = 0; i < indices->count; ++i) out.indices[i] = indices->index(i);
     } else {  // non-indexed: consecutive vertex triples
       out.indices.resize(positions.count);
       for (size_t i = 0; i < positions.count; ++i) out.indices[i] = uint32_t(i);
     }
     if (out.indices.size() % 3 != 0)
       fail(what + " has " + std::to_string(out.indices.size()) + " vertex indices, which is not a multiple of 3");
+  }
+
+  // An accessor without a buffer view is all zeros (glTF 3.6.2.1), so a file of a few
+  // hundred bytes can declare billions of elements. Such an accessor may hold no more
+  // elements than the largest accessor of the same primitive that has data: those were
+  // checked against the bytes present, which bounds every allocation by the file's size.
+  void limitZeroAccessors(std::initializer_list<const AccessorView*> views) const {
+    size_t withData = 0;
+    for (const AccessorView* v : views)
+      if (v && v->data) withData = std::max(withData, v->count);
+    for (const AccessorView* v : views)
+      if (v && !v->data && v->count > withData)
+        fail(v->name + " has no buffer view (all zeros) and " + std::to_string(v->count) +
+             " elements, more than the " + std::to_string(withData) +
+             " of the largest accessor with data in its primitive");
   }
 
   // Checks an accessor's type, component type and extent. Vertex data must be float
@@ -299,6 +331,7 @@ class GltfImporter {
            (isIndex ? "expected unsigned byte, short or int scalars)"
                     : normalizedOk ? "expected float, or normalized unsigned byte or short)" : "expected float)"));
     AccessorView v;
+    v.name = name;
     v.count = a.count;
     v.componentType = ct;
     v.normalized = a.normalized;
@@ -306,21 +339,31 @@ class GltfImporter {
     if (a.bufferView >= int(model_.bufferViews.size()))
       fail(name + " refers to buffer view " + std::to_string(a.bufferView) + ", which does not exist");
     const tinygltf::BufferView& bv = model_.bufferViews[a.bufferView];
+    const std::string viewName = "buffer view " + std::to_string(a.bufferView);
     if (bv.buffer < 0 || bv.buffer >= int(model_.buffers.size()))
-      fail("buffer view " + std::to_string(a.bufferView) + " refers to a buffer that does not exist");
+      fail(viewName + " refers to a buffer that does not exist");
     const tinygltf::Buffer& buffer = model_.buffers[bv.buffer];
-    if (bv.byteOffset + bv.byteLength > buffer.data.size())
-      fail("buffer view " + std::to_string(a.bufferView) + " extends past the end of buffer " +
-           std::to_string(bv.buffer) + " (" + std::to_string(buffer.data.size()) + " bytes)");
+    // Offsets and lengths are the file's 64-bit numbers: every bound below is checked by
+    // subtraction from what is present, since a sum can wrap around 2^64 and pass.
+    size_t bufferSize = buffer.data.size();
+    if (bv.byteOffset > bufferSize || bv.byteLength > bufferSize - bv.byteOffset)
+      fail(viewName + " (" + std::to_string(bv.byteLength) + " bytes from byte " + std::to_string(bv.byteOffset) +
+           ") extends past the end of buffer " + std::to_string(bv.buffer) + " (" + std::to_string(bufferSize) +
+           " bytes)");
     int stride = a.ByteStride(bv);
     size_t elementSize =
         size_t(tinygltf::GetComponentSizeInBytes(uint32_t(ct))) * tinygltf::GetNumComponentsInType(uint32_t(type));
     if (stride <= 0 || size_t(stride) < elementSize) fail(name + " has an invalid byte stride");
     v.stride = size_t(stride);
-    if (a.count > 0 && a.byteOffset + v.stride * (a.count - 1) + elementSize > bv.byteLength)
-      fail(name + " reads past the end of buffer view " + std::to_string(a.bufferView) + " (" +
-           std::to_string(a.count) + " elements from byte " + std::to_string(a.byteOffset) + " of " +
-           std::to_string(bv.byteLength) + ")");
+    // The last element, at byteOffset + stride * (count - 1), must end inside the view.
+    bool fits = a.byteOffset <= bv.byteLength;
+    if (fits && a.count > 0) {
+      size_t room = bv.byteLength - a.byteOffset;
+      fits = elementSize <= room && a.count - 1 <= (room - elementSize) / v.stride;
+    }
+    if (!fits)
+      fail(name + " reads past the end of " + viewName + " (" + std::to_string(a.count) + " elements from byte " +
+           std::to_string(a.byteOffset) + " of " + std::to_string(bv.byteLength) + ")");
     v.data = buffer.data.data() + bv.byteOffset + a.byteOffset;
     return v;
   }

@@ -400,5 +400,70 @@ TEST_F(GltfImportTest, ErrorsNameTheFile) {
   EXPECT_NE(::testing::internal::GetCapturedStderr().find("absent.png"), std::string::npos);
 }
 
+// Issue 19: sizes a file states must be checked without overflow, and against the bytes
+// present, before anything is allocated. Each case crashed or allocated gigabytes before.
+TEST_F(GltfImportTest, HostileSizesAreRefusedBeforeAllocating) {
+  const uint64_t kNear2Pow64 = ~uint64_t(0) - (uint64_t(1) << 40) + 1;  // 2^64 - 2^40
+
+  // byteOffset + byteLength wrapped around 2^64 and passed the bound check: a segfault.
+  GltfBuilder viewOffset;
+  viewOffset.add("nodes", {{"mesh", addQuadMesh(viewOffset)}});
+  viewOffset.doc["bufferViews"][0]["byteOffset"] = kNear2Pow64;
+  viewOffset.doc["bufferViews"][0]["byteLength"] = (uint64_t(1) << 40) + 128;
+  fs::path viewOffsetPath = dir_ / "view_offset.gltf";
+  viewOffset.writeEmbedded(viewOffsetPath);
+  expectLoadError(viewOffsetPath, "buffer view 0 (1099511627904 bytes from byte 18446742974197923840) extends past "
+                                  "the end of buffer 0");
+
+  // The accessor's own offset wrapped the same way (reading before the buffer).
+  GltfBuilder accessorOffset;
+  accessorOffset.add("nodes", {{"mesh", addQuadMesh(accessorOffset)}});
+  accessorOffset.doc["accessors"][0]["byteOffset"] = ~uint64_t(0) - 15;
+  fs::path accessorOffsetPath = dir_ / "accessor_offset.gltf";
+  accessorOffset.writeEmbedded(accessorOffsetPath);
+  expectLoadError(accessorOffsetPath, "accessor 0 (primitive 'Quad#0' POSITION) reads past the end of buffer view 0");
+
+  // count * stride wrapped to 0 for an index accessor: a length_error from resize.
+  GltfBuilder indexCount;
+  indexCount.add("nodes", {{"mesh", addQuadMesh(indexCount)}});
+  indexCount.doc["accessors"][3]["count"] = (uint64_t(1) << 63) + 1;  // 2-byte indices
+  fs::path indexCountPath = dir_ / "index_count.gltf";
+  indexCount.writeEmbedded(indexCountPath);
+  expectLoadError(indexCountPath, "accessor 3 (primitive 'Quad#0' indices) reads past the end of buffer view 1");
+
+  // Accessors without a buffer view (all zeros) declaring 2^27 elements allocated 3.1 GB
+  // from a file of a few hundred bytes; 2^40 ended in a bare std::bad_alloc.
+  for (int power : {27, 40}) {
+    GltfBuilder zeros;
+    int positions =
+        zeros.add("accessors", {{"componentType", kFloat}, {"count", uint64_t(1) << power}, {"type", "VEC3"}});
+    json primitive = {{"attributes", {{"POSITION", positions}}}};
+    zeros.add("nodes", {{"mesh", zeros.add("meshes", {{"primitives", {primitive}}})}});
+    fs::path zerosPath = dir_ / ("zeros_2pow" + std::to_string(power) + ".gltf");
+    std::ofstream(zerosPath) << zeros.doc.dump();  // no buffers at all, as in the issue's file
+    expectLoadError(zerosPath, "accessor 0 (primitive 'mesh 0#0' POSITION) has no buffer view (all zeros) and " +
+                                   std::to_string(uint64_t(1) << power) + " elements, more than the 0 of the "
+                                   "largest accessor with data in its primitive");
+  }
+}
+
+// All-zero accessors as large as the primitive's accessors with data are still read.
+TEST_F(GltfImportTest, ZeroAccessorsUpToTheDataCountAreRead) {
+  GltfBuilder b;
+  int quad = addQuadMesh(b);
+  b.doc["accessors"][2].erase("bufferView");  // TEXCOORD_0: 4 elements of zeros
+  b.doc["accessors"][2].erase("byteOffset");
+  b.add("nodes", {{"mesh", quad}});
+  fs::path path = dir_ / "zero_uvs.gltf";
+  b.writeEmbedded(path);
+  MeshScene scene = loadGltfScene(path);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  ASSERT_EQ(scene.meshes[0].uvs.size(), 4u);
+  for (const Vec2f& uv : scene.meshes[0].uvs) {
+    EXPECT_EQ(uv.x, 0.0f);
+    EXPECT_EQ(uv.y, 0.0f);
+  }
+}
+
 }  // namespace
 }  // namespace glint
