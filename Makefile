@@ -1,8 +1,12 @@
 # Entry points: `make demo` and `make test` set everything up and run; `make build` only builds.
 BUILD_DIR ?= build
 JOBS ?= $(shell nproc)
+# make fuzz: seconds per harness, and which harnesses (all when empty; docs/fuzzing.md).
+FUZZ_DIR ?= build-fuzz
+FUZZ_SECONDS ?= 60
+FUZZERS ?=
 
-.PHONY: deps configure build test test-sanitize demo bench clean
+.PHONY: deps configure build test test-sanitize demo bench fuzz clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -41,5 +45,14 @@ bench: deps
 	@$(MAKE) --no-print-directory build
 	@$(BUILD_DIR)/bench/synth_bench --json $(BUILD_DIR)/bench/synth_bench.json
 
+# The harnesses of fuzz/ built with clang, libFuzzer, ASan and UBSan in $(FUZZ_DIR), each run
+# for FUZZ_SECONDS one after another; crashes land in $(FUZZ_DIR)/crashes/<harness>/.
+fuzz:
+	@bash scripts/install-deps.sh --fuzz
+	@cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
+	  -DGLINT_FUZZ=ON -DGLINT_BUILD_TESTS=OFF -DGLINT_BUILD_BENCH=OFF >/dev/null
+	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target glint_fuzzers
+	@FUZZ_SECONDS=$(FUZZ_SECONDS) bash scripts/run-fuzzers.sh $(FUZZ_DIR) $(FUZZERS)
+
 clean:
-	rm -rf $(BUILD_DIR) build-sanitize
+	rm -rf $(BUILD_DIR) build-sanitize $(FUZZ_DIR)

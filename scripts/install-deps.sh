@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Glint builds and tests with; does nothing when all are present.
+# With --fuzz, also the clang toolchain and libFuzzer that `make fuzz` builds with.
 set -euo pipefail
 
 packages=(
@@ -10,6 +11,9 @@ packages=(
   chromium  # the viewer's end-to-end test drives it headless (tests/web)
   ffmpeg    # glint render --path encodes its frames into an MP4
 )
+if [ "${1:-}" = "--fuzz" ]; then
+  packages+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev)  # make fuzz (docs/fuzzing.md)
+fi
 
 missing=()
 for p in "${packages[@]}"; do
