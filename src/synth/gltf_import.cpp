@@ -142,7 +142,7 @@ class GltfImporter {
 
   MeshScene run() {
     load();
-    for (int root : rootNodes()) addNode(root, Mat4::identity(), 0);
+    addNodes(rootNodes());
     if (skippedPrimitives_ > 0)
       warnOnce("skipped " + std::to_string(skippedPrimitives_) +
                " primitive(s) that are not triangle lists (points, lines, strips and fans are not supported)");
@@ -202,17 +202,36 @@ class GltfImporter {
     return roots;
   }
 
-  void addNode(int index, const Mat4& parent, int depth) {
-    if (index < 0 || index >= int(model_.nodes.size()))
-      fail("refers to node " + std::to_string(index) + " but the file has " + std::to_string(model_.nodes.size()));
-    // A valid glTF node hierarchy is a forest, so no path can be longer than the node count.
-    if (depth > int(model_.nodes.size())) fail("the node hierarchy has a cycle through node " + std::to_string(index));
-    const tinygltf::Node& node = model_.nodes[index];
-    Mat4 world = parent * localTransform(node);
-    if (node.skin >= 0) warnOnce("skins are ignored: skinned meshes are placed by their node transform in bind pose");
-    if (node.mesh >= 0) addMesh(node.mesh, world);
-    addLight(node, world);
-    for (int child : node.children) addNode(child, world, depth + 1);
+  // Walks the node trees depth first, children in file order. With an explicit stack, not
+  // recursion: a file of a few megabytes can chain a million nodes. glTF node hierarchies
+  // are disjoint trees (section 3.5.3), so a node reached twice (a cycle, or a child shared
+  // by two parents, which can make the walk exponential) is an error.
+  void addNodes(const std::vector<int>& roots) {
+    struct Pending {
+      int index;
+      Mat4 parent;
+    };
+    std::vector<Pending> stack;
+    for (auto root = roots.rbegin(); root != roots.rend(); ++root) stack.push_back({*root, Mat4::identity()});
+    std::vector<bool> reached(model_.nodes.size(), false);
+    while (!stack.empty()) {
+      Pending next = stack.back();
+      stack.pop_back();
+      if (next.index < 0 || next.index >= int(model_.nodes.size()))
+        fail("refers to node " + std::to_string(next.index) + " but the file has " +
+             std::to_string(model_.nodes.size()));
+      if (reached[next.index])
+        fail("node " + std::to_string(next.index) +
+             " is reached twice (through a cycle or two parents); glTF node hierarchies must be trees");
+      reached[next.index] = true;
+      const tinygltf::Node& node = model_.nodes[next.index];
+      Mat4 world = next.parent * localTransform(node);
+      if (node.skin >= 0) warnOnce("skins are ignored: skinned meshes are placed by their node transform in bind pose");
+      if (node.mesh >= 0) addMesh(node.mesh, world);
+      addLight(node, world);
+      for (auto child = node.children.rbegin(); child != node.children.rend(); ++child)
+        stack.push_back({*child, world});
+    }
   }
 
   void addMesh(int index, const Mat4& world) {

@@ -465,5 +465,40 @@ TEST_F(GltfImportTest, ZeroAccessorsUpToTheDataCountAreRead) {
   }
 }
 
+// Node trees are walked without recursion: a chain of 100000 nodes (a 5 MB file) overflowed
+// the stack. A node reached twice, by a cycle or from two parents (which made the walk
+// exponential: 40 nodes each listing the next twice), is refused.
+TEST_F(GltfImportTest, NodeHierarchiesAreWalkedWithoutRecursionAndMustBeTrees) {
+  constexpr int kChain = 100000;
+  GltfBuilder chain;
+  int quad = addQuadMesh(chain);
+  for (int i = 0; i < kChain; ++i)
+    chain.add("nodes", i + 1 < kChain ? json{{"children", {i + 1}}, {"translation", {0.0, 1e-6, 0.0}}}
+                                      : json{{"mesh", quad}});
+  chain.doc["scenes"] = {{{"nodes", {0}}}};
+  fs::path chainPath = dir_ / "chain.gltf";
+  chain.writeEmbedded(chainPath);
+  MeshScene scene = loadGltfScene(chainPath);
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  EXPECT_NEAR(scene.meshes[0].positions[0].y, (kChain - 1) * 1e-6, 1e-4);
+
+  GltfBuilder shared;
+  int mesh = addQuadMesh(shared);
+  for (int i = 0; i < 40; ++i)
+    shared.add("nodes", i + 1 < 40 ? json{{"children", {i + 1, i + 1}}} : json{{"mesh", mesh}});
+  shared.doc["scenes"] = {{{"nodes", {0}}}};
+  fs::path sharedPath = dir_ / "shared.gltf";
+  shared.writeEmbedded(sharedPath);
+  expectLoadError(sharedPath, "node 39 is reached twice (through a cycle or two parents)");
+
+  GltfBuilder cycle;
+  cycle.add("nodes", {{"children", {1}}, {"mesh", addQuadMesh(cycle)}});
+  cycle.add("nodes", {{"children", {0}}});
+  cycle.doc["scenes"] = {{{"nodes", {0}}}};
+  fs::path cyclePath = dir_ / "cycle.gltf";
+  cycle.writeEmbedded(cyclePath);
+  expectLoadError(cyclePath, "node 0 is reached twice");
+}
+
 }  // namespace
 }  // namespace glint
