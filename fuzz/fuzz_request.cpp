@@ -9,6 +9,7 @@
 #include "app/viewer/request_json.h"
 #include "app/viewer/viewer_camera.h"
 #include "core/error.h"
+#include "edit/gaussian_edits.h"
 #include "fuzz/fuzz_support.h"
 
 namespace {
@@ -41,7 +42,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     glint::applySettingsRequest(request, &settings);
   });
   // A fresh session per input keeps every run independent of the ones before it.
-  glint::EditSession session(glint::fuzz::smallScene(), glint::TraceSettings{});
+  glint::EditSession session(glint::fuzz::smallScene(), glint::TraceSettings{}, glint::kDefaultMaxGaussians);
   offer([&] { session.preview(request); });
   offer([&] {
     glint::TracerUpdateContext context;

@@ -97,6 +97,25 @@ bool hasGlbMagic(const std::filesystem::path& path) {
   return in && std::memcmp(magic, "glTF", 4) == 0;
 }
 
+// tinygltf's reader of external files (buffers, images) sizes its buffer by seeking to the
+// end, which for a directory (a URI such as "%%" or "." names the file's own folder) gives
+// 2^63 - 1 and throws std::bad_alloc. This one reads regular files only, by their size.
+bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void*) {
+  std::error_code ec;
+  uintmax_t size = std::filesystem::is_regular_file(path, ec) ? std::filesystem::file_size(path, ec) : 0;
+  if (ec || size == 0) {
+    if (err) *err += "File not found or not a regular non-empty file: " + path + "\n";
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  out->resize(size);
+  if (!in.read(reinterpret_cast<char*>(out->data()), std::streamsize(size))) {
+    if (err) *err += "File could not be read: " + path + "\n";
+    return false;
+  }
+  return true;
+}
+
 // The elements of one accessor, checked to lie inside its buffer view and buffer.
 struct AccessorView {
   std::string name;                     // "accessor 3 (primitive 'mesh#0' NORMAL)", for errors
@@ -167,6 +186,8 @@ class GltfImporter {
     if (!std::filesystem::is_regular_file(path_, ec)) fail("file not found");
     tinygltf::TinyGLTF loader;
     loader.SetPreserveImageChannels(true);  // keep grey images one channel instead of RGBA
+    loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readExternalFile,
+                           &tinygltf::WriteWholeFile, nullptr});
     std::string err, warn;
     bool ok = hasGlbMagic(path_) ? loader.LoadBinaryFromFile(&model_, &err, &warn, source_)
                                  : loader.LoadASCIIFromFile(&model_, &err, &warn, source_);

@@ -500,5 +500,18 @@ TEST_F(GltfImportTest, NodeHierarchiesAreWalkedWithoutRecursionAndMustBeTrees) {
   expectLoadError(cyclePath, "node 0 is reached twice");
 }
 
+// Found by fuzzing: a buffer URI naming a folder ("%%" decodes to the glTF's own folder)
+// made tinygltf size its read by seeking a directory, 2^63 - 1 bytes: std::bad_alloc.
+TEST_F(GltfImportTest, BufferUriNamingAFolderIsAnError) {
+  GltfBuilder b;
+  b.add("nodes", {{"mesh", addQuadMesh(b)}});
+  fs::path path = dir_ / "folder_uri.gltf";
+  b.writeExternal(path, "quad.bin");
+  json doc = json::parse(std::ifstream(path));
+  doc["buffers"][0]["uri"] = ".";
+  std::ofstream(path) << doc.dump();
+  expectLoadError(path, "not a regular non-empty file");
+}
+
 }  // namespace
 }  // namespace glint
