@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "core/error.h"
+#include "core/printable_text.h"
 #include "io/json_file.h"
 
 namespace glint {
@@ -197,9 +198,9 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
     if (it->is_object()) {
       for (auto inner = it->begin(); inner != it->end(); ++inner)
         require(known.count(it.key() + "." + inner.key()) > 0, source,
-                "has an unknown setting \"" + it.key() + "." + inner.key() + "\"");
+                "has an unknown setting \"" + printableText(it.key() + "." + inner.key()) + "\"");
     } else {
-      require(known.count(it.key()) > 0, source, "has an unknown setting \"" + it.key() + "\"");
+      require(known.count(it.key()) > 0, source, "has an unknown setting \"" + printableText(it.key()) + "\"");
     }
   }
   config->validate(source);

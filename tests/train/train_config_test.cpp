@@ -119,6 +119,8 @@ TEST(TrainConfig, RejectsWhatTheFlagsRejectAndNeverWrapsOrOverflows) {
   expectRejected("{\"far_field\": {\"boxes\": [{\"min\": [0, 0, 0], \"max\": [1, 1, 1], \"count\": 4294967297}]}}",
                  "\"count\" must be an integer of at most 10000000");
   expectRejected("{\"init\": {\"max_pixel_samples\": 1000000000000}}", "init.max_pixel_samples");
+  // A key quoted in a message cannot send control characters to the terminal.
+  expectRejected("{\"\\u001b[2Jx\": 1}", "unknown setting \"\\x1B[2Jx\"");
 }
 
 TEST(TrainConfig, ValidateRefusesNonFiniteNumbersOfEveryField) {
