@@ -136,7 +136,7 @@ void runEval(const EvalOptions& o) {
                tracer->name(), split.views.size(), o.split.c_str(), split.width, split.height, o.spp);
 
   // The dataset's radiance buffers average the whole pixel and its G-buffers come from the
-  // pixel-centre ray (DATA-FORMAT.md). So radiance is rendered with spp jittered samples
+  // pixel-centre ray (docs/data-format.md). So radiance is rendered with spp jittered samples
   // (with 1 through the centre only, which aliases edges: 3 dB lower on builtin:spheres),
   // and the G-buffers always from one pixel-centre ray.
   RenderSettings settings;

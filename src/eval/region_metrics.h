@@ -23,7 +23,7 @@ struct WorldBox {
 };
 
 // 1 where the ground-truth surface point of the pixel-centre ray (origin + depth x
-// direction; DATA-FORMAT.md's depth is the distance along the ray) lies inside the box.
+// direction; docs/data-format.md's depth is the distance along the ray) lies inside the box.
 std::vector<uint8_t> regionMask(const Camera& camera, const Image& truthDepth, const WorldBox& box);
 
 // Squared error summed over the masked pixels and channels, and their number of values:

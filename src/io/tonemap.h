@@ -1,4 +1,4 @@
-// The filmic tonemap used for 8-bit images (DATA-FORMAT.md), and its closed-form inverse.
+// The filmic tonemap used for 8-bit images (docs/data-format.md), and its closed-form inverse.
 #pragma once
 
 #include <algorithm>
@@ -19,7 +19,7 @@ inline float tonemapFilmic(float x) {
 }
 
 // Inverse of tonemapFilmic for y in [0, 1): solve the quadratic of the rational part for x
-// after undoing the power (constants from DATA-FORMAT.md). y >= 1 maps to +infinity, so
+// after undoing the power (constants from docs/data-format.md). y >= 1 maps to +infinity, so
 // the result is capped at kMaxUntonemapped: tonemapFilmic(128) = 254.5 / 255, so every
 // radiance above it is stored as 8-bit white, and a saturated pixel decodes to this
 // smallest value consistent with it rather than to an arbitrarily huge target.

@@ -1,4 +1,4 @@
-// The NeRF/Blender camera file transforms_{split}.json (DATA-FORMAT.md): parsing with
+// The NeRF/Blender camera file transforms_{split}.json (docs/data-format.md): parsing with
 // strict checks, and pretty-printed atomic writing.
 #pragma once
 

@@ -1,5 +1,5 @@
 // How each dataset buffer is stored in EXR, TIFF and 8-bit PNG files (the encodings table
-// of DATA-FORMAT.md), and the value checks every loaded buffer must pass.
+// of docs/data-format.md), and the value checks every loaded buffer must pass.
 #pragma once
 
 #include <filesystem>
@@ -16,7 +16,7 @@ namespace glint {
 ImageFormat bufferStorageFormat(Buffer buffer, ImageFormat requested);
 
 // The file of a buffer given its path without extension (root / bufferFilePath(...)):
-// tries .exr, then .tiff, then .png (DATA-FORMAT.md). nullopt when none exists.
+// tries .exr, then .tiff, then .png (docs/data-format.md). nullopt when none exists.
 std::optional<std::filesystem::path> findBufferFileAt(const std::filesystem::path& base);
 // "roughness buffer not found (tried .exr, .tiff and .png)", plus the names of files with
 // that stem in formats the loader does not read (say a .bmp).

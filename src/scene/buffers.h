@@ -1,4 +1,4 @@
-// The seven per-view buffers of a dataset (DATA-FORMAT.md) and their properties.
+// The seven per-view buffers of a dataset (docs/data-format.md) and their properties.
 #pragma once
 
 #include <array>
@@ -23,7 +23,7 @@ int bufferChannels(Buffer buffer);
 // True for render, diffuse and specular: linear radiance, tonemapped in 8-bit files.
 bool isRadianceBuffer(Buffer buffer);
 
-// All buffers of one view, decoded to linear values (see DATA-FORMAT.md).
+// All buffers of one view, decoded to linear values (see docs/data-format.md).
 struct ViewBuffers {
   std::array<Image, kBufferCount> images;
 
@@ -33,7 +33,7 @@ struct ViewBuffers {
   static ViewBuffers allocate(int width, int height);
 };
 
-// Depth values at or above this are "no surface" (as is 0), per DATA-FORMAT.md.
+// Depth values at or above this are "no surface" (as is 0), per docs/data-format.md.
 constexpr float kNoSurfaceDepth = 1.0e9f;
 inline bool hasSurface(float depth) { return depth > 0.0f && depth < kNoSurfaceDepth; }
 

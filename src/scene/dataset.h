@@ -1,4 +1,4 @@
-// Reading, writing and validating scene datasets in the layout of DATA-FORMAT.md:
+// Reading, writing and validating scene datasets in the layout of docs/data-format.md:
 // transforms_{train,test}.json, {split}/{buffer}/{buffer}_####.{exr,tiff,png}, and the
 // optional point_cloud_dense.ply.
 #pragma once
@@ -85,7 +85,7 @@ void writeTransforms(const std::filesystem::path& root, const DatasetSplit& spli
 void writeViewBuffers(const std::filesystem::path& root, const DatasetView& view, const ViewBuffers& buffers,
                       ImageFormat format);
 
-// True when a frame's file_path names a render image the way DATA-FORMAT.md lays them out
+// True when a frame's file_path names a render image the way docs/data-format.md lays them out
 // (".../render/render<suffix>"), so that the other buffers can be found by name.
 bool isRenderFilePath(const std::string& filePath);
 // Relative path of a buffer for a view: "train/render/render_0007" -> "train/depth/depth_0007".

@@ -17,7 +17,7 @@ inline constexpr double kShC0 = 0.28209479177387814;
 // How f_dc_0..2 of a Gaussian PLY are to be read.
 enum class PlyLayout {
   Auto,      // decide from the properties (see detectGaussianPlyLayout)
-  Glint,     // f_dc is the linear diffuse colour as is (DATA-FORMAT.md, "Trained scene")
+  Glint,     // f_dc is the linear diffuse colour as is (docs/data-format.md, "Trained scene")
   ThreeDgs,  // f_dc is the SH DC coefficient: colour = 0.5 + kShC0 * f_dc
 };
 

@@ -1,5 +1,5 @@
 // `glint synth`: renders every camera of a scene's two paths with the reference path tracer
-// and writes a complete dataset (DATA-FORMAT.md), then a point cloud from the depth buffers.
+// and writes a complete dataset (docs/data-format.md), then a point cloud from the depth buffers.
 #pragma once
 
 #include <cstdint>

@@ -92,7 +92,7 @@ RadianceSample PathTracer::trace(const Vec3f& origin, const Vec3f& dir, Rng& rng
   RadianceSample result;
   SurfaceHit hit;
   if (!caster_.intersect(origin, dir, 0.0f, kInfinity, &hit)) {
-    // Escaped rays see the environment; it counts as diffuse (DATA-FORMAT.md).
+    // Escaped rays see the environment; it counts as diffuse (docs/data-format.md).
     result.diffuse = lights_.environmentRadiance(dir);
     return result;
   }

@@ -10,7 +10,7 @@
 
 namespace glint {
 
-// Ground truth of one training pixel (linear values, DATA-FORMAT.md).
+// Ground truth of one training pixel (linear values, docs/data-format.md).
 struct PixelTarget {
   Rgb diffuse;
   Rgb specular;

@@ -39,7 +39,7 @@ class TrainingViews {
   const Camera& camera(size_t view) const { return cameras_[view]; }
   const PixelTarget& target(size_t view, size_t pixel) const { return targets_[view * pixelsPerView() + pixel]; }
 
-  // The ray through a pixel's centre (the G-buffers' convention, DATA-FORMAT.md).
+  // The ray through a pixel's centre (the G-buffers' convention, docs/data-format.md).
   TraceRay pixelRay(size_t view, size_t pixel) const;
 
   // Draws the batch of a step: `views` distinct views at random (all of them when there

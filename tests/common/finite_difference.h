@@ -1,5 +1,5 @@
 // Double-precision central finite differences: the oracle every hand-written _vjp is
-// tested against (STYLE.md: every hand-written gradient has such a test).
+// tested against (the project rule: every hand-written gradient has such a test).
 #pragma once
 
 #include <gtest/gtest.h>

@@ -25,7 +25,7 @@ TEST(PointCloud, RoundTripPositionsExactColoursToEightBits) {
   auto path = folder / "cloud.ply";
   writePointCloud(path, cloud);
 
-  // The file has the layout DATA-FORMAT.md promises: x y z float, red green blue uchar.
+  // The file has the layout docs/data-format.md promises: x y z float, red green blue uchar.
   PlyTable table = readPly(path);
   EXPECT_EQ(table.names, (std::vector<std::string>{"x", "y", "z", "red", "green", "blue"}));
   EXPECT_EQ(table.type("x"), PlyType::Float32);

@@ -95,7 +95,7 @@ TEST(Dataset, FindBufferFileTriesExrThenTiffThenPng) {
   EXPECT_FALSE(fs::exists(folder / "train/diffuse/diffuse_0001.tiff"));
 }
 
-// Encoding tolerances of DATA-FORMAT.md's table.
+// Encoding tolerances of docs/data-format.md's table.
 struct RoundTripCase {
   ImageFormat format;
   const char* name;

@@ -1,4 +1,4 @@
-// Writes a small valid dataset (DATA-FORMAT.md) for the scene tests: 8x6 pixels, two train
+// Writes a small valid dataset (docs/data-format.md) for the scene tests: 8x6 pixels, two train
 // views and one test view, plausible buffers with unit normals and some no-surface pixels.
 #pragma once
 
