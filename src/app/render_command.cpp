@@ -72,8 +72,7 @@ void printPixelPaths(const std::vector<std::vector<PathSegment>>& paths, int x, 
       size_t shown = std::min<size_t>(seg.hits.hits.size(), 8);
       for (size_t h = 0; h < shown; ++h) {
         const HitRecord& hit = seg.hits.hits[h];
-        std::printf("    hit %zu: Gaussian %u t %.4f alpha %.4f response %.4f\n", h, hit.id, hit.t, hit.alpha,
-                    hit.response);
+        std::printf("    hit %zu: Gaussian %u t %.4f alpha %.4f\n", h, hit.id, hit.t, hit.alpha);
       }
       if (seg.hits.hits.size() > shown) std::printf("    ... %zu more hits\n", seg.hits.hits.size() - shown);
     }

@@ -43,7 +43,7 @@ class Compositor {
     ++count_;
     if (hits_) {
       if (hits_->hits.size() < hits_->capacity)
-        hits_->hits.push_back({id, float(h.key), float(h.alpha), float(h.response), Vec3f(h.localPoint)});
+        hits_->hits.push_back({id, float(h.key), float(h.alpha)});
       else
         hits_->overflowed = true;
     }

@@ -69,6 +69,55 @@ GaussianFrame<T> makeGaussianFrame(const GaussianScene& scene, size_t i, const T
   return g;
 }
 
+// ---- The ray in the local frame (D5) ----
+
+// The ray o + t d restarted at t0 (evaluateGaussian uses t0 = (mean - o) . d, the closest
+// point to the mean, for precision), in local coordinates: oL = W (o + d t0 - mean),
+// dL = W d. The closest approach does not depend on t0 (D5), so the backward pass holds
+// t0 fixed and has no term through it.
+template <typename T>
+struct LocalRay {
+  Vec3<T> origin;     // oL
+  Vec3<T> direction;  // dL (not unit: its length is 1 / the scale along d)
+};
+
+template <typename T>
+LocalRay<T> localRay(const Mat3<T>& W, const Vec3<T>& mean, const Vec3<T>& o, const Vec3<T>& d, T t0) {
+  return {W * (o + d * t0 - mean), W * d};
+}
+
+// ---- Closest approach of the local ray to the centre (D6) ----
+
+template <typename T>
+struct ClosestApproach {
+  T tc = 0;     // ray parameter of the closest approach, from the local origin
+  T r2 = 0;     // squared Mahalanobis distance there
+  Vec3<T> pL;   // the closest-approach point, local coordinates
+};
+
+// tc = -oL . dL / dL . dL, pL = oL + dL tc, r2 = pL . pL (dL must be non-zero).
+template <typename T>
+ClosestApproach<T> closestApproach(const LocalRay<T>& ray) {
+  ClosestApproach<T> c;
+  T dd = dot(ray.direction, ray.direction);
+  c.tc = -dot(ray.origin, ray.direction) / dd;
+  c.pL = ray.origin + ray.direction * c.tc;
+  c.r2 = dot(c.pL, c.pL);
+  return c;
+}
+
+// Alpha = kMaxAlpha * opacity * G (D8).
+template <typename T>
+T hitAlpha(T opacity, T response) {
+  return T(kMaxAlpha) * opacity * response;
+}
+
+// The key of evaluateGaussian, the depth the compositor accumulates.
+template <typename T>
+T hitKey(T tPeak, T tEnter, T tExit, T tMin) {
+  return std::clamp(tPeak, std::max(tEnter, tMin), tExit);
+}
+
 // A ray's encounter with one Gaussian.
 template <typename T>
 struct KernelHit {
@@ -92,26 +141,22 @@ bool evaluateGaussian(const GaussianFrame<T>& g, const Vec3<T>& o, const Vec3<T>
                       const TraceSettings& s, KernelHit<T>* hit) {
   if (!(g.proxyRadius > T(0))) return false;
   T t0 = dot(g.mean - o, d);
-  Vec3<T> oL = g.worldToLocal * (o + d * t0 - g.mean);
-  Vec3<T> dL = g.worldToLocal * d;
-  T dd = dot(dL, dL);
+  LocalRay<T> local = localRay(g.worldToLocal, g.mean, o, d, t0);
+  T dd = dot(local.direction, local.direction);
   if (!(dd > T(0))) return false;
-  // Closest approach of the local ray to the origin (the Gaussian's centre).
-  T tc = -dot(oL, dL) / dd;
-  Vec3<T> pL = oL + dL * tc;
-  T r2 = dot(pL, pL);
+  ClosestApproach<T> c = closestApproach(local);
   T R2 = g.proxyRadius * g.proxyRadius;
-  if (r2 > R2) return false;
-  T half = std::sqrt((R2 - r2) / dd);
-  hit->tPeak = t0 + tc;
+  if (c.r2 > R2) return false;
+  T half = std::sqrt((R2 - c.r2) / dd);
+  hit->tPeak = t0 + c.tc;
   hit->tEnter = hit->tPeak - half;
   hit->tExit = hit->tPeak + half;
   if (hit->tExit < tMin) return false;
-  hit->key = std::clamp(hit->tPeak, std::max(hit->tEnter, tMin), hit->tExit);
-  hit->response = gaussianResponse(r2, T(s.kernelPower));
-  hit->alpha = T(kMaxAlpha) * g.opacity * hit->response;
+  hit->key = hitKey(hit->tPeak, hit->tEnter, hit->tExit, tMin);
+  hit->response = gaussianResponse(c.r2, T(s.kernelPower));
+  hit->alpha = hitAlpha(g.opacity, hit->response);
   if (hit->alpha < T(s.alphaMin)) return false;
-  hit->localPoint = pL;
+  hit->localPoint = c.pL;
   return true;
 }
 

@@ -1,7 +1,8 @@
 // Vector-Jacobian products of the ray-Gaussian kernel (raytrace/gaussian_kernel.h): the
 // gradients of one hit's alpha and sort key (the depth the compositor accumulates) with
 // respect to the Gaussian's mean, rotation, log-scales and opacity logit. The kernel is
-// split into small steps, each primal next to its _vjp; derivations D1-D10 in
+// split into small steps (the primal ones in gaussian_kernel.h, where evaluateGaussian is
+// built from them, so forward and backward cannot drift apart); derivations D1-D10 in
 // docs/derivations.md.
 #pragma once
 
@@ -81,22 +82,7 @@ GaussianFrame<T> gaussianFrame(const KernelParams<T>& p, const TraceSettings& s)
   return g;
 }
 
-// ---- The ray in the local frame (D5) ----
-
-// The ray o + t d restarted at t0 (evaluateGaussian uses t0 = (mean - o) . d, the closest
-// point to the mean, for precision), in local coordinates: oL = W (o + d t0 - mean),
-// dL = W d. The closest approach does not depend on t0 (D5), so the backward pass holds
-// t0 fixed and has no term through it.
-template <typename T>
-struct LocalRay {
-  Vec3<T> origin;     // oL
-  Vec3<T> direction;  // dL (not unit: its length is 1 / the scale along d)
-};
-
-template <typename T>
-LocalRay<T> localRay(const Mat3<T>& W, const Vec3<T>& mean, const Vec3<T>& o, const Vec3<T>& d, T t0) {
-  return {W * (o + d * t0 - mean), W * d};
-}
+// ---- The ray in the local frame (D5; primal localRay in gaussian_kernel.h) ----
 
 // Adds dL/dW to *v_W and returns dL/dmean (D3, D5).
 template <typename T>
@@ -108,25 +94,7 @@ Vec3<T> localRay_vjp(const Mat3<T>& W, const Vec3<T>& mean, const Vec3<T>& o, co
   return -v_offset;
 }
 
-// ---- Closest approach of the local ray to the centre (D6) ----
-
-template <typename T>
-struct ClosestApproach {
-  T tc = 0;     // ray parameter of the closest approach, from the local origin
-  T r2 = 0;     // squared Mahalanobis distance there
-  Vec3<T> pL;   // the closest-approach point, local coordinates
-};
-
-// tc = -oL . dL / dL . dL, pL = oL + dL tc, r2 = pL . pL (dL must be non-zero).
-template <typename T>
-ClosestApproach<T> closestApproach(const LocalRay<T>& ray) {
-  ClosestApproach<T> c;
-  T dd = dot(ray.direction, ray.direction);
-  c.tc = -dot(ray.origin, ray.direction) / dd;
-  c.pL = ray.origin + ray.direction * c.tc;
-  c.r2 = dot(c.pL, c.pL);
-  return c;
-}
+// ---- Closest approach of the local ray to the centre (D6; primal closestApproach) ----
 
 // dr2/doL = 2 pL, dr2/ddL = 2 tc pL, dtc/doL = -dL / dd, dtc/ddL = -(oL + 2 tc dL) / dd (D6).
 template <typename T>
@@ -149,12 +117,7 @@ T gaussianResponse_vjp(T r2, T power, T v_G) {
   return -v_G * G * std::pow(r2, power - T(1)) / T(2);
 }
 
-// ---- Alpha = kMaxAlpha * opacity * G (D8) ----
-
-template <typename T>
-T hitAlpha(T opacity, T response) {
-  return T(kMaxAlpha) * opacity * response;
-}
+// ---- Alpha = kMaxAlpha * opacity * G (D8; primal hitAlpha) ----
 
 template <typename T>
 void hitAlpha_vjp(T opacity, T response, T v_alpha, T* v_opacity, T* v_response) {
@@ -162,13 +125,7 @@ void hitAlpha_vjp(T opacity, T response, T v_alpha, T* v_opacity, T* v_response)
   *v_response = v_alpha * T(kMaxAlpha) * opacity;
 }
 
-// ---- Sort key / depth: tPeak clamped into [max(tEnter, tMin), tExit] (D9) ----
-
-// The key of evaluateGaussian, the depth the compositor accumulates.
-template <typename T>
-T hitKey(T tPeak, T tEnter, T tExit, T tMin) {
-  return std::clamp(tPeak, std::max(tEnter, tMin), tExit);
-}
+// ---- Sort key / depth: tPeak clamped into [max(tEnter, tMin), tExit] (D9; primal hitKey) ----
 
 // tEnter <= tPeak <= tExit always (they are tPeak -/+ a non-negative half-width), so the
 // clamp only ever acts when tPeak < tMin, and then key = tMin, a constant of the ray:
@@ -187,7 +144,7 @@ T hitKey_vjp(T tPeak, T tMin, T v_key) {
 template <typename T>
 KernelGrad<T> evaluateGaussian_vjp(const KernelParams<T>& params, const Vec3<T>& o, const Vec3<T>& d, T tMin,
                                    const TraceSettings& s, T v_alpha, T v_key) {
-  // Forward, step by step as in evaluateGaussian.
+  // Forward, with the step functions evaluateGaussian is made of.
   T power = T(s.kernelPower);
   Mat3<T> W = worldToLocal(params.rotation, params.logScale);
   T opacity = opacityFromLogit(params.opacityLogit);

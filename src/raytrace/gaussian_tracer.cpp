@@ -6,10 +6,12 @@
 
 namespace glint {
 
-void GaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results) const {
+void GaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results,
+                                std::span<HitList> hits) const {
   GLINT_CHECK(rays.size() == results.size(), "traceBatch: one result per ray");
+  GLINT_CHECK(hits.empty() || hits.size() == rays.size(), "traceBatch: one hit list per ray, or none");
   parallelForChunks(int64_t(rays.size()), 64, [&](int64_t begin, int64_t end) {
-    for (int64_t i = begin; i < end; ++i) results[i] = trace(rays[i]);
+    for (int64_t i = begin; i < end; ++i) results[i] = trace(rays[i], hits.empty() ? nullptr : &hits[size_t(i)]);
   });
 }
 

@@ -36,8 +36,11 @@ class GaussianTracer {
   virtual void refit() = 0;
   // Traces one ray; thread-safe. hits, if given, receives the composited hits in order.
   virtual RayResult trace(const TraceRay& ray, HitList* hits = nullptr) const = 0;
-  // Traces many rays in parallel (the default splits them over parallelFor).
-  virtual void traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results) const;
+  // Traces many rays in parallel (the default splits them over parallelFor), with the
+  // results of trace() to rounding. hits, if not empty, holds one list per ray (its
+  // capacity set by the caller) and receives each ray's composited hits, as trace() does.
+  virtual void traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results,
+                          std::span<HitList> hits = {}) const;
   // Bytes held by the acceleration structure (for benchmarks).
   virtual size_t memoryBytes() const = 0;
 };

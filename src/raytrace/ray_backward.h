@@ -22,6 +22,11 @@ struct RayResultAdjoint {
   Vec3f v_normal;
   float v_roughness = 0;
   Rgb v_f0;
+
+  bool isZero() const {
+    return v_diffuse == Rgb(0.0f) && v_depth == 0.0f && v_normal == Vec3f(0.0f) && v_roughness == 0.0f &&
+           v_f0 == Rgb(0.0f);
+  }
 };
 
 // The values a hit blends, as one vector a_i = (c_i, t_i, n_i, rho_i, F0_i) (D11).

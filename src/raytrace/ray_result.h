@@ -22,13 +22,12 @@ struct RayResult {
   bool truncated = false;   // stopped at minTransmittance
 };
 
-// One composited hit, as the backward pass needs it.
+// One composited hit: exactly what the backward pass reads (it re-evaluates the kernel for
+// the rest), so that the hit lists of a whole training batch stay small.
 struct HitRecord {
-  uint32_t id;       // Gaussian index
-  float t;           // sort key: peak distance clamped into the proxy's entry/exit interval
-  float alpha;       // kMaxAlpha * opacity * response
-  float response;    // G at the closest-approach point
-  Vec3f localPoint;  // closest-approach point in the Gaussian's local (scaled) frame
+  uint32_t id;  // Gaussian index
+  float t;      // sort key: peak distance clamped into the proxy's entry/exit interval
+  float alpha;  // kMaxAlpha * opacity * response
 };
 
 // A bounded list of the hits of one ray. Tracers never grow it past `capacity`; when a

@@ -1,19 +1,58 @@
-// Path segments through the Gaussians with GGX importance sampling.
+// Path segments through the Gaussians with GGX importance sampling, one path alone or a
+// batch bounce by bounce.
 #include "render/gaussian_path.h"
 
 #include <algorithm>
 
 #include "bsdf/cook_torrance.h"
+#include "core/error.h"
+#include "core/parallel.h"
 #include "math/frame.h"
 #include "math/owen_sobol.h"
 
 namespace glint {
 
+bool continuePath(const TraceRay& ray, const RayResult& result, const PathSettings& settings, uint64_t seed,
+                  const PathKey& key, int k, TraceRay* next, Rgb* weight) {
+  if (!(result.normalLength >= settings.invalidNormalLength)) return false;
+  Vec3f n = result.normal / result.normalLength;
+  // Blended normals may face away from the incoming ray (Gaussians seen from behind);
+  // the surface is then taken as seen from the ray's side.
+  if (dot(n, ray.direction) > 0) n = -n;
+  Frame<float> frame = Frame<float>::fromNormal(n);
+  Vec3f wo = frame.toLocal(-ray.direction);
+  float rho = std::max(std::clamp(result.roughness, 0.0f, 1.0f), settings.minRoughness);
+  CookTorranceLobe lobe(result.f0, rho * rho);
+  // Dimension k of the pixel's stratified stream: a pixel's samples spread their
+  // directions of segment k evenly over the lobe, which at 64 samples leaves far less
+  // noise on glossy surfaces than independent numbers.
+  BsdfSample s =
+      lobe.sample(wo, stratifiedSample2(hashKeys({seed, key.view, key.pixel, uint64_t(k)}), uint32_t(key.sample)));
+  if (!s.valid) return false;
+  *weight = s.weight;
+  next->origin = ray.origin + ray.direction * result.depth + n * settings.normalOffset;
+  next->direction = normalize(frame.toWorld(s.wi));
+  next->tMin = 0.0f;
+  next->backfaceSkip = settings.backfaceSkip;
+  return true;
+}
+
+namespace {
+
+// Adds segment k's light to the path's sums.
+void addLight(PathResult* path, int k, const Rgb& light) {
+  path->specular += light;
+  if (k <= kSeparateBounces) path->bounceLight[size_t(k - 1)] = light;
+  ++path->segments;
+}
+
+}  // namespace
+
 PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, const PathSettings& settings,
                      uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample,
                      std::vector<PathSegment>* segments) {
   // Traces one segment, recording it when asked. Recorded segments reuse the entries (and
-  // hit-list memory) of earlier paths: training records a path per ray.
+  // hit-list memory) of earlier paths.
   size_t recorded = 0;
   auto traceSegment = [&](const TraceRay& ray, const Rgb& throughput) {
     if (!segments) return tracer.trace(ray);
@@ -25,6 +64,7 @@ PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, cons
     s.result = tracer.trace(ray, &s.hits);
     return s.result;
   };
+  const PathKey key{view, pixel, sample};
   PathResult path;
   path.first = traceSegment(primary, Rgb(1.0f));
   path.specular = Rgb(0.0f);
@@ -32,34 +72,110 @@ PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, cons
   TraceRay ray = primary;
   Rgb throughput(1.0f);
   for (int k = 1; k <= settings.bounces; ++k) {
-    if (!(current.normalLength >= settings.invalidNormalLength)) break;
-    Vec3f n = current.normal / current.normalLength;
-    // Blended normals may face away from the incoming ray (Gaussians seen from behind);
-    // the surface is then taken as seen from the ray's side.
-    if (dot(n, ray.direction) > 0) n = -n;
-    Frame<float> frame = Frame<float>::fromNormal(n);
-    Vec3f wo = frame.toLocal(-ray.direction);
-    float rho = std::max(std::clamp(current.roughness, 0.0f, 1.0f), settings.minRoughness);
-    CookTorranceLobe lobe(current.f0, rho * rho);
-    // Dimension k of the pixel's stratified stream: a pixel's samples spread their
-    // directions of segment k evenly over the lobe, which at 64 samples leaves far less
-    // noise on glossy surfaces than independent numbers.
-    BsdfSample s = lobe.sample(wo, stratifiedSample2(hashKeys({seed, view, pixel, uint64_t(k)}), uint32_t(sample)));
-    if (!s.valid) break;
-    throughput = throughput * s.weight;
     TraceRay next;
-    next.origin = ray.origin + ray.direction * current.depth + n * settings.normalOffset;
-    next.direction = normalize(frame.toWorld(s.wi));
-    next.tMin = 0.0f;
-    next.backfaceSkip = settings.backfaceSkip;
+    Rgb weight;
+    if (!continuePath(ray, current, settings, seed, key, k, &next, &weight)) break;
+    throughput = throughput * weight;
     current = traceSegment(next, throughput);
-    Rgb light = throughput * current.diffuse;
-    path.specular += light;
-    if (k <= kSeparateBounces) path.bounceLight[size_t(k - 1)] = light;
-    ++path.segments;
+    addLight(&path, k, throughput * current.diffuse);
     ray = next;
   }
   return path;
+}
+
+void PathBatch::trace(const GaussianTracer& tracer, std::span<const TraceRay> primaries, std::span<const PathKey> keys,
+                      uint64_t seed, const PathSettings& settings, std::span<PathResult> results, bool record) {
+  GLINT_CHECK(keys.size() == primaries.size() && results.size() == primaries.size(),
+              "PathBatch::trace: one key and one result per path");
+  const size_t n = primaries.size();
+  const int bounces = std::max(settings.bounces, 0);
+  if (record) {
+    stride_ = size_t(bounces) + 1;
+    if (segments_.size() < n * stride_) segments_.resize(n * stride_);
+    counts_.assign(n, 1);
+  }
+  // Level 0: every path's first segment.
+  active_.resize(n);
+  rays_.assign(primaries.begin(), primaries.end());
+  throughput_.assign(n, Rgb(1.0f));
+  for (size_t i = 0; i < n; ++i) active_[i] = uint32_t(i);
+  for (int k = 0;; ++k) {
+    const size_t m = active_.size();
+    results_.resize(m);
+    if (record) {
+      if (hits_.size() < m) hits_.resize(m);
+      for (size_t j = 0; j < m; ++j) hits_[j].capacity = settings.hitListCapacity;
+    }
+    tracer.traceBatch(rays_, results_, record ? std::span<HitList>(hits_.data(), m) : std::span<HitList>());
+    // Each path takes its segment's light (and record); then the ones that go on draw
+    // their next segment. Paths are independent, so the loop is parallel.
+    nextRays_.resize(m);
+    nextThroughput_.resize(m);
+    continues_.assign(m, 0);
+    parallelForChunks(int64_t(m), 256, [&](int64_t begin, int64_t end) {
+      for (int64_t j = begin; j < end; ++j) {
+        const uint32_t i = active_[size_t(j)];
+        PathResult& path = results[i];
+        const RayResult& r = results_[size_t(j)];
+        if (k == 0) {
+          path = PathResult{};
+          path.first = r;
+          path.specular = Rgb(0.0f);
+        } else {
+          addLight(&path, k, throughput_[size_t(j)] * r.diffuse);
+        }
+        if (record) {
+          PathSegment& s = segments_[i * stride_ + size_t(k)];
+          s.ray = rays_[size_t(j)];
+          s.throughput = throughput_[size_t(j)];
+          s.result = r;
+          std::swap(s.hits, hits_[size_t(j)]);  // the segment's list; its old memory serves the next level
+          counts_[i] = uint8_t(k + 1);
+        }
+        if (k == bounces) continue;
+        Rgb weight;
+        if (continuePath(rays_[size_t(j)], r, settings, seed, keys[i], k + 1, &nextRays_[size_t(j)], &weight)) {
+          nextThroughput_[size_t(j)] = throughput_[size_t(j)] * weight;
+          continues_[size_t(j)] = 1;
+        }
+      }
+    });
+    if (k == bounces) break;
+    // Compaction, in path order (the next level's rays follow their paths' order).
+    size_t alive = 0;
+    for (size_t j = 0; j < m; ++j) {
+      if (!continues_[j]) continue;
+      active_[alive] = active_[j];
+      rays_[alive] = nextRays_[j];
+      throughput_[alive] = nextThroughput_[j];
+      ++alive;
+    }
+    if (alive == 0) break;
+    active_.resize(alive);
+    rays_.resize(alive);
+    throughput_.resize(alive);
+  }
+}
+
+size_t PathBatch::memoryBytes() const {
+  size_t bytes = active_.capacity() * sizeof(uint32_t) + (rays_.capacity() + nextRays_.capacity()) * sizeof(TraceRay) +
+                 results_.capacity() * sizeof(RayResult) +
+                 (throughput_.capacity() + nextThroughput_.capacity()) * sizeof(Rgb) + continues_.capacity() +
+                 counts_.capacity() + segments_.capacity() * sizeof(PathSegment) + hits_.capacity() * sizeof(HitList);
+  for (const HitList& h : hits_) bytes += h.hits.capacity() * sizeof(HitRecord);
+  for (const PathSegment& s : segments_) bytes += s.hits.hits.capacity() * sizeof(HitRecord);
+  return bytes;
+}
+
+Rgb pathSpecular(std::span<const PathSegment> segments) {
+  Rgb specular(0.0f);
+  for (size_t k = 1; k < segments.size(); ++k) specular += segments[k].throughput * segments[k].result.diffuse;
+  return specular;
+}
+
+float reflectionGradientWeight(std::span<const PathSegment> segments, size_t k) {
+  float rho = std::clamp(segments[k - 1].result.roughness, 0.0f, 1.0f);
+  return (1 - rho) * (1 - rho) * (1 - rho);
 }
 
 }  // namespace glint

@@ -1,15 +1,20 @@
-// Paths through the Gaussians (paper sections 3.1-3.2): the first segment gives the blended
-// diffuse colour and G-buffers; each later segment leaves the expected termination point
-// of the previous one in a direction drawn from the GGX distribution of visible normals
-// for the blended roughness, and returns the blended diffuse colour of what it hits (the
-// cached irradiance of equation 3), weighted by the Cook-Torrance throughput.
+// Paths through the Gaussians (paper sections 3.1-3.2), forward and backward in one place:
+// the first segment gives the blended diffuse colour and G-buffers; each later segment
+// leaves the expected termination point of the previous one in a direction drawn from the
+// GGX distribution of visible normals for the blended roughness, and returns the blended
+// diffuse colour of what it hits (the cached irradiance of equation 3), weighted by the
+// Cook-Torrance throughput. tracePaths traces a batch bounce by bounce (a wavefront),
+// tracePath one path alone; both take each step with continuePath, so they agree exactly.
+// tracePath_vjp is the gradient of a recorded path (docs/derivations.md D13).
 #pragma once
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "raytrace/gaussian_tracer.h"
+#include "raytrace/ray_backward.h"
 
 namespace glint {
 
@@ -39,7 +44,7 @@ struct PathResult {
   int segments = 1;  // segments traced
 };
 
-// One traced segment, recorded for inspection (glint render --debug-pixel).
+// One traced segment, recorded for the backward pass and for inspection (--debug-pixel).
 struct PathSegment {
   TraceRay ray;
   Rgb throughput;  // weight of this segment's blended diffuse in the specular sum (1 for the first)
@@ -47,14 +52,97 @@ struct PathSegment {
   HitList hits;    // its composited hits, front to back
 };
 
-// The direction of segment k is drawn with sample `sample` of the stratified stream
-// hashKeys({seed, view, pixel, k}) (math/owen_sobol.h), so any path can be re-run alone
-// from its keys (seed, view, pixel, sample), and the samples of one pixel are stratified.
-// With `segments`, every segment is traced with its hit list and recorded in the first
-// PathResult::segments entries (entries beyond them are left from earlier paths, so their
-// memory is reused).
+// The keys of a path's random numbers: the direction of segment k is drawn with sample
+// `sample` of the stratified stream hashKeys({seed, view, pixel, k}) (math/owen_sobol.h),
+// so any path can be re-run alone from its keys, and the samples of one pixel are
+// stratified.
+struct PathKey {
+  uint64_t view = 0, pixel = 0, sample = 0;
+};
+
+// The step from segment k - 1 (traced along `ray`, giving `result`) to segment k >= 1:
+// false when the path ends there (an invalid blended normal or an invalid sample); else
+// the next segment's ray and the factor its throughput gains.
+bool continuePath(const TraceRay& ray, const RayResult& result, const PathSettings& settings, uint64_t seed,
+                  const PathKey& key, int k, TraceRay* next, Rgb* weight);
+
+// Traces one path. With `segments`, every segment is traced with its hit list and recorded
+// in the first PathResult::segments entries (entries beyond them are left from earlier
+// paths, so their memory is reused).
 PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, const PathSettings& settings,
                      uint64_t seed, uint64_t view, uint64_t pixel, uint64_t sample,
                      std::vector<PathSegment>* segments = nullptr);
+
+// Traces a batch of paths as a wavefront: all first segments through one traceBatch (so
+// the camera rays of a view take the tracer's coherent bundles), then all second segments
+// of the paths still alive, and so on. results[i] is what tracePath gives for primaries[i]
+// and keys[i]. Holds its scratch memory between calls (a training step or a render tile
+// allocates nothing once warm), and with `record` every segment of every path, hit lists
+// included (capacity settings.hitListCapacity), for the backward pass.
+class PathBatch {
+ public:
+  void trace(const GaussianTracer& tracer, std::span<const TraceRay> primaries, std::span<const PathKey> keys,
+             uint64_t seed, const PathSettings& settings, std::span<PathResult> results, bool record);
+  // The recorded segments of path i of the last trace with `record`.
+  std::span<const PathSegment> path(size_t i) const { return {&segments_[i * stride_], counts_[i]}; }
+  // Bytes held (scratch and records), for benchmarks.
+  size_t memoryBytes() const;
+
+ private:
+  // The paths still alive at the current level, each with its last segment.
+  std::vector<uint32_t> active_;
+  std::vector<TraceRay> rays_;
+  std::vector<RayResult> results_;
+  std::vector<Rgb> throughput_;
+  std::vector<HitList> hits_;
+  // Candidates of the next level before compaction.
+  std::vector<TraceRay> nextRays_;
+  std::vector<Rgb> nextThroughput_;
+  std::vector<uint8_t> continues_;
+  // Records: segment k of path i at i * stride_ + k.
+  size_t stride_ = 1;
+  std::vector<PathSegment> segments_;
+  std::vector<uint8_t> counts_;
+};
+
+// Specular = sum over the reflected segments k >= 1 of throughput_k x blended diffuse_k
+// (equation 3; the first segment carries the diffuse pass).
+Rgb pathSpecular(std::span<const PathSegment> segments);
+
+// The weight training gives segment k's gradient: (1 - rho)^3, rho the roughness of the
+// surface the segment leaves (the previous segment's blended roughness, clamped to [0, 1]).
+// It favours the low-variance gradients of sharp reflections (appendix B.5).
+float reflectionGradientWeight(std::span<const PathSegment> segments, size_t k);
+
+// The vector-Jacobian product of a recorded path (D13): v_first = dL/d(the first segment's
+// result) and v_specular = dL/d(specular). The first segment's adjoint flows through its
+// compositing into every attribute of the Gaussians it hits; segment k >= 1 receives
+// throughput_k x v_specular on its blended diffuse (times reflectionGradientWeight when
+// weighted), so the colour, opacity, position and shape of the Gaussians it hits. The
+// rays, throughputs and sampled directions are detached (the paper's choice), so nothing
+// flows from the specular term into normals, roughness or F0. Segments whose hit list
+// overflowed get no gradient; returns how many (of those with a non-zero adjoint) did. T = float in training, double for the
+// finite-difference tests.
+template <typename T, typename Sink>
+int tracePath_vjp(const GaussianScene& scene, const TraceSettings& trace, std::span<const PathSegment> segments,
+                  const RayResultAdjoint& v_first, const Rgb& v_specular, bool weighted, RayBackwardScratch<T>& scratch,
+                  Sink&& sink) {
+  int overflowed = 0;
+  for (size_t k = 0; k < segments.size(); ++k) {
+    const PathSegment& segment = segments[k];
+    RayResultAdjoint v = v_first;
+    if (k > 0) {
+      v = {};
+      v.v_diffuse = segment.throughput * v_specular * (weighted ? reflectionGradientWeight(segments, k) : 1.0f);
+    }
+    if (v.isZero()) continue;  // nothing to hand out (e.g. a loss of the specular term alone)
+    if (segment.hits.overflowed) {
+      ++overflowed;
+      continue;
+    }
+    backwardRay<T>(scene, trace, segment.ray, segment.hits, segment.result, v, scratch, sink);
+  }
+  return overflowed;
+}
 
 }  // namespace glint

@@ -1,4 +1,5 @@
-// Pixel loop of Gaussian rendering: rays per pixel, traced in parallel rows.
+// Gaussian rendering: the camera rays of a tile of rows, one sample of every pixel at a
+// time, traced as a wavefront of paths (PathBatch), and their per-pixel means.
 #include "render/gaussian_renderer.h"
 
 #include <algorithm>
@@ -11,30 +12,21 @@ namespace glint {
 
 namespace {
 
-// The sub-pixel positions of a pixel's samples: dimension 0 of its stratified stream (the
-// path's segments use dimensions 1, 2, ...), so they cover the pixel evenly.
-class PixelSamples {
- public:
-  PixelSamples(const RenderSettings& settings, uint64_t viewKey, uint64_t pixel)
-      : stream_(hashKeys({settings.seed, viewKey, pixel, 0})), index_(uint32_t(settings.firstSample)),
-        jitter_(settings.jitter) {}
-  Vec2f next() { return jitter_ ? stratifiedSample2(stream_, index_++) : Vec2f(0.5f, 0.5f); }
-
- private:
-  uint64_t stream_;
-  uint32_t index_;
-  bool jitter_;
-};
+// The sub-pixel position of a pixel's sample: dimension 0 of its stratified stream (the
+// path's segments use dimensions 1, 2, ...), so a pixel's samples cover it evenly.
+Vec2f pixelSampleOffset(const RenderSettings& settings, uint64_t viewKey, uint64_t pixel, uint32_t sample) {
+  if (!settings.jitter) return Vec2f(0.5f, 0.5f);
+  return stratifiedSample2(hashKeys({settings.seed, viewKey, pixel, 0}), sample);
+}
 
 }  // namespace
 
 std::vector<std::vector<PathSegment>> tracePixelPaths(const GaussianTracer& tracer, const Camera& camera,
                                                       const RenderSettings& settings, uint64_t viewKey, int x, int y) {
   uint64_t pixel = uint64_t(y) * uint64_t(camera.width) + uint64_t(x);
-  PixelSamples samples(settings, viewKey, pixel);
   std::vector<std::vector<PathSegment>> paths(size_t(settings.spp));
   for (int s = 0; s < settings.spp; ++s) {
-    Vec2f offset = samples.next();
+    Vec2f offset = pixelSampleOffset(settings, viewKey, pixel, uint32_t(settings.firstSample + s));
     Ray ray = camera.generateRay(x + offset.x, y + offset.y);
     PathResult path = tracePath(tracer, {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f}, settings.path,
                                 settings.seed, viewKey, pixel, uint64_t(settings.firstSample + s), &paths[size_t(s)]);
@@ -43,45 +35,99 @@ std::vector<std::vector<PathSegment>> tracePixelPaths(const GaussianTracer& trac
   return paths;
 }
 
+namespace {
+
+// Camera rays per wavefront: a tile of whole rows this large keeps a tile's records and
+// accumulators in a few megabytes at any image size, and still gives every thread
+// hundreds of bundles.
+constexpr size_t kRaysPerTile = size_t(1) << 16;
+
+// The per-pixel sums of one tile, in structure-of-arrays form.
+struct TileSums {
+  std::vector<Rgb> diffuse, specular, normal, f0;
+  std::vector<float> depth, roughness;
+  std::vector<std::vector<Rgb>> bounces;  // [k][pixel]
+
+  void reset(size_t pixels, int separate) {
+    diffuse.assign(pixels, Rgb(0.0f));
+    specular.assign(pixels, Rgb(0.0f));
+    normal.assign(pixels, Rgb(0.0f));
+    f0.assign(pixels, Rgb(0.0f));
+    depth.assign(pixels, 0.0f);
+    roughness.assign(pixels, 0.0f);
+    bounces.resize(size_t(separate));
+    for (auto& b : bounces) b.assign(pixels, Rgb(0.0f));
+  }
+};
+
+}  // namespace
+
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
                                uint64_t viewKey, std::vector<Image>* bounceLight) {
   ViewBuffers out = ViewBuffers::allocate(camera.width, camera.height);
   const float invSpp = 1.0f / float(settings.spp);
   const int separate = bounceLight ? std::clamp(settings.path.bounces, 0, kSeparateBounces) : 0;
   if (bounceLight) bounceLight->assign(size_t(separate), Image(camera.width, camera.height, 3));
-  parallelForChunks(camera.height, 1, [&](int64_t rowBegin, int64_t rowEnd) {
-    for (int64_t y = rowBegin; y < rowEnd; ++y)
-      for (int x = 0; x < camera.width; ++x) {
-        uint64_t pixel = uint64_t(y) * uint64_t(camera.width) + uint64_t(x);
-        PixelSamples samples(settings, viewKey, pixel);
-        Rgb diffuse(0.0f), specular(0.0f), normal(0.0f), f0(0.0f);
-        std::array<Rgb, kSeparateBounces> bounces{};
-        float depth = 0, roughness = 0;
-        for (int s = 0; s < settings.spp; ++s) {
-          Vec2f offset = samples.next();
+  const size_t width = size_t(camera.width);
+  const int rowsPerTile = int(std::max<size_t>(1, kRaysPerTile / std::max<size_t>(width, 1)));
+  PathBatch batch;
+  TileSums sums;
+  std::vector<TraceRay> rays;
+  std::vector<PathKey> keys;
+  std::vector<PathResult> paths;
+  // Tile by tile, sample by sample: each pass traces one sample of every pixel of the tile
+  // as one wavefront, and the pixel sums add the samples in order (as a per-pixel loop would).
+  for (int y0 = 0; y0 < camera.height; y0 += rowsPerTile) {
+    const int y1 = std::min(camera.height, y0 + rowsPerTile);
+    const size_t pixels = size_t(y1 - y0) * width;
+    sums.reset(pixels, separate);
+    rays.resize(pixels);
+    keys.resize(pixels);
+    paths.resize(pixels);
+    for (int s = 0; s < settings.spp; ++s) {
+      const uint32_t sample = uint32_t(settings.firstSample + s);
+      parallelForChunks(int64_t(pixels), 1024, [&](int64_t begin, int64_t end) {
+        for (int64_t j = begin; j < end; ++j) {
+          const int x = int(size_t(j) % width), y = y0 + int(size_t(j) / width);
+          const uint64_t pixel = uint64_t(y) * uint64_t(width) + uint64_t(x);
+          Vec2f offset = pixelSampleOffset(settings, viewKey, pixel, sample);
           Ray ray = camera.generateRay(x + offset.x, y + offset.y);
-          PathResult path = tracePath(tracer, {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f}, settings.path,
-                                      settings.seed, viewKey, pixel, uint64_t(settings.firstSample + s));
-          const RayResult& r = path.first;
-          diffuse += r.diffuse;
-          specular += path.specular;
-          for (int k = 0; k < separate; ++k) bounces[size_t(k)] += path.bounceLight[size_t(k)];
-          depth += r.depth;
-          normal += r.normal;
-          roughness += r.roughness;
-          f0 += r.f0;
+          rays[size_t(j)] = {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f};
+          keys[size_t(j)] = {viewKey, pixel, sample};
         }
-        int yi = int(y);
-        out[Buffer::Diffuse].setRgb(x, yi, diffuse * invSpp);
-        out[Buffer::Specular].setRgb(x, yi, specular * invSpp);
-        out[Buffer::Render].setRgb(x, yi, (diffuse + specular) * invSpp);
-        out[Buffer::Depth].at(x, yi) = depth * invSpp;
-        out[Buffer::Normal].setRgb(x, yi, settings.normalizeNormals ? normalize(normal) : normal * invSpp);
-        out[Buffer::Roughness].at(x, yi) = roughness * invSpp;
-        out[Buffer::F0].setRgb(x, yi, f0 * invSpp);
-        for (int k = 0; k < separate; ++k) (*bounceLight)[size_t(k)].setRgb(x, yi, bounces[size_t(k)] * invSpp);
+      });
+      batch.trace(tracer, rays, keys, settings.seed, settings.path, paths, /*record=*/false);
+      parallelForChunks(int64_t(pixels), 1024, [&](int64_t begin, int64_t end) {
+        for (int64_t j = begin; j < end; ++j) {
+          const PathResult& path = paths[size_t(j)];
+          const RayResult& r = path.first;
+          sums.diffuse[size_t(j)] += r.diffuse;
+          sums.specular[size_t(j)] += path.specular;
+          for (int k = 0; k < separate; ++k) sums.bounces[size_t(k)][size_t(j)] += path.bounceLight[size_t(k)];
+          sums.depth[size_t(j)] += r.depth;
+          sums.normal[size_t(j)] += r.normal;
+          sums.roughness[size_t(j)] += r.roughness;
+          sums.f0[size_t(j)] += r.f0;
+        }
+      });
+    }
+    parallelForChunks(int64_t(pixels), 1024, [&](int64_t begin, int64_t end) {
+      for (int64_t j = begin; j < end; ++j) {
+        const int x = int(size_t(j) % width), y = y0 + int(size_t(j) / width);
+        const Rgb diffuse = sums.diffuse[size_t(j)], specular = sums.specular[size_t(j)];
+        out[Buffer::Diffuse].setRgb(x, y, diffuse * invSpp);
+        out[Buffer::Specular].setRgb(x, y, specular * invSpp);
+        out[Buffer::Render].setRgb(x, y, (diffuse + specular) * invSpp);
+        out[Buffer::Depth].at(x, y) = sums.depth[size_t(j)] * invSpp;
+        const Rgb normal = sums.normal[size_t(j)];
+        out[Buffer::Normal].setRgb(x, y, settings.normalizeNormals ? normalize(normal) : normal * invSpp);
+        out[Buffer::Roughness].at(x, y) = sums.roughness[size_t(j)] * invSpp;
+        out[Buffer::F0].setRgb(x, y, sums.f0[size_t(j)] * invSpp);
+        for (int k = 0; k < separate; ++k)
+          (*bounceLight)[size_t(k)].setRgb(x, y, sums.bounces[size_t(k)][size_t(j)] * invSpp);
       }
-  });
+    });
+  }
   return out;
 }
 

@@ -1,4 +1,5 @@
-// The training step. Determinism: a step's rays depend only on (seed, step); the batch is
+// The training step. Determinism: a step's rays depend only on (seed, step); its paths are
+// traced as one wavefront (each path's result depends on its keys alone); the batch is
 // split into one contiguous range per slot (one slot per thread), each slot accumulates
 // into its own gradient buffer, and the buffers are summed in slot order, so a run is
 // reproducible bit for bit for a given seed and thread count, resumed or not.
@@ -11,15 +12,11 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "train/far_field.h"
-#include "train/reflection_loss.h"
 
 namespace glint {
 
 struct Trainer::Slot {
   GaussianGradients gradient;
-  HitList hits;
-  std::vector<PathSegment> segments;  // of the current ray, once reflections are trained
-  size_t segmentCount = 0;            // entries of segments that belong to it
   RayBackwardScratch<float> scratch;
   LossTerms terms;
   int64_t hitCount = 0;
@@ -62,10 +59,7 @@ void Trainer::setUp(const std::string& tracerKind) {
   tracer_ = makeGaussianTracer(tracerKind);
   tracer_->build(scene_, config_.trace);
   int slots = std::max(1, maxThreads());
-  for (int s = 0; s < slots; ++s) {
-    slots_.push_back(std::make_unique<Slot>());
-    slots_.back()->hits.capacity = hitCapacityWithoutOverflow(config_.trace);
-  }
+  for (int s = 0; s < slots; ++s) slots_.push_back(std::make_unique<Slot>());
 }
 
 TrainingState Trainer::state() const {
@@ -91,7 +85,19 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   const int64_t rays = int64_t(batch.size());
   const bool reflections = config_.bounces > 0 && step_ >= config_.reflectionWarmup;
   PathSettings pathSettings = config_.path();
+  if (!reflections) pathSettings.bounces = 0;
   pathSettings.hitListCapacity = hitCapacityWithoutOverflow(config_.trace);
+  // The forward pass: the batch's paths as one wavefront, every segment recorded with its
+  // hits. The sample key is the step, so each step draws new reflection directions.
+  rays_.resize(batch.size());
+  keys_.resize(batch.size());
+  paths_.resize(batch.size());
+  for (size_t r = 0; r < batch.size(); ++r) {
+    rays_[r] = batch[r].ray;
+    keys_[r] = {batch[r].view, batch[r].pixel, uint64_t(step_)};
+  }
+  pathBatch_.trace(*tracer_, rays_, keys_, config_.seed, pathSettings, paths_, /*record=*/true);
+  // The losses and the backward pass, per path, into per-slot gradients.
   parallelFor(slotCount, 1, [&](int64_t s) {
     Slot& slot = *slots_[s];
     if (slot.gradient.size() != n)
@@ -102,26 +108,23 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     slot.hitCount = slot.overflowed = slot.reflected = 0;
     auto sink = [&](uint32_t id, const HitGradient<float>& g) { slot.gradient.add(id, g); };
     for (int64_t r = rays * s / slotCount; r < rays * (s + 1) / slotCount; ++r) {
-      const BatchRay& b = batch[r];
+      const BatchRay& b = batch[size_t(r)];
       const PixelTarget& target = views_.target(b.view, b.pixel);
-      if (reflections) {
-        // The sample key is the step, so each step draws new reflection directions.
-        slot.segmentCount = size_t(
-            tracePath(*tracer_, b.ray, pathSettings, config_.seed, b.view, b.pixel, uint64_t(step_), &slot.segments)
-                .segments);
-        std::swap(slot.hits, slot.segments[0].hits);
-      }
-      RayResult result = reflections ? slot.segments[0].result : tracer_->trace(b.ray, &slot.hits);
+      std::span<const PathSegment> path = pathBatch_.path(size_t(r));
+      const RayResult& result = path[0].result;
       slot.terms += rayLoss(result, target, norm);
-      slot.hitCount += int64_t(slot.hits.hits.size());
-      if (reflections) reflectionLoss(slot, target, norm, backward, sink);
-      if (!backward) continue;
-      if (slot.hits.overflowed) {
-        ++slot.overflowed;
-        continue;
+      slot.hitCount += int64_t(path[0].hits.hits.size());
+      Rgb v_specular(0.0f);
+      if (reflections) {
+        const Rgb& specular = paths_[size_t(r)].specular;
+        slot.terms.specular += specularLoss(specular, target, norm);
+        slot.reflected += int64_t(path.size()) - 1;
+        v_specular = specularLoss_vjp(specular, target, norm, config_.loss);
       }
-      RayResultAdjoint v = rayLoss_vjp(result, target, norm, config_.loss);
-      backwardRay<float>(scene_, config_.trace, b.ray, slot.hits, result, v, slot.scratch, sink);
+      if (!backward) continue;
+      RayResultAdjoint v_first = rayLoss_vjp(result, target, norm, config_.loss);
+      slot.overflowed += tracePath_vjp<float>(scene_, config_.trace, path, v_first, v_specular, /*weighted=*/true,
+                                              slot.scratch, sink);
     }
   });
   // Reduce into slot 0, in slot order for every Gaussian.
@@ -136,18 +139,6 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     report->reflectedSegments += slot->reflected;
   }
   report->rays += rays;
-}
-
-template <typename Sink>
-void Trainer::reflectionLoss(Slot& slot, const PixelTarget& target, const LossNormalisation& norm, bool backward,
-                             Sink& sink) {
-  std::span<const PathSegment> path(slot.segments.data(), slot.segmentCount);
-  Rgb specular = pathSpecular(path);
-  slot.terms.specular += specularLoss(specular, target, norm);
-  slot.reflected += int64_t(path.size()) - 1;
-  if (!backward) return;
-  Rgb g = specularLoss_vjp(specular, target, norm, config_.loss);
-  slot.overflowed += reflectionLoss_vjp<float>(scene_, config_.trace, path, g, slot.scratch, sink);
 }
 
 StepReport Trainer::step() {

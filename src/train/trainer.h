@@ -1,5 +1,5 @@
-// The training loop of the first segment (paper sections 3.1-3.3, appendix A): each step
-// draws a batch of rays, runs the fused forward/backward pass per ray, reduces the
+// The training step (paper sections 3.1-3.3, appendix A): each step draws a batch of rays,
+// traces their paths as one wavefront, runs the losses and the backward pass per path, reduces the
 // per-thread gradients, takes an Adam step, applies the schedule (scale decay, clamping,
 // pruning, camera-sphere culling) and refits or rebuilds the tracer.
 #pragma once
@@ -13,6 +13,7 @@
 #include "raytrace/gaussian_gradients.h"
 #include "raytrace/gaussian_tracer.h"
 #include "raytrace/ray_backward.h"
+#include "render/gaussian_path.h"
 #include "train/adam.h"
 #include "train/camera_culling.h"
 #include "train/checkpoint.h"
@@ -66,9 +67,6 @@ class Trainer {
   struct Slot;  // per-thread scratch and gradient buffer
 
   void setUp(const std::string& tracerKind);
-  // L_r of the slot's current path (its segments) and, with backward, its gradients.
-  template <typename Sink>
-  void reflectionLoss(Slot& slot, const PixelTarget& target, const LossNormalisation& norm, bool backward, Sink& sink);
   size_t housekeeping();
   // Appends the far-field Gaussians outside the camera spheres; returns how many.
   size_t addFarField();
@@ -84,6 +82,11 @@ class Trainer {
   std::unique_ptr<GaussianTracer> tracer_;
   std::vector<std::unique_ptr<Slot>> slots_;
   std::vector<BatchRay> batch_;
+  // The forward pass's wavefront and its inputs and outputs, kept between steps.
+  PathBatch pathBatch_;
+  std::vector<TraceRay> rays_;
+  std::vector<PathKey> keys_;
+  std::vector<PathResult> paths_;
 };
 
 }  // namespace glint

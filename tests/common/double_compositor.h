@@ -187,8 +187,7 @@ inline Forward traceDouble(const std::vector<double>& x, const TraceRay& ray, co
 inline HitList hitListOf(const Forward& f) {
   HitList hits;
   for (const Hit& h : f.composited)
-    hits.hits.push_back({h.id, float(h.kernel.key), float(h.kernel.alpha), float(h.kernel.response),
-                         Vec3f(h.kernel.localPoint)});
+    hits.hits.push_back({h.id, float(h.kernel.key), float(h.kernel.alpha)});
   return hits;
 }
 

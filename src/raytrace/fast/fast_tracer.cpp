@@ -39,18 +39,10 @@ class LaneHits {
   }
 
   // Lane i of `block` (whose proxy test passed, giving c); false when its alpha is below alphaMin.
-  bool make(const Bvh8Block& block, const Bvh8BlockCandidates& c, int i, float tMin, BufferedHit* h) const {
-    float response = this->response(c.r2[i]);
-    float alpha = kMaxAlpha * block.opacity[i] * response;
+  bool make(const Bvh8Block& block, const Bvh8BlockCandidates& c, int i, float tMin, KeyedHit* h) const {
+    float alpha = kMaxAlpha * block.opacity[i] * response(c.r2[i]);
     if (alpha < settings_.alphaMin) return false;
-    h->id = block.id[i];
-    h->tPeak = c.tPeak[i];
-    h->tEnter = h->tPeak - c.half[i];
-    h->tExit = h->tPeak + c.half[i];
-    h->key = key(c, i, tMin);
-    h->response = response;
-    h->alpha = alpha;
-    for (int a = 0; a < 3; ++a) h->localPoint[a] = c.localPoint[a][i];
+    *h = {key(c, i, tMin), block.id[i], alpha};
     return true;
   }
 
@@ -108,7 +100,6 @@ class LaneHits {
 };
 
 using FastHitBuffer = HitBuffer<FastGaussianTracer::kMaxHitBufferCapacity>;
-using BundleHitBuffer = HitBuffer<FastGaussianTracer::kMaxHitBufferCapacity, KeyedHit>;
 using FastCompositor = Compositor<float>;
 
 // Composites, in order, the buffered hits whose key is below `bound`. Returns false when
@@ -226,7 +217,7 @@ class RayTraversal {
       stats_->evaluations += std::popcount(masks[b]);
       for (uint32_t mask = masks[b]; mask; mask &= mask - 1) {
         int i = std::countr_zero(mask);
-        BufferedHit h;
+        KeyedHit h;
         if (!lanes_.make(blocks[b], c[b], i, ray_.tMin, &h)) continue;
         HitOrder order = h.order();
         if ((hasLo_ && order < lo_) || (hasHi_ && !(order < hi_))) continue;
@@ -236,7 +227,7 @@ class RayTraversal {
     return true;
   }
 
-  bool accept(const BufferedHit& h, float bound) {
+  bool accept(const KeyedHit& h, float bound) {
     if (tail_) {
       compositor_.add(h.id, h.kernelHit());
       return true;
@@ -287,14 +278,14 @@ class RayTraversal {
 // caller traces it alone, and that traversal handles overflow.
 class BundleStreams {
  public:
-  // Traces rays[members] and writes results[members]; appends the overflowed rays to
-  // *overflowed (their results are left for the caller).
+  // Traces rays[members] and writes results[members] (and hits[members] when hits is not
+  // empty); appends the overflowed rays to *overflowed (their results are left for the caller).
   void trace(const Bvh8& bvh, BundleCandidates& candidates, const RayCone& cone, std::span<const TraceRay> rays,
-             std::span<const uint32_t> members, int capacity, std::span<RayResult> results,
+             std::span<const uint32_t> members, int capacity, std::span<RayResult> results, std::span<HitList> hits,
              std::vector<uint32_t>* overflowed) {
     const TraceSettings& settings = bvh.settings();
     const size_t n = members.size();
-    if (buffers_.size() < n) buffers_.resize(n, BundleHitBuffer(capacity));
+    if (buffers_.size() < n) buffers_.resize(n, FastHitBuffer(capacity));
     compositors_.clear();
     compositors_.reserve(n);
     states_.assign(n, Streaming);
@@ -302,7 +293,7 @@ class BundleStreams {
     for (size_t k = 0; k < n; ++k) {
       const TraceRay& ray = rays[members[k]];
       buffers_[k].reset(capacity);
-      compositors_.emplace_back(*bvh.scene(), settings, nullptr);
+      compositors_.emplace_back(*bvh.scene(), settings, hits.empty() ? nullptr : &hits[members[k]]);
       if (ray.backfaceSkip > 0) compositors_[k].skipBackfacing(ray.direction, ray.backfaceSkip);
     }
     makePackets(cone, rays, members);
@@ -429,7 +420,7 @@ class BundleStreams {
   std::vector<PacketCones> cones_;  // cones_[j] lane l: packet 8 j + l
   std::vector<uint32_t> activePackets_;  // per group of cones: the packets with a streaming ray
   size_t streaming_ = 0;
-  std::vector<BundleHitBuffer> buffers_;
+  std::vector<FastHitBuffer> buffers_;
   std::vector<FastCompositor> compositors_;
   std::vector<State> states_;
   std::vector<bool> tails_;
@@ -459,9 +450,11 @@ RayResult FastGaussianTracer::trace(const TraceRay& ray, HitList* hits) const {
   return trace(ray, hits, &stats);
 }
 
-void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results) const {
+void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results,
+                                    std::span<HitList> hits) const {
   GLINT_CHECK(built_, "trace before build");
   GLINT_CHECK(rays.size() == results.size(), "traceBatch: one result per ray");
+  GLINT_CHECK(hits.empty() || hits.size() == rays.size(), "traceBatch: one hit list per ray, or none");
   GLINT_CHECK(rays.size() < size_t(UINT32_MAX), "traceBatch: too many rays");
   // Runs of consecutive rays with one origin, ordered by direction and cut into bundles;
   // every other ray is traced alone.
@@ -486,7 +479,7 @@ void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<Ra
     i = j;
   }
 
-  auto traceAlone = [&](uint32_t k) { results[k] = trace(rays[k]); };
+  auto traceAlone = [&](uint32_t k) { results[k] = trace(rays[k], hits.empty() ? nullptr : &hits[k]); };
   parallelFor(int64_t(bundles.size()), 1, [&](int64_t b) {
     thread_local BundleCandidates candidates;
     std::span<const uint32_t> members = std::span<const uint32_t>(order).subspan(
@@ -499,7 +492,7 @@ void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<Ra
     thread_local BundleStreams streams;
     thread_local std::vector<uint32_t> overflowed;
     overflowed.clear();
-    streams.trace(bvh_, candidates, cone, rays, members, hitBufferCapacity_, results, &overflowed);
+    streams.trace(bvh_, candidates, cone, rays, members, hitBufferCapacity_, results, hits, &overflowed);
     for (uint32_t k : overflowed) traceAlone(k);
   });
   parallelFor(int64_t(alone.size()), 64, [&](int64_t k) { traceAlone(alone[size_t(k)]); });

@@ -17,29 +17,15 @@ struct HitOrder {
   bool operator<(const HitOrder& b) const { return key < b.key || (key == b.key && id < b.id); }
 };
 
-// A hit as evaluateGaussian describes it (KernelHit<float>), kept trivially constructible
-// so an unused buffer costs nothing to create.
-struct BufferedHit {
-  uint32_t id;
-  float key, tPeak, tEnter, tExit, response, alpha;
-  float localPoint[3];
-
-  HitOrder order() const { return {key, id}; }
-  KernelHit<float> kernelHit() const {
-    return {tPeak, tEnter, tExit, key, response, alpha, Vec3f(localPoint[0], localPoint[1], localPoint[2])};
-  }
-};
-
-// What a bundle's ray keeps of a hit: its rays composite without a hit list, and the
-// compositor then reads only the key and alpha. A third of BufferedHit's size, so that the
-// buffers of a bundle's 64 rays, written in turn, stay in the cache.
+// What a ray keeps of a hit while it waits to be composited: the compositor reads only
+// the key and alpha (and the Gaussian's attributes by id). Small, so that a ray's buffer,
+// and the buffers of a bundle's 64 rays written in turn, stay in the cache.
 struct KeyedHit {
   float key;
   uint32_t id;
   float alpha;
 
   HitOrder order() const { return {key, id}; }
-  // Only key and alpha are meaningful: for a compositor without a hit list.
   KernelHit<float> kernelHit() const { return {0.0f, 0.0f, 0.0f, key, 0.0f, alpha, Vec3f(0.0f)}; }
 };
 
@@ -47,7 +33,7 @@ struct KeyedHit {
 // children nearest first, bundle candidates by the bound of their key), so inserting from
 // the back moves few entries, and taking the nearest is an increment. Measured faster
 // than a binary heap, whose sift-down branches on every level.
-template <int kCapacityLimit, typename Hit = BufferedHit>
+template <int kCapacityLimit, typename Hit = KeyedHit>
 class HitBuffer {
  public:
   explicit HitBuffer(int capacity) : capacity_(std::min(capacity, kCapacityLimit)) {}

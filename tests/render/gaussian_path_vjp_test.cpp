@@ -1,10 +1,10 @@
-// Finite-difference tests of L_r (train/reflection_loss.h) on a recorded three-segment
+// Finite-difference tests of tracePath_vjp (render/gaussian_path.h) on a recorded three-segment
 // path (fixed keys, hence fixed random numbers): a mirror reflects the camera ray onto a
 // second reflective layer, which reflects it into a cluster of overlapping p = 3
 // Gaussians. With the segment rays and throughputs held as recorded (the paper's detached
 // gradient), L_r is differentiated through each reflected segment's blended diffuse by a
-// double-precision compositor, and compared with reflectionLoss_vjp.
-#include "train/reflection_loss.h"
+// double-precision compositor, and compared with tracePath_vjp.
+#include "render/gaussian_path.h"
 
 #include <gtest/gtest.h>
 
@@ -161,30 +161,23 @@ std::set<uint32_t> hitIds(const PathSegment& segment) {
   return ids;
 }
 
-// The loss of the test: L_r of one ray of a batch of four, on a target away from the kink.
+// The loss of the test: a fixed linear function of the path's specular sum, L = g . specular
+// (the L1 loss of training is linear near any point away from its kink).
 struct LossSetup {
-  PixelTarget target;
-  LossNormalisation norm{4, 4};
-  LossWeights weights;
-  Rgb g;  // dL/d specular
+  Rgb g{0.7f, -0.5f, 0.9f};  // dL/d specular
 
-  explicit LossSetup(const Rgb& specular) {
-    target.specular = specular + Rgb(0.05f, -0.04f, 0.06f);
-    g = specularLoss_vjp(specular, target, norm, weights);
-  }
-  double loss(const Vec3d& specular) const {
-    Vec3d e = specular - Vec3d(target.specular);
-    return weights.specular * (std::abs(e.x) + std::abs(e.y) + std::abs(e.z)) / (3 * norm.diffuseRays);
-  }
+  explicit LossSetup(const Rgb&) {}
+  double loss(const Vec3d& specular) const { return dot(Vec3d(g), specular); }
 };
 
-// The whole-scene gradient reflectionLoss_vjp<T> hands out, and the Gaussians it reached.
+// The whole-scene gradient tracePath_vjp<T> hands out for dL/d specular = g (and dL/d the
+// first segment's result = vFirst), and the Gaussians it reached.
 template <typename T>
 std::vector<double> reflectionGradient(const PathCase& c, const Rgb& g, std::set<uint32_t>* reached = nullptr,
-                                       int* overflowed = nullptr) {
+                                       int* overflowed = nullptr, const RayResultAdjoint& vFirst = {}) {
   std::vector<double> gradient(c.x.size(), 0.0);
   RayBackwardScratch<T> scratch;
-  int skipped = reflectionLoss_vjp<T>(c.scene, c.trace, c.segments, g, scratch,
+  int skipped = tracePath_vjp<T>(c.scene, c.trace, c.segments, vFirst, g, /*weighted=*/true, scratch,
                                       [&](uint32_t id, const HitGradient<T>& hg) {
                                         test::accumulate(&gradient, id, hg);
                                         if (reached) reached->insert(id);
@@ -193,7 +186,7 @@ std::vector<double> reflectionGradient(const PathCase& c, const Rgb& g, std::set
   return gradient;
 }
 
-TEST(ReflectionLoss, MatchesFiniteDifferencesThroughTheReflectedSegments) {
+TEST(TracePathVjp, MatchesFiniteDifferencesThroughTheReflectedSegments) {
   PathCase c = makePathCase();
   ASSERT_EQ(c.segments.size(), 3u);
   // The Gaussians each reflected segment composites, and the double forward of its ray:
@@ -269,7 +262,7 @@ TEST(ReflectionLoss, MatchesFiniteDifferencesThroughTheReflectedSegments) {
 
 // Nothing flows into normals, roughness or F0, nor into the Gaussians only the first
 // segment hits; exactly the reflected segments' hits receive gradients.
-TEST(ReflectionLoss, GradientsReachOnlyTheReflectedSegmentsBlendedDiffuse) {
+TEST(TracePathVjp, GradientsReachOnlyTheReflectedSegmentsBlendedDiffuse) {
   PathCase c = makePathCase();
   ASSERT_EQ(c.segments.size(), 3u);
   LossSetup loss(c.path.specular);
@@ -291,7 +284,7 @@ TEST(ReflectionLoss, GradientsReachOnlyTheReflectedSegmentsBlendedDiffuse) {
   EXPECT_EQ(nonzero, reflectedHits.size() * test::kNormalParam);
 }
 
-TEST(ReflectionLoss, SpecularAndWeightsFollowTheRecordedSegments) {
+TEST(TracePathVjp, SpecularAndWeightsFollowTheRecordedSegments) {
   PathCase c = makePathCase();
   ASSERT_EQ(c.segments.size(), 3u);
   Rgb specular = pathSpecular(c.segments);
@@ -315,7 +308,7 @@ TEST(ReflectionLoss, SpecularAndWeightsFollowTheRecordedSegments) {
 }
 
 // Training runs the float pass on the tracer's records: it agrees with the double one.
-TEST(ReflectionLoss, FloatAgreesWithDouble) {
+TEST(TracePathVjp, FloatAgreesWithDouble) {
   PathCase c = makePathCase();
   ASSERT_EQ(c.segments.size(), 3u);
   LossSetup loss(c.path.specular);
@@ -325,7 +318,7 @@ TEST(ReflectionLoss, FloatAgreesWithDouble) {
 }
 
 // A segment whose hit list overflowed gives no gradient and is counted.
-TEST(ReflectionLoss, OverflowedSegmentsAreSkippedAndCounted) {
+TEST(TracePathVjp, OverflowedSegmentsAreSkippedAndCounted) {
   PathCase full = makePathCase();
   ASSERT_EQ(full.segments.size(), 3u);
   size_t fewest = std::min(full.segments[1].hits.hits.size(), full.segments[2].hits.hits.size());
@@ -341,6 +334,56 @@ TEST(ReflectionLoss, OverflowedSegmentsAreSkippedAndCounted) {
   size_t kept = c.segments[1].hits.overflowed ? 2 : 1;
   EXPECT_FALSE(c.segments[kept].hits.overflowed);
   EXPECT_EQ(reached, hitIds(c.segments[kept]));
+}
+
+// The first segment's adjoint flows through its own hits exactly as backwardRay hands it
+// out, added to the reflected segments' gradient.
+TEST(TracePathVjp, FirstSegmentAdjointAddsTheFirstSegmentsBackwardRay) {
+  PathCase c = makePathCase();
+  ASSERT_EQ(c.segments.size(), 3u);
+  LossSetup loss(c.path.specular);
+  RayResultAdjoint vFirst;
+  vFirst.v_diffuse = Rgb(0.3f, -0.2f, 0.1f);
+  vFirst.v_depth = 0.05f;
+  vFirst.v_normal = Vec3f(0.1f, 0.2f, -0.3f);
+  vFirst.v_roughness = -0.4f;
+  vFirst.v_f0 = Rgb(0.2f, 0.1f, -0.1f);
+  std::vector<double> both = reflectionGradient<double>(c, loss.g, nullptr, nullptr, vFirst);
+  std::vector<double> expected = reflectionGradient<double>(c, loss.g);
+  RayBackwardScratch<double> scratch;
+  backwardRay<double>(c.scene, c.trace, c.segments[0].ray, c.segments[0].hits, c.segments[0].result, vFirst, scratch,
+                      [&](uint32_t id, const HitGradient<double>& hg) { test::accumulate(&expected, id, hg); });
+  test::expectGradientNear(both, expected, 1e-12, "path gradient with a first-segment adjoint");
+  // The first segment's Gaussians receive gradients in every attribute, normals included.
+  double normalGradient = 0;
+  for (uint32_t id : hitIds(c.segments[0])) normalGradient += std::abs(both[id * kParams + test::kNormalParam]);
+  EXPECT_GT(normalGradient, 0.0);
+}
+
+// The wavefront records the same segments, hits and results as the path traced alone.
+TEST(TracePathVjp, WavefrontRecordsWhatTracePathRecords) {
+  PathCase c = makePathCase();
+  ASSERT_EQ(c.segments.size(), 3u);
+  PathBatch batch;
+  std::vector<TraceRay> primaries{c.primary, c.primary};
+  std::vector<PathKey> keys{{kView, kPixel, kSample}, {kView, kPixel + 1, kSample}};
+  std::vector<PathResult> results(2);
+  batch.trace(*c.tracer, primaries, keys, kSeed, c.settings, results, /*record=*/true);
+  std::span<const PathSegment> path = batch.path(0);
+  ASSERT_EQ(path.size(), c.segments.size());
+  EXPECT_EQ(results[0].segments, c.path.segments);
+  for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(results[0].specular[ch], c.path.specular[ch]);
+  for (size_t k = 0; k < path.size(); ++k) {
+    EXPECT_EQ(path[k].ray.origin, c.segments[k].ray.origin) << k;
+    EXPECT_EQ(path[k].ray.direction, c.segments[k].ray.direction) << k;
+    ASSERT_EQ(path[k].hits.hits.size(), c.segments[k].hits.hits.size()) << k;
+    for (size_t h = 0; h < path[k].hits.hits.size(); ++h) {
+      EXPECT_EQ(path[k].hits.hits[h].id, c.segments[k].hits.hits[h].id);
+      EXPECT_EQ(path[k].hits.hits[h].t, c.segments[k].hits.hits[h].t);
+      EXPECT_EQ(path[k].hits.hits[h].alpha, c.segments[k].hits.hits[h].alpha);
+    }
+    for (int ch = 0; ch < 3; ++ch) EXPECT_EQ(path[k].throughput[ch], c.segments[k].throughput[ch]) << k;
+  }
 }
 
 }  // namespace
