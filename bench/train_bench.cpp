@@ -15,12 +15,14 @@
 #include <nlohmann/json.hpp>
 
 #include "core/parallel.h"
+#include "raytrace/fast/fast_tracer.h"
 #include "scene/dataset.h"
 #include "synth/builtin_scenes.h"
 #include "synth/dataset_generator.h"
 #include "train/camera_culling.h"
 #include "train/dense_init.h"
 #include "train/scene_extent.h"
+#include "render/gaussian_path.h"
 #include "train/trainer.h"
 
 using namespace glint;
@@ -39,10 +41,15 @@ double secondsOf(const std::function<void()>& f) {
 int main(int argc, char** argv) {
   CLI::App app{"Forward vs fused forward+backward throughput of Glint's training pass"};
   std::string datasetPath, jsonPath;
-  int warmup = 300, batches = 8, batchRays = 16384, threads = 2;
+  int warmup = 800, batches = 8, batchRays = 16384, threads = 2, reflectionWarmup = TrainConfig{}.reflectionWarmup;
   app.add_option("--dataset", datasetPath, "Dataset to train on (default: builtin:spheres, 40 views of 160x120, "
                                            "rendered into a temporary folder)");
-  app.add_option("--warmup", warmup, "Training steps before measuring")->check(CLI::Range(0, 1000000));
+  app.add_option("--warmup", warmup, "Training steps before measuring (the default passes the reflection warm-up of "
+                                     "750 steps, so the measured steps trace 2-bounce paths)")->check(CLI::Range(0, 1000000));
+  app.add_option("--reflection-warmup", reflectionWarmup, "Steps before reflections are trained (training's default; "
+                                                         "lower it to profile reflected paths sooner)")
+      ->check(CLI::Range(0, 1000000))
+      ->capture_default_str();
   app.add_option("--batches", batches, "Batches measured per pass")->check(CLI::Range(1, 100000));
   app.add_option("--batch-rays", batchRays, "Rays per batch")->check(CLI::Range(1, 1 << 24));
   app.add_option("--threads", threads, "Threads")->check(CLI::Range(1, 1024));
@@ -68,6 +75,7 @@ int main(int argc, char** argv) {
   TrainConfig config;
   config.dataset = datasetPath;
   config.batchRays = batchRays;
+  config.reflectionWarmup = reflectionWarmup;
   DenseInit init = denseInitialisation(dataset);
   Trainer trainer(config, views, cameraSpheres(dataset, dataset.train()), std::move(init.scene),
                   sceneExtent(dataset.train()));
@@ -100,6 +108,29 @@ int main(int argc, char** argv) {
   double fusedSeconds = secondsOf([&] {
     for (const auto& batch : rays) trainer.forwardBackward(batch, true, &fusedReport);
   });
+  // The wavefront alone (PathBatch::trace as the trainer calls it, hit lists recorded), with
+  // the reflected rays in path order and sorted by origin and octant (the default).
+  PathSettings paths = config.path();
+  paths.hitListCapacity = hitCapacityWithoutOverflow(config.trace);
+  double orderSeconds[2] = {0, 0};
+  for (int o = 0; o < 2; ++o) {
+    paths.reflectedOrder = o == 0 ? ReflectedRayOrder::PathOrder : ReflectedRayOrder::OriginAndOctant;
+    PathBatch wavefront;
+    std::vector<TraceRay> primaries;
+    std::vector<PathKey> keys;
+    std::vector<PathResult> pathResults(static_cast<size_t>(batchRays));
+    orderSeconds[o] = secondsOf([&] {
+      for (int b = 0; b < batches; ++b) {
+        primaries.clear(), keys.clear();
+        for (const BatchRay& r : rays[size_t(b)]) {
+          primaries.push_back(r.ray);
+          keys.push_back({r.view, r.pixel, uint64_t(1000000 + b)});
+        }
+        pathResults.resize(primaries.size());
+        wavefront.trace(trainer.tracer(), primaries, keys, config.seed, paths, pathResults, /*record=*/true);
+      }
+    });
+  }
   double stepSeconds = secondsOf([&] {
     for (int b = 0; b < batches; ++b) trainer.step();
   });
@@ -108,8 +139,10 @@ int main(int argc, char** argv) {
     const char* name;
     double seconds;
   } rows[] = {{"forward, rendering mode", renderSeconds},
-              {"forward, training mode (exact tail, hit lists, loss)", forwardSeconds},
+              {"forward, training mode (paths, hit lists, loss)", forwardSeconds},
               {"fused forward+backward", fusedSeconds},
+              {"wavefront paths only, reflected rays in path order", orderSeconds[0]},
+              {"wavefront paths only, reflected rays sorted (default)", orderSeconds[1]},
               {"whole step (+ reduction, Adam, refit)", stepSeconds}};
   std::printf("train_bench: %zu Gaussians, %.1f composited hits per ray, %d rays per batch, %d batches, %d threads\n",
               trainer.scene().size(), double(fusedReport.hits) / double(fusedReport.rays), batchRays, batches,
@@ -124,6 +157,13 @@ int main(int argc, char** argv) {
     std::printf("%-55s %10.3f %11.2fx\n", r.name, totalRays / r.seconds / 1e6, r.seconds / forwardSeconds);
     json["passes"][r.name] = {{"mrays_per_s", totalRays / r.seconds / 1e6}, {"ratio_to_training_forward", r.seconds / forwardSeconds}};
   }
+  std::printf("reflected segments per ray %.2f; wavefront records %.1f MB for %d rays (%.0f B per ray, shared by "
+              "the threads); fast tracer scratch %.1f KB per thread\n",
+              double(fusedReport.reflectedSegments) / double(fusedReport.rays), trainer.wavefrontBytes() / 1e6,
+              batchRays, double(trainer.wavefrontBytes()) / batchRays, FastGaussianTracer::threadScratchBytes() / 1e3);
+  json["reflected_segments_per_ray"] = double(fusedReport.reflectedSegments) / double(fusedReport.rays);
+  json["wavefront_bytes"] = trainer.wavefrontBytes();
+  json["fast_thread_scratch_bytes"] = FastGaussianTracer::threadScratchBytes();
   std::printf("fused / forward (training mode): %.2fx   fused / forward (rendering mode): %.2fx   (paper: 2.23x, "
               "target <= 2.5x)\n",
               fusedSeconds / forwardSeconds, fusedSeconds / renderSeconds);

@@ -3,6 +3,8 @@
 #include "render/gaussian_path.h"
 
 #include <algorithm>
+#include <limits>
+#include <utility>
 
 #include "bsdf/cook_torrance.h"
 #include "core/error.h"
@@ -38,6 +40,45 @@ bool continuePath(const TraceRay& ray, const RayResult& result, const PathSettin
 }
 
 namespace {
+
+// Spreads the low 10 bits of x to every third bit (3D Morton interleaving).
+uint32_t spreadBits3(uint32_t x) {
+  x &= 0x3ff;
+  x = (x | (x << 16)) & 0x030000ff;
+  x = (x | (x << 8)) & 0x0300f00f;
+  x = (x | (x << 4)) & 0x030c30c3;
+  x = (x | (x << 2)) & 0x09249249;
+  return x;
+}
+
+// Reorders the level's rays (and what goes with them) so that rays traced one after the
+// other start close together and point into the same octant: the key is the direction's
+// octant, then the Morton code of the origin in the level's bounding box. Neighbouring
+// rays then walk the same BVH nodes while those are in the cache. Ties keep path order.
+void sortByOriginAndOctant(std::vector<uint32_t>& active, std::vector<TraceRay>& rays, std::vector<Rgb>& throughput,
+                           std::vector<std::pair<uint64_t, uint32_t>>& keys) {
+  const size_t m = rays.size();
+  Vec3f lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+  for (const TraceRay& r : rays) lo = min(lo, r.origin), hi = max(hi, r.origin);
+  const Vec3f extent = max(hi - lo, Vec3f(1e-20f));
+  keys.resize(m);
+  for (size_t j = 0; j < m; ++j) {
+    const TraceRay& r = rays[j];
+    uint32_t q[3];
+    for (int a = 0; a < 3; ++a) q[a] = uint32_t(std::clamp((r.origin[a] - lo[a]) / extent[a], 0.0f, 1.0f) * 1023.0f);
+    uint64_t octant = uint64_t(r.direction.x < 0) | uint64_t(r.direction.y < 0) << 1 | uint64_t(r.direction.z < 0) << 2;
+    keys[j] = {octant << 30 | spreadBits3(q[0]) | spreadBits3(q[1]) << 1 | spreadBits3(q[2]) << 2, uint32_t(j)};
+  }
+  std::sort(keys.begin(), keys.end());
+  std::vector<uint32_t> a(m);
+  std::vector<TraceRay> r(m);
+  std::vector<Rgb> t(m);
+  for (size_t j = 0; j < m; ++j) {
+    const uint32_t from = keys[j].second;
+    a[j] = active[from], r[j] = rays[from], t[j] = throughput[from];
+  }
+  active.swap(a), rays.swap(r), throughput.swap(t);
+}
 
 // Adds segment k's light to the path's sums.
 void addLight(PathResult* path, int k, const Rgb& light) {
@@ -154,6 +195,7 @@ void PathBatch::trace(const GaussianTracer& tracer, std::span<const TraceRay> pr
     active_.resize(alive);
     rays_.resize(alive);
     throughput_.resize(alive);
+    if (settings.reflectedOrder == ReflectedRayOrder::OriginAndOctant) sortByOriginAndOctant(active_, rays_, throughput_, sortKeys_);
   }
 }
 
@@ -165,6 +207,11 @@ size_t PathBatch::memoryBytes() const {
   for (const HitList& h : hits_) bytes += h.hits.capacity() * sizeof(HitRecord);
   for (const PathSegment& s : segments_) bytes += s.hits.hits.capacity() * sizeof(HitRecord);
   return bytes;
+}
+
+size_t PathBatch::bytesPerPath(bool record) {
+  return sizeof(uint32_t) + 2 * sizeof(TraceRay) + sizeof(RayResult) + 2 * sizeof(Rgb) + 1 +
+         (record ? sizeof(HitList) + sizeof(PathSegment) + 1 : 0);
 }
 
 Rgb pathSpecular(std::span<const PathSegment> segments) {

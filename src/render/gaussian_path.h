@@ -11,12 +11,18 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "raytrace/gaussian_tracer.h"
 #include "raytrace/ray_backward.h"
 
 namespace glint {
+
+// The order in which a wavefront's reflected rays go to traceBatch: as their paths come
+// (pixel order), or sorted by origin and direction octant (render_bench and train_bench
+// measure both).
+enum class ReflectedRayOrder { PathOrder, OriginAndOctant };
 
 struct PathSettings {
   int bounces = 0;  // segments after the first; the paper's default is 2 (path length 3)
@@ -28,6 +34,7 @@ struct PathSettings {
   // Reflection rays ignore back-facing Gaussians this close to their origin (appendix B).
   float backfaceSkip = 0.1f;
   size_t hitListCapacity = 512;  // of the hit lists recorded in PathSegment
+  ReflectedRayOrder reflectedOrder = ReflectedRayOrder::OriginAndOctant;  // PathBatch only; no effect on results
 };
 
 // Reflected segments whose light PathResult also keeps one by one (the viewer's per-bounce
@@ -81,14 +88,18 @@ PathResult tracePath(const GaussianTracer& tracer, const TraceRay& primary, cons
 // included (capacity settings.hitListCapacity), for the backward pass.
 class PathBatch {
  public:
+
   void trace(const GaussianTracer& tracer, std::span<const TraceRay> primaries, std::span<const PathKey> keys,
              uint64_t seed, const PathSettings& settings, std::span<PathResult> results, bool record);
   // The recorded segments of path i of the last trace with `record`.
   std::span<const PathSegment> path(size_t i) const { return {&segments_[i * stride_], counts_[i]}; }
-  // Bytes held (scratch and records), for benchmarks.
+  // Bytes held (scratch and records, hit lists included), for benchmarks.
   size_t memoryBytes() const;
+  // Bytes of scratch per path when every path is alive (without hit lists), for benchmarks.
+  static size_t bytesPerPath(bool record);
 
  private:
+  std::vector<std::pair<uint64_t, uint32_t>> sortKeys_;
   // The paths still alive at the current level, each with its last segment.
   std::vector<uint32_t> active_;
   std::vector<TraceRay> rays_;

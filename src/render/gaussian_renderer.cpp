@@ -62,6 +62,15 @@ struct TileSums {
 
 }  // namespace
 
+size_t renderTileRays() { return kRaysPerTile; }
+
+size_t renderTileBytes(int bounces) {
+  const size_t perRay = sizeof(TraceRay) + sizeof(PathKey) + sizeof(PathResult) +  // inputs and outputs
+                        4 * sizeof(Rgb) + 2 * sizeof(float) + size_t(std::clamp(bounces, 0, kSeparateBounces)) * sizeof(Rgb) +
+                        PathBatch::bytesPerPath(/*record=*/false);
+  return kRaysPerTile * perRay;
+}
+
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
                                uint64_t viewKey, std::vector<Image>* bounceLight) {
   ViewBuffers out = ViewBuffers::allocate(camera.width, camera.height);

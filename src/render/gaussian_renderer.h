@@ -40,6 +40,12 @@ struct RenderSettings {
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
                                uint64_t viewKey, std::vector<Image>* bounceLight = nullptr);
 
+// Camera rays traced per wavefront (a tile of whole rows), and the bytes a tile's arrays
+// take with that many rays (paths, keys, pixel sums and the wavefront's own), for
+// benchmarks.
+size_t renderTileRays();
+size_t renderTileBytes(int bounces);
+
 // Re-runs the paths of one pixel exactly as renderGaussianView traces them (same sample
 // positions and random numbers) and returns every segment with its hits, per sample.
 std::vector<std::vector<PathSegment>> tracePixelPaths(const GaussianTracer& tracer, const Camera& camera,

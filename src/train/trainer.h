@@ -62,6 +62,8 @@ class Trainer {
   // The tracer over the current scene (built with the training settings), for evaluation.
   const GaussianTracer& tracer() const { return *tracer_; }
   TrainingState state() const;
+  // Bytes of the forward pass's wavefront (records and hit lists of the last batch).
+  size_t wavefrontBytes() const { return pathBatch_.memoryBytes(); }
 
  private:
   struct Slot;  // per-thread scratch and gradient buffer

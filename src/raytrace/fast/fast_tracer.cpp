@@ -445,6 +445,14 @@ void FastGaussianTracer::refit() {
   GLINT_CHECK(kBvhWidth + bvh_.maxStackSize() <= kStackCapacity, "BVH deeper than the traversal stack allows");
 }
 
+size_t FastGaussianTracer::rayScratchBytes() { return sizeof(RayTraversal); }
+
+size_t FastGaussianTracer::bundleScratchBytes() {
+  const size_t rays = size_t(kDefaultBundleRays);
+  return sizeof(BundleStreams) + rays * (sizeof(FastHitBuffer) + sizeof(FastCompositor) + 2) +
+         (rays / kBvhWidth) * (sizeof(RayPacket) + 1) + sizeof(PacketCones);
+}
+
 RayResult FastGaussianTracer::trace(const TraceRay& ray, HitList* hits) const {
   FastTraceStats stats;
   return trace(ray, hits, &stats);

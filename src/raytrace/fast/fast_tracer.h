@@ -44,6 +44,12 @@ class FastGaussianTracer final : public GaussianTracer {
   // Bundle size (tests set it; 0 turns bundles off and traces every ray alone).
   void setBundleRays(int rays) { bundleRays_ = rays; }
   size_t memoryBytes() const override { return bvh_.memoryBytes(); }
+  // Scratch memory of a thread while tracing (benchmarks report it): a ray's traversal
+  // state (its hit buffer, pending subtrees and compositor), and a bundle's per-ray hit
+  // buffers and compositors (without its candidate list, which grows with the scene).
+  static size_t rayScratchBytes();
+  static size_t bundleScratchBytes();
+  static size_t threadScratchBytes() { return rayScratchBytes() + bundleScratchBytes(); }
 
   const Bvh8& bvh() const { return bvh_; }
 
