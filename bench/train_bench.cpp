@@ -108,29 +108,48 @@ int main(int argc, char** argv) {
   double fusedSeconds = secondsOf([&] {
     for (const auto& batch : rays) trainer.forwardBackward(batch, true, &fusedReport);
   });
-  // The wavefront alone (PathBatch::trace as the trainer calls it, hit lists recorded), with
-  // the reflected rays in path order and sorted by origin and octant (the default).
+  // The forward pass's paths alone, four ways on the trainer's own scene and settings: the
+  // wavefront as the trainer runs it (reflected rays sorted by origin and octant), with
+  // them in path order, with the camera rays traced one by one instead of in bundles
+  // (a tracer built the same way with bundles off), and the per-ray design that training
+  // ran before the wavefront (each thread traces whole paths with tracePath, one by one).
   PathSettings paths = config.path();
   paths.hitListCapacity = hitCapacityWithoutOverflow(config.trace);
-  double orderSeconds[2] = {0, 0};
-  for (int o = 0; o < 2; ++o) {
-    paths.reflectedOrder = o == 0 ? ReflectedRayOrder::PathOrder : ReflectedRayOrder::OriginAndOctant;
+  FastGaussianTracer unbundled;
+  unbundled.setBundleRays(0);
+  unbundled.build(trainer.scene(), config.trace);
+  std::vector<std::vector<TraceRay>> primaries(rays.size());
+  std::vector<std::vector<PathKey>> keys(rays.size());
+  for (size_t b = 0; b < rays.size(); ++b)
+    for (const BatchRay& r : rays[b]) {
+      primaries[b].push_back(r.ray);
+      keys[b].push_back({r.view, r.pixel, uint64_t(1000000 + b)});
+    }
+  std::vector<PathResult> pathResults(static_cast<size_t>(batchRays));
+  auto wavefrontSeconds = [&](const GaussianTracer& tracer, ReflectedRayOrder order) {
+    PathSettings p = paths;
+    p.reflectedOrder = order;
     PathBatch wavefront;
-    std::vector<TraceRay> primaries;
-    std::vector<PathKey> keys;
-    std::vector<PathResult> pathResults(static_cast<size_t>(batchRays));
-    orderSeconds[o] = secondsOf([&] {
-      for (int b = 0; b < batches; ++b) {
-        primaries.clear(), keys.clear();
-        for (const BatchRay& r : rays[size_t(b)]) {
-          primaries.push_back(r.ray);
-          keys.push_back({r.view, r.pixel, uint64_t(1000000 + b)});
-        }
-        pathResults.resize(primaries.size());
-        wavefront.trace(trainer.tracer(), primaries, keys, config.seed, paths, pathResults, /*record=*/true);
-      }
+    wavefront.trace(tracer, primaries[0], keys[0], config.seed, p, pathResults, /*record=*/true);  // warm
+    return secondsOf([&] {
+      for (size_t b = 0; b < rays.size(); ++b)
+        wavefront.trace(tracer, primaries[b], keys[b], config.seed, p, pathResults, /*record=*/true);
     });
-  }
+  };
+  const double sortedSeconds = wavefrontSeconds(trainer.tracer(), ReflectedRayOrder::OriginAndOctant);
+  const double pathOrderSeconds = wavefrontSeconds(trainer.tracer(), ReflectedRayOrder::PathOrder);
+  const double unbundledSeconds = wavefrontSeconds(unbundled, ReflectedRayOrder::OriginAndOctant);
+  const double perRaySeconds = secondsOf([&] {
+    for (size_t b = 0; b < rays.size(); ++b)
+      parallelForChunks(int64_t(primaries[b].size()), 64, [&](int64_t begin, int64_t end) {
+        thread_local std::vector<PathSegment> segments;
+        for (int64_t r = begin; r < end; ++r) {
+          const PathKey& k = keys[b][size_t(r)];
+          pathResults[size_t(r)] = tracePath(trainer.tracer(), primaries[b][size_t(r)], paths, config.seed, k.view,
+                                             k.pixel, k.sample, &segments);
+        }
+      });
+  });
   double stepSeconds = secondsOf([&] {
     for (int b = 0; b < batches; ++b) trainer.step();
   });
@@ -141,8 +160,10 @@ int main(int argc, char** argv) {
   } rows[] = {{"forward, rendering mode", renderSeconds},
               {"forward, training mode (paths, hit lists, loss)", forwardSeconds},
               {"fused forward+backward", fusedSeconds},
-              {"wavefront paths only, reflected rays in path order", orderSeconds[0]},
-              {"wavefront paths only, reflected rays sorted (default)", orderSeconds[1]},
+              {"paths only: wavefront (as trained)", sortedSeconds},
+              {"paths only: wavefront, reflected rays in path order", pathOrderSeconds},
+              {"paths only: wavefront, camera rays without bundles", unbundledSeconds},
+              {"paths only: per-ray design before the wavefront", perRaySeconds},
               {"whole step (+ reduction, Adam, refit)", stepSeconds}};
   std::printf("train_bench: %zu Gaussians, %.1f composited hits per ray, %d rays per batch, %d batches, %d threads\n",
               trainer.scene().size(), double(fusedReport.hits) / double(fusedReport.rays), batchRays, batches,
@@ -167,6 +188,13 @@ int main(int argc, char** argv) {
   std::printf("fused / forward (training mode): %.2fx   fused / forward (rendering mode): %.2fx   (paper: 2.23x, "
               "target <= 2.5x)\n",
               fusedSeconds / forwardSeconds, fusedSeconds / renderSeconds);
+  // The step of the per-ray design: today's step with its wavefront swapped for per-ray paths.
+  const double perRayStep = stepSeconds - sortedSeconds + perRaySeconds;
+  std::printf("whole step, per-ray design (estimated: the step with per-ray paths instead of the wavefront): "
+              "%.3f Mrays/s; wavefront step is %.2fx faster\n",
+              totalRays / perRayStep / 1e6, perRayStep / stepSeconds);
+  json["per_ray_design_step_mrays_per_s"] = totalRays / perRayStep / 1e6;
+  json["step_speedup_over_per_ray_design"] = perRayStep / stepSeconds;
   json["fused_over_forward_training_mode"] = fusedSeconds / forwardSeconds;
   json["fused_over_forward_rendering_mode"] = fusedSeconds / renderSeconds;
   if (!jsonPath.empty()) std::ofstream(jsonPath) << json.dump(2) << "\n";
