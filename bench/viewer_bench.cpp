@@ -108,13 +108,13 @@ int main(int argc, char** argv) {
   Vec3d center((lo + hi) * 0.5f);
   double distance = 0.6 * double(length(hi - lo));  // the scene fills most of the frame
 
-  ProgressiveRenderer renderer(width, height, 1 << 20);
+  ProgressiveRenderer renderer(width, height, 1 << 20, source.settings.path());
   DisplaySettings settings;
   settings.bounces = bounces;
   renderer.setSettings(settings);
   renderer.setCamera(orbitCamera(0, center, distance));
   auto buildStart = Clock::now();
-  renderer.setScene(traceScene(std::make_shared<const GaussianScene>(source.scene), source.trace));
+  renderer.setScene(traceScene(std::make_shared<const GaussianScene>(source.scene), source.settings.trace));
   double buildSeconds = std::chrono::duration<double>(Clock::now() - buildStart).count();
 
   // Moving: a new camera as soon as each frame arrives, as a drag does.

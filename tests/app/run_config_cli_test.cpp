@@ -1,0 +1,66 @@
+// Every command that opens a training run reads RUN/config.json through one reader
+// (train/run_folder.h), so a setting out of its range is refused by each of them with the
+// very same message, naming the file and the key.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "app/run_glint.h"
+#include "app/small_cloud.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+using test::Outcome;
+using test::runGlint;
+
+struct BadSetting {
+  const char* config;   // the whole of RUN/config.json
+  const char* problem;  // what the message says after the file name
+};
+
+class RunConfigCliTest : public ::testing::TestWithParam<BadSetting> {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() / ("glint_run_config_test_" + std::to_string(getpid()));
+    fs::remove_all(root_);
+    fs::create_directories(root_ / "run");
+    test::writeSmallCloud(root_ / "run" / "scene.ply");
+    std::ofstream(root_ / "run" / "config.json") << GetParam().config;
+    std::ofstream(root_ / "edits.json") << R"({"glint_edits": 1, "selections": {}, "operations": []})";
+  }
+  void TearDown() override { fs::remove_all(root_); }
+  std::string path(const std::string& name) const { return (root_ / name).string(); }
+  fs::path root_;
+};
+
+TEST_P(RunConfigCliTest, EveryCommandRefusesItWithTheSameMessage) {
+  const std::string expected =
+      "glint: error: " + path("run/config.json") + ": " + GetParam().problem + "\n";
+  const std::string run = path("run");
+  for (const std::string& command :
+       {"train -o " + run + " --resume", "render " + run + " -o " + path("R"), "eval " + run,
+        "view " + run + " --port 0", "report " + run, "edit " + run + " " + path("edits.json") + " -o " +
+        path("edited.ply")}) {
+    Outcome outcome = runGlint(command);
+    EXPECT_EQ(outcome.status, 1) << command << "\n" << outcome.output;
+    EXPECT_EQ(outcome.output, expected) << command;
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    OutOfRange, RunConfigCliTest,
+    ::testing::Values(BadSetting{R"({"trace": {"kernel_power": 100}})", "trace.kernel_power must be in [0.25, 16]"},
+                      BadSetting{R"({"invalid_normal_length": -1})", "invalid_normal_length must be in [0, 1]"},
+                      BadSetting{R"({"backface_skip": -0.5})", "backface_skip must be non-negative"},
+                      BadSetting{R"({"bounces": 9})", "bounces must be in [0, 8]"},
+                      BadSetting{R"({"prune": {"camera_cull_region": "everywhere"}})",
+                                 R"("prune.camera_cull_region" is "everywhere"; expected "in-view" or "whole-sphere")"}));
+
+}  // namespace
+}  // namespace glint
