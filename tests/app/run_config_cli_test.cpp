@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 #include <string>
 
 #include "app/run_glint.h"
@@ -20,9 +21,13 @@ using test::Outcome;
 using test::runGlint;
 
 struct BadSetting {
+  const char* name;     // of the test case
   const char* config;   // the whole of RUN/config.json
   const char* problem;  // what the message says after the file name
 };
+
+// Test names show the case's name, not its bytes.
+void PrintTo(const BadSetting& setting, std::ostream* os) { *os << setting.name; }
 
 class RunConfigCliTest : public ::testing::TestWithParam<BadSetting> {
  protected:
@@ -55,12 +60,15 @@ TEST_P(RunConfigCliTest, EveryCommandRefusesItWithTheSameMessage) {
 
 INSTANTIATE_TEST_SUITE_P(
     OutOfRange, RunConfigCliTest,
-    ::testing::Values(BadSetting{R"({"trace": {"kernel_power": 100}})", "trace.kernel_power must be in [0.25, 16]"},
-                      BadSetting{R"({"invalid_normal_length": -1})", "invalid_normal_length must be in [0, 1]"},
-                      BadSetting{R"({"backface_skip": -0.5})", "backface_skip must be non-negative"},
-                      BadSetting{R"({"bounces": 9})", "bounces must be in [0, 8]"},
-                      BadSetting{R"({"prune": {"camera_cull_region": "everywhere"}})",
-                                 R"("prune.camera_cull_region" is "everywhere"; expected "in-view" or "whole-sphere")"}));
+    ::testing::Values(
+        BadSetting{"KernelPower", R"({"trace": {"kernel_power": 100}})", "trace.kernel_power must be in [0.25, 16]"},
+        BadSetting{"InvalidNormalLength", R"({"invalid_normal_length": -1})",
+                   "invalid_normal_length must be in [0, 1]"},
+        BadSetting{"BackfaceSkip", R"({"backface_skip": -0.5})", "backface_skip must be non-negative"},
+        BadSetting{"Bounces", R"({"bounces": 9})", "bounces must be in [0, 8]"},
+        BadSetting{"CullRegion", R"({"prune": {"camera_cull_region": "everywhere"}})",
+                   R"("prune.camera_cull_region" is "everywhere"; expected "in-view" or "whole-sphere")"}),
+    [](const ::testing::TestParamInfo<BadSetting>& info) { return std::string(info.param.name); });
 
 }  // namespace
 }  // namespace glint
