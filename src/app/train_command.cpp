@@ -30,7 +30,7 @@ struct TrainOptions {
   std::string configFile;
   bool force = false;
   TrainingSession session;
-  std::string baseline;    // a choice's spelling (config_choices.h); empty: not given
+  std::string baseline;    // the words of --baseline and --init (train/config_choices.h)
   std::string initSource;
   bool view = false;       // serve the viewer page showing the scene as it trains
   ViewerFlags viewer;

@@ -12,6 +12,7 @@
 
 #include "app/rendered_buffers.h"
 #include "app/run_glint.h"
+#include "common/tiny_run.h"
 #include "io/image.h"
 #include "train/run_folder.h"
 #include "train/training_loop.h"
@@ -51,20 +52,8 @@ class RunSettingsCliTest : public ::testing::Test {
 };
 
 TEST_F(RunSettingsCliTest, RenderOfARunIsBitForBitTheTrainersEvaluation) {
-  Outcome synth = runGlint("synth builtin:spheres -o " + (root_ / "D").string() +
-                           " --train 4 --test 2 --res 24x18 --spp 2");
-  ASSERT_EQ(synth.status, 0) << synth.output;
-
-  TrainConfig config;
-  config.dataset = (root_ / "D").string();
-  config.iters = 6;
-  config.batchRays = 256;
-  config.threads = 2;
-  config.evalEvery = 3;
-  config.saveEvery = 3;
-  config.bounces = 1;
-  config.reflectionWarmup = 2;
-  config.farField.count = 300;
+  test::makeTinyDataset(root_ / "D");
+  TrainConfig config = test::tinyTrainConfig(root_ / "D", 6);
   // The defaults are 0.7, 0.1 and 3. Six steps leave the blended normals short (about 0.01),
   // so with the default threshold no path would reflect at all.
   config.invalidNormalLength = 0.005f;

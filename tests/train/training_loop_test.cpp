@@ -7,9 +7,8 @@
 
 #include "common/expect_error.h"
 #include "core/atomic_file.h"
+#include "common/tiny_run.h"
 #include "io/temp_folder.h"
-#include "synth/builtin_scenes.h"
-#include "synth/dataset_generator.h"
 
 namespace glint {
 namespace {
@@ -41,29 +40,10 @@ class TrainingLoopTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     folder_ = new test::TempFolder();
-    SynthSettings s;
-    s.trainViews = 4;
-    s.testViews = 2;
-    s.width = 24;
-    s.height = 18;
-    s.spp = 2;
-    generateDataset(makeBuiltinScene("spheres"), s, folder_->path() / "D");
+    test::makeTinyDataset(folder_->path() / "D");
   }
   static void TearDownTestSuite() { delete folder_; }
-
-  static TrainConfig smallConfig() {
-    TrainConfig c;
-    c.dataset = (folder_->path() / "D").string();
-    c.iters = 8;
-    c.batchRays = 256;
-    c.threads = 2;
-    c.evalEvery = 4;
-    c.saveEvery = 2;
-    c.bounces = 1;
-    c.reflectionWarmup = 3;
-    c.farField.count = 200;
-    return c;
-  }
+  static TrainConfig smallConfig() { return test::tinyTrainConfig(folder_->path() / "D", 8); }
 
   static test::TempFolder* folder_;
 };
