@@ -137,8 +137,9 @@ void runEval(const EvalOptions& o) {
   std::fprintf(stderr, "glint eval: %zu Gaussians, %s tracer; %zu %s views at %dx%d, %d spp\n", source.scene.size(),
                tracer->name(), split.views.size(), o.split.c_str(), split.width, split.height, o.spp);
 
-  // Rendered as training scores its test views (train/training_eval.h): with 1 spp through
-  // the pixel centre only, which aliases edges (3 dB lower on builtin:spheres).
+  // Rendered as training scores its test views (train/training_eval.h). With --spp 1 the
+  // radiance goes through the pixel centre only, which aliases edges (3 dB lower on
+  // builtin:spheres than jittered samples).
   const RenderSettings settings = scoringSettings(o.spp, rendering.path, o.seed);
   fs::path imagesFolder = output.parent_path() / o.split;
   std::vector<ViewMetrics> views(split.views.size());

@@ -208,7 +208,10 @@ void addTrainCommand(CLI::App& app) {
   const TrainConfig defaults;
   cmd->add_option("dataset", o->dataset, "Dataset folder (transforms_train.json, train/...); optional with --resume");
   cmd->add_option("-o,--output", o->output, "Run folder to create (or to continue with --resume)")->required();
-  cmd->add_option("--iters", o->config.iters, "Training steps")->check(CLI::Range(kItersRange.min, kItersRange.max))->default_val(defaults.iters);
+  cmd->add_option("--iters", o->config.iters, "Training steps (with --resume: the run's, unless given; the other "
+                                                "settings of a resumed run are always its config.json's)")
+      ->check(CLI::Range(kItersRange.min, kItersRange.max))
+      ->default_val(defaults.iters);
   cmd->add_option("--config", o->configFile, "JSON file of hyper-parameters (the layout of RUN/config.json); flags "
                                              "given explicitly override it")->check(CLI::ExistingFile);
   cmd->add_option("--seed", o->config.seed, "Seed of the ray batches")->default_val(defaults.seed);

@@ -12,6 +12,7 @@
 
 #include "app/run_glint.h"
 #include "app/small_cloud.h"
+#include "io/temp_folder.h"
 
 namespace glint {
 namespace {
@@ -69,6 +70,20 @@ INSTANTIATE_TEST_SUITE_P(
         BadSetting{"CullRegion", R"({"prune": {"camera_cull_region": "everywhere"}})",
                    R"("prune.camera_cull_region" is "everywhere"; expected "in-view" or "whole-sphere")"}),
     [](const ::testing::TestParamInfo<BadSetting>& info) { return std::string(info.param.name); });
+
+// A flag over the run's settings is checked by the same rule as config.json.
+TEST(RunConfigFlags, AreCheckedByTheSameRule) {
+  test::TempFolder folder;
+  fs::create_directories(folder.path() / "run");
+  test::writeSmallCloud(folder.path() / "run" / "scene.ply");
+  std::ofstream(folder.path() / "run" / "config.json") << "{}";
+  for (const char* command : {"render", "eval"}) {
+    Outcome outcome = runGlint(std::string(command) + " " + (folder.path() / "run").string() +
+                               " --kernel-power 100 -o " + (folder.path() / "out").string());
+    EXPECT_EQ(outcome.status, 1) << outcome.output;
+    EXPECT_EQ(outcome.output, "glint: error: command line: trace.kernel_power must be in [0.25, 16]\n") << command;
+  }
+}
 
 }  // namespace
 }  // namespace glint
