@@ -1,8 +1,8 @@
 // The training loop: set-up, steps, test-view scores, log rows, checkpoints.
 #include "train/training_loop.h"
 
+#include <algorithm>
 #include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <memory>
