@@ -154,8 +154,8 @@ int main(int argc, char** argv) {
   // The cameras `glint view` offers: the dataset's training (then test) cameras, the first
   // of them the start camera; else the overview.
   options.initialCamera = overviewCamera(source.scene);
-  if (!source.dataset.empty() && std::filesystem::exists(source.dataset)) {
-    Dataset dataset = Dataset::open(source.dataset, /*requireBuffers=*/false);
+  if (!source.settings.dataset.empty() && std::filesystem::exists(source.settings.dataset)) {
+    Dataset dataset = Dataset::open(source.settings.dataset, /*requireBuffers=*/false);
     for (const DatasetSplit* split : {&dataset.train(), &dataset.test()})
       for (size_t i = 0; i < split->views.size(); ++i)
         options.trainingCameras.push_back(
@@ -170,7 +170,8 @@ int main(int argc, char** argv) {
     still.emplace_back(e.name, e.camera);
   }
   const size_t sceneSize = source.scene.size();
-  ViewerServer server(options, std::move(source.scene), source.trace);
+  options.path = source.settings.path();  // as `glint view RUN` traces: the run's path settings
+  ViewerServer server(options, std::move(source.scene), source.settings.trace);
   const int port = server.bind();
   server.start();
   PageClient page(port, server.token());

@@ -28,6 +28,7 @@
 #include "render/denoise.h"
 #include "render/gaussian_renderer.h"
 #include "scene/dataset.h"
+#include "train/training_eval.h"
 
 namespace glint {
 
@@ -118,8 +119,9 @@ void runEval(const EvalOptions& o) {
   if (!o.region.empty()) region = parseBox(o.region, "--region");
   SceneSource source = loadSceneSource(o.run);
   fs::path output = metricsPath(o);
-  TraceSettings trace = o.trace.apply(source.trace);
-  fs::path datasetPath = o.dataset.empty() ? source.dataset : fs::path(o.dataset);
+  const SceneRendering rendering = o.trace.resolve(source.settings);
+  const TraceSettings& trace = rendering.trace;
+  fs::path datasetPath = o.dataset.empty() ? fs::path(source.settings.dataset) : fs::path(o.dataset);
   if (datasetPath.empty())
     throw Error(o.run, "names no dataset to compare with (only a training run's config.json can): pass --dataset");
 
@@ -129,21 +131,16 @@ void runEval(const EvalOptions& o) {
 
   // Radiance with spp samples of 1 + bounces segments, and the pixel-centre G-buffer pass.
   double workRays = double(split.views.size()) * split.width * split.height *
-                    (double(o.spp) * (1 + o.trace.path().bounces) + (o.spp > 1 ? 1 : 0));
+                    (double(o.spp) * (1 + rendering.path.bounces) + (o.spp > 1 ? 1 : 0));
   std::unique_ptr<GaussianTracer> tracer =
-      o.edits.prepareTracer(source.scene, trace, o.trace.tracer(), split.camera(0), workRays, "glint eval");
+      o.edits.prepareTracer(source.scene, trace, rendering.tracer, split.camera(0), workRays, "glint eval");
   std::fprintf(stderr, "glint eval: %zu Gaussians, %s tracer; %zu %s views at %dx%d, %d spp\n", source.scene.size(),
                tracer->name(), split.views.size(), o.split.c_str(), split.width, split.height, o.spp);
 
-  // The dataset's radiance buffers average the whole pixel and its G-buffers come from the
-  // pixel-centre ray (docs/data-format.md). So radiance is rendered with spp jittered samples
-  // (with 1 through the centre only, which aliases edges: 3 dB lower on builtin:spheres),
-  // and the G-buffers always from one pixel-centre ray.
-  RenderSettings settings;
-  settings.spp = o.spp;
-  settings.jitter = o.spp > 1;
-  settings.seed = o.seed;
-  settings.path = o.trace.path();
+  // Rendered as training scores its test views (train/training_eval.h). With --spp 1 the
+  // radiance goes through the pixel centre only, which aliases edges (3 dB lower on
+  // builtin:spheres than jittered samples).
+  const RenderSettings settings = scoringSettings(o.spp, rendering.path, o.seed);
   fs::path imagesFolder = output.parent_path() / o.split;
   std::vector<ViewMetrics> views(split.views.size());
   std::vector<RegionMetrics> regions(region ? split.views.size() : 0);
@@ -152,13 +149,7 @@ void runEval(const EvalOptions& o) {
     ProgressBar progress("eval", int64_t(split.views.size()), "views");
     for (size_t v = 0; v < split.views.size(); ++v) {
       ActivityScope activity("rendering view " + split.views[v].filePath);
-      ViewBuffers rendered = renderGaussianView(*tracer, split.camera(v), settings, uint64_t(v));
-      if (settings.jitter) {
-        RenderSettings centre;
-        centre.jitter = false;
-        ViewBuffers gbuffers = renderGaussianView(*tracer, split.camera(v), centre, uint64_t(v));
-        for (Buffer b : {Buffer::Depth, Buffer::Normal, Buffer::Roughness, Buffer::F0}) rendered[b] = gbuffers[b];
-      }
+      ViewBuffers rendered = renderScoredView(*tracer, split.camera(v), settings, uint64_t(v));
       denoisePasses(o.denoise, rendered);
       ViewBuffers truth = dataset.loadView(split, v);
       views[v] = evaluateView(rendered, truth);
@@ -179,13 +170,16 @@ void runEval(const EvalOptions& o) {
       {"width", split.width},
       {"height", split.height},
       {"spp", o.spp},
-      {"bounces", o.trace.path().bounces},
+      {"bounces", rendering.path.bounces},
       {"denoise", o.denoise},
       {"tracer", tracer->name()},
       {"trace",
        {{"kernel_power", trace.kernelPower},
         {"alpha_min", trace.alphaMin},
-        {"min_transmittance", trace.minTransmittance}}},
+        {"min_transmittance", trace.minTransmittance},
+        {"exact_tail", trace.exactTail}}},
+      {"invalid_normal_length", rendering.path.invalidNormalLength},
+      {"backface_skip", rendering.path.backfaceSkip},
       {"seconds", seconds},
       {"mean", toJson(mean)},
   };

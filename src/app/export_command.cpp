@@ -8,15 +8,13 @@
 #include "app/commands.h"
 #include "core/error.h"
 #include "scene/gaussian_ply.h"
+#include "train/run_folder.h"
 
 namespace glint {
 
 namespace {
 
 namespace fs = std::filesystem;
-
-// A training run folder holds its scene under this name.
-constexpr const char* kRunSceneName = "scene.ply";
 
 struct ExportOptions {
   std::string input;
@@ -34,11 +32,12 @@ PlyLayout layoutFromName(const std::string& name) {
 // The PLY file of the input: the path itself, or scene.ply inside a run folder.
 fs::path scenePath(const fs::path& input) {
   if (!fs::is_directory(input)) return input;
-  fs::path scene = input / kRunSceneName;
+  fs::path scene = RunFolder(input).sceneFile();
+  const std::string name = scene.filename().string();
   if (!fs::is_regular_file(scene)) {
-    throw Error(input.string(), std::string("is a folder without ") + kRunSceneName +
-                                    " (give a Gaussian scene .ply, or a training run folder that contains " +
-                                    kRunSceneName + ")");
+    throw Error(input.string(), "is a folder without " + name +
+                                    " (give a Gaussian scene .ply, or a training run folder that contains " + name +
+                                    ")");
   }
   return scene;
 }

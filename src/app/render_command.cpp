@@ -141,8 +141,9 @@ void runRender(const RenderOptions& o) {
   if (o.output.empty() && o.debugPixel.empty()) throw Error("glint render", "needs an output folder: pass -o OUT");
   SceneSource source = loadSceneSource(o.scene);
   GaussianScene& scene = source.scene;
-  TraceSettings trace = o.trace.apply(source.trace);
-  fs::path datasetPath = o.dataset.empty() ? source.dataset : fs::path(o.dataset);
+  const SceneRendering rendering = o.trace.resolve(source.settings);
+  const TraceSettings& trace = rendering.trace;
+  fs::path datasetPath = o.dataset.empty() ? fs::path(source.settings.dataset) : fs::path(o.dataset);
   if (datasetPath.empty())
     throw Error(o.scene, "names no dataset to take the cameras from (only a training run's config.json can): "
                          "pass --dataset");
@@ -179,14 +180,15 @@ void runRender(const RenderOptions& o) {
 
   auto start = std::chrono::steady_clock::now();
   Camera probeCamera{cameras[0], split.cameraAngleX, width, height};
-  double workRays = double(cameras.size()) * width * height * o.spp * (1 + o.trace.path().bounces);
+  double workRays = double(cameras.size()) * width * height * o.spp * (1 + rendering.path.bounces);
   std::unique_ptr<GaussianTracer> tracer =
-      o.edits.prepareTracer(scene, trace, o.trace.tracer(), probeCamera, workRays, "glint render");
+      o.edits.prepareTracer(scene, trace, rendering.tracer, probeCamera, workRays, "glint render");
   double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr,
                "glint render: %zu Gaussians, %s tracer ready in %.3f s (p = %g, alpha_min = %g, "
-               "min_transmittance = %g); %zu %s at %dx%d, %d spp%s\n",
+               "min_transmittance = %g, %d bounces); %zu %s at %dx%d, %d spp%s\n",
                scene.size(), tracer->name(), buildSeconds, trace.kernelPower, trace.alphaMin, trace.minTransmittance,
+               rendering.path.bounces,
                cameras.size(), (pathKind ? o.path + " frames" : split.name + " views").c_str(), width, height, o.spp,
                o.progressive ? " (progressive)" : "");
 
@@ -194,7 +196,7 @@ void runRender(const RenderOptions& o) {
   settings.spp = o.spp;
   settings.jitter = !o.noJitter;
   settings.seed = o.seed;
-  settings.path = o.trace.path();
+  settings.path = rendering.path;
   if (!o.debugPixel.empty()) {
     Vec2i p = parsePixel(o.debugPixel, "--debug-pixel");
     if (p.x < 0 || p.y < 0 || p.x >= width || p.y >= height)
@@ -237,7 +239,7 @@ void addRenderCommand(CLI::App& app) {
                 "the blended roughness and F0); render = diffuse + specular.");
   cmd->add_option("scene", o->scene,
                   "Gaussian scene (.ply in Glint's or the 3DGS layout), or a training run folder (scene.ply, and "
-                  "config.json for the dataset and trace settings)")
+                  "config.json for the dataset and the trace and path settings it was trained with)")
       ->required();
   cmd->add_option("--dataset", o->dataset,
                   "Dataset whose cameras to use (only transforms_*.json is needed); default: the run's dataset");

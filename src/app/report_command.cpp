@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "io/image.h"
 #include "io/json_file.h"
 #include "scene/dataset.h"
+#include "train/run_folder.h"
 
 namespace glint {
 
@@ -85,11 +87,11 @@ std::string viewsMismatch(const EvalMetrics& m, const DatasetSplit& split, const
 }
 
 // The dataset: --dataset, else the "dataset" of RUN/config.json (written by glint train).
-fs::path datasetFolder(const ReportOptions& o, const fs::path& configFile, const nlohmann::json& config) {
+fs::path datasetFolder(const ReportOptions& o, const fs::path& configFile, const std::optional<TrainConfig>& config) {
   if (!o.dataset.empty()) return o.dataset;
-  if (!config.contains("dataset") || !config["dataset"].is_string())
-    throw Error(configFile.string(), "key \"dataset\" is missing or not a string; pass --dataset");
-  return config["dataset"].get<std::string>();
+  if (!config || config->dataset.empty())
+    throw Error(configFile.string(), "key \"dataset\" is missing; pass --dataset");
+  return config->dataset;
 }
 
 // The ground truth and our rendering of one view's radiance passes.
@@ -171,7 +173,8 @@ std::vector<OtherEvaluation> otherEvaluations(const fs::path& primary, const Dat
 }
 
 std::vector<std::pair<std::string, std::string>> headerFacts(const ReportOptions& o, const fs::path& datasetPath,
-                                                             const DatasetSplit& split, const nlohmann::json& config,
+                                                             const DatasetSplit& split,
+                                                             const std::optional<TrainConfig>& config,
                                                              const TrainingLog& log, const EvalMetrics& metrics) {
   std::vector<std::pair<std::string, std::string>> facts;
   facts.emplace_back("run", o.run);
@@ -179,10 +182,7 @@ std::vector<std::pair<std::string, std::string>> headerFacts(const ReportOptions
                                     std::to_string(split.views.size()) + " views, " + std::to_string(split.width) +
                                     "x" + std::to_string(split.height) + ")");
   std::string steps = log.rows() == 0 ? "none logged" : formatMetric(lastValue(log, "step"), 0);
-  if (config.contains("iters") && config["iters"].is_number_integer())
-    steps += " of " + std::to_string(config["iters"].get<int64_t>());
-  if (config.contains("bounces") && config["bounces"].is_number_integer())
-    steps += ", bounces " + std::to_string(config["bounces"].get<int>());
+  if (config) steps += " of " + std::to_string(config->iters) + ", bounces " + std::to_string(config->path().bounces);
   facts.emplace_back("training steps", steps);
   facts.emplace_back("Gaussians at the end", formatMetric(lastValue(log, "gaussians"), 0));
   facts.emplace_back("training wall time", formatSeconds(lastValue(log, "wall_s")));
@@ -197,32 +197,31 @@ std::vector<std::pair<std::string, std::string>> headerFacts(const ReportOptions
 }
 
 void runReport(const ReportOptions& o) {
-  const fs::path run = o.run;
-  if (!fs::is_directory(run)) throw Error(o.run, "is not a training run folder");
-  const fs::path configFile = run / "config.json", logFile = run / "log.csv",
-                 metricsFile = run / "eval" / "metrics.json";
+  const RunFolder run(o.run);
+  if (!fs::is_directory(run.root())) throw Error(o.run, "is not a training run folder");
+  const fs::path configFile = run.configFile(), logFile = run.logFile(), metricsFile = run.metricsFile();
   const std::string trainHint = "it is written by `glint train DATASET -o " + o.run + "`";
 
   // The report is derived from the run, so RUN/report.html is simply rewritten; a file
   // elsewhere may be the user's own.
-  const fs::path defaultOutput = run / "report.html";
+  const fs::path defaultOutput = run.reportFile();
   const fs::path output = o.output.empty() ? defaultOutput : fs::path(o.output);
   if (!o.output.empty() && fs::exists(output) && !o.force &&
       fs::weakly_canonical(output) != fs::weakly_canonical(defaultOutput))
     throw Error(o.output, "exists; pass --force to overwrite it");
 
-  nlohmann::json config = nlohmann::json::object();
-  if (o.dataset.empty() || fs::exists(configFile)) {
+  std::optional<TrainConfig> config;
+  if (o.dataset.empty() || run.hasConfig()) {
     requireInput(configFile, trainHint);
-    config = readJsonFile(configFile);
+    config = run.readConfig();
   }
   requireInput(logFile, trainHint);
   TrainingLog log = readTrainingLog(logFile, {"step", "loss", "gaussians", "wall_s"});
   requireInput(metricsFile, "run `glint eval " + o.run + " --save-images` first");
   EvalMetrics metrics = readEvalMetrics(metricsFile);
   std::error_code noTime;
-  if (fs::exists(run / "scene.ply") &&
-      fs::last_write_time(run / "scene.ply", noTime) > fs::last_write_time(metricsFile, noTime))
+  if (fs::exists(run.sceneFile()) &&
+      fs::last_write_time(run.sceneFile(), noTime) > fs::last_write_time(metricsFile, noTime))
     std::fprintf(stderr, "glint report: warning: %s is older than scene.ply; re-run `glint eval %s --save-images`\n",
                  metricsFile.string().c_str(), o.run.c_str());
 
@@ -233,7 +232,7 @@ void runReport(const ReportOptions& o) {
     throw Error(metricsFile.string(), mismatch + "; was it evaluated on another dataset?");
 
   HtmlReportContent content;
-  content.title = "Glint report: " + run.lexically_normal().filename().string();
+  content.title = "Glint report: " + run.root().lexically_normal().filename().string();
   if (content.title == "Glint report: ") content.title += o.run;
   content.facts = headerFacts(o, datasetPath, split, config, log, metrics);
   content.mean = metrics.mean;

@@ -1,26 +1,25 @@
 // Where a command's Gaussian scene comes from: a .ply file, or a training run folder whose
-// config.json also names the dataset and the trace settings the scene was trained with.
+// config.json also names the dataset and the settings the scene was trained with.
 #pragma once
 
 #include <filesystem>
 
-#include "raytrace/trace_settings.h"
 #include "scene/gaussians.h"
+#include "train/train_config.h"
 
 namespace glint {
 
 struct SceneSource {
   GaussianScene scene;
-  TraceSettings trace;            // the run's settings, or the defaults for a bare .ply
-  std::filesystem::path dataset;  // the run's dataset; empty if unknown
+  // The run's settings (RunFolder::readConfig), or a new run's defaults for a bare .ply or
+  // a run folder without config.json: settings.trace and settings.path() say how the
+  // scene renders, settings.dataset (empty if unknown) what it was trained on.
+  TrainConfig settings;
 };
 
-// p is either a Gaussian scene .ply (read with default TraceSettings), or a training run
-// folder: RUN/scene.ply is required, and RUN/config.json is read if present, taking
-// "dataset" (a path string, kept as written: the trainer writes it absolute) and
-// "trace": {"kernel_power", "alpha_min", "min_transmittance"} (numbers, each optional,
-// within the ranges the command-line flags accept) and "exact_tail" (a boolean). Throws Error naming the folder or the
-// file that is missing, corrupt or out of range.
+// p is either a Gaussian scene .ply, or a training run folder: RUN/scene.ply is required,
+// and RUN/config.json is read if present. Throws Error naming the folder or the file that
+// is missing, corrupt or out of range (the same message as every command reading a run).
 SceneSource loadSceneSource(const std::filesystem::path& p);
 
 }  // namespace glint

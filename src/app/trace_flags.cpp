@@ -1,33 +1,40 @@
 // Declaring the trace-setting flags once and applying only those the user gave.
 #include "app/trace_flags.h"
 
+#include <cstdio>
+
 #include "raytrace/gaussian_tracer.h"
 
 namespace glint {
 
 void TraceFlags::add(CLI::App* cmd) {
   cmd_ = cmd;
-  cmd->add_option("--kernel-power", flags_.kernelPower,
-                  "Generalised Gaussian exponent p (1 = ordinary Gaussian); default: the training run's, else this")
-      ->check(CLI::Range(0.25, 16.0))
-      ->capture_default_str();
-  cmd->add_option("--alpha-min", flags_.alphaMin,
-                  "Hits with alpha below this are ignored; sets the proxy size. Default: the run's, else this")
-      ->check(CLI::Range(1e-6, 0.5))
-      ->capture_default_str();
-  cmd->add_option("--min-transmittance", flags_.minTransmittance,
-                  "Compositing stops below this transmittance; default: the run's, else this")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
-  cmd->add_option("--bounces", path_.bounces,
+  // The values below are never shown as defaults: a run's own are (TrainConfig's for a .ply).
+  const TrainConfig defaults;
+  auto fallback = [](double value) {
+    char text[64];
+    std::snprintf(text, sizeof(text), " (%g for a bare .ply)", value);
+    return std::string(text);
+  };
+  cmd->add_option("--kernel-power", trace_.kernelPower,
+                  "Generalised Gaussian exponent p (1 = ordinary Gaussian); default: the run's" +
+                      fallback(defaults.trace.kernelPower));
+  cmd->add_option("--alpha-min", trace_.alphaMin,
+                  "Hits with alpha below this are ignored; sets the proxy size. Default: the run's" +
+                      fallback(defaults.trace.alphaMin));
+  cmd->add_option("--min-transmittance", trace_.minTransmittance,
+                  "Compositing stops below this transmittance; default: the run's" +
+                      fallback(defaults.trace.minTransmittance));
+  cmd->add_option("--bounces", bounces_,
                   "Reflection segments after the first (0 = diffuse only; specular = their sum, render = diffuse + "
-                  "specular)")
-      ->check(CLI::Range(0, 64))
-      ->capture_default_str();
-  cmd->add_option("--invalid-normal", path_.invalidNormalLength,
-                  "A path ends where the blended normal is shorter than this before normalisation")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+                  "specular); default: the run's" + fallback(defaults.path().bounces))
+      ->check(CLI::Range(kRenderBouncesRange.min, kRenderBouncesRange.max));
+  cmd->add_option("--invalid-normal", invalidNormalLength_,
+                  "A path ends where the blended normal is shorter than this before normalisation; default: the "
+                  "run's invalid_normal_length" + fallback(defaults.invalidNormalLength));
+  cmd->add_option("--backface-skip", backfaceSkip_,
+                  "Reflection rays ignore back-facing Gaussians this close to their origin; default: the run's "
+                  "backface_skip" + fallback(defaults.backfaceSkip));
   cmd->add_option("--tracer", tracer_, "Gaussian tracer: " + [] {
     std::string names;
     for (const std::string& n : gaussianTracerNames()) names += (names.empty() ? "" : ", ") + n;
@@ -35,13 +42,18 @@ void TraceFlags::add(CLI::App* cmd) {
   }())->capture_default_str();
 }
 
-TraceSettings TraceFlags::apply(TraceSettings base) const {
+SceneRendering TraceFlags::resolve(TrainConfig run) const {
   // count() says whether the flag was on the command line; the stored value alone cannot
   // tell "--kernel-power 3" from the default 3.
-  if (cmd_->get_option("--kernel-power")->count() > 0) base.kernelPower = flags_.kernelPower;
-  if (cmd_->get_option("--alpha-min")->count() > 0) base.alphaMin = flags_.alphaMin;
-  if (cmd_->get_option("--min-transmittance")->count() > 0) base.minTransmittance = flags_.minTransmittance;
-  return base;
+  if (given("--kernel-power")) run.trace.kernelPower = trace_.kernelPower;
+  if (given("--alpha-min")) run.trace.alphaMin = trace_.alphaMin;
+  if (given("--min-transmittance")) run.trace.minTransmittance = trace_.minTransmittance;
+  if (given("--invalid-normal")) run.invalidNormalLength = invalidNormalLength_;
+  if (given("--backface-skip")) run.backfaceSkip = backfaceSkip_;
+  run.validate("command line");
+  SceneRendering rendering{run.trace, run.path(), tracer_};
+  if (given("--bounces")) rendering.path.bounces = bounces_;
+  return rendering;
 }
 
 }  // namespace glint

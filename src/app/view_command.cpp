@@ -26,7 +26,7 @@ struct ViewOptions {
 
 void runView(const ViewOptions& o) {
   SceneSource source = loadSceneSource(o.scene);
-  fs::path datasetPath = o.dataset.empty() ? source.dataset : fs::path(o.dataset);
+  fs::path datasetPath = o.dataset.empty() ? fs::path(source.settings.dataset) : fs::path(o.dataset);
   std::optional<Dataset> dataset;
   if (!datasetPath.empty()) dataset = Dataset::open(datasetPath, /*requireBuffers=*/false);
   // Saved edits and exports go into a viewer/ folder beside what was opened (the run folder, or
@@ -35,9 +35,10 @@ void runView(const ViewOptions& o) {
   fs::path output = opened / kViewerFolderName;
   ViewerOptions options = makeViewerOptions(o.viewer, dataset, source.scene, output);
   options.maxGaussians = o.maxGaussians;
+  options.path = source.settings.path();  // the page starts at the run's bounces
   std::fprintf(stderr, "glint view: %zu Gaussians at %dx%d; saving edits into %s\n", source.scene.size(),
                options.width, options.height, output.string().c_str());
-  ViewerServer server(std::move(options), std::move(source.scene), source.trace);
+  ViewerServer server(std::move(options), std::move(source.scene), source.settings.trace);
   server.bind();
   server.start();
   std::printf("glint view: open %s (Ctrl-C stops)\n", server.url().c_str());

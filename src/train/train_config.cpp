@@ -133,6 +133,15 @@ bool numberFits(const nlohmann::json& v) {
   return std::abs(v.get<double>()) <= double(std::numeric_limits<Field>::max());
 }
 
+// The JSON form of one field: a choice enum is written as its word.
+template <typename Field>
+nlohmann::json jsonValue(const Field& field) {
+  if constexpr (Choice<Field>)
+    return choiceName(field);
+  else
+    return field;
+}
+
 std::string keyName(const char* section, const char* key) {
   return std::string(section).empty() ? std::string(key) : std::string(section) + "." + key;
 }
@@ -147,9 +156,9 @@ nlohmann::json toJson(const TrainConfig& config) {
   nlohmann::json j = nlohmann::json::object();
   forEachField(config, [&](const char* section, const char* key, const auto& field) {
     if (std::string(section).empty())
-      j[key] = field;
+      j[key] = jsonValue(field);
     else
-      j[section][key] = field;
+      j[section][key] = jsonValue(field);
   });
   return j;
 }
@@ -170,7 +179,7 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
     if (v == node->end()) return;
     using Field = std::decay_t<decltype(field)>;
     bool typeOk = kIsVector<Field>                    ? v->is_array()
-                  : std::is_same_v<Field, std::string> ? v->is_string()
+                  : std::is_same_v<Field, std::string> || Choice<Field> ? v->is_string()
                   : std::is_same_v<Field, bool>      ? v->is_boolean()
                   : std::is_integral_v<Field>        ? v->is_number_integer()
                                                      : v->is_number();
@@ -187,6 +196,17 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
       std::string problem = "\"";
       problem.append(keyName(section, key)).append("\" is ").append(v->dump()).append(", out of the range of its type");
       throw Error(source, problem);
+    }
+    if constexpr (Choice<Field>) {
+      std::optional<Field> choice = choiceFromName<Field>(v->get<std::string>());
+      if (!choice) {
+        std::string problem = "\"";
+        problem.append(keyName(section, key)).append("\" is ").append(printableText(v->dump()));
+        problem.append("; expected ").append(choiceList<Field>());
+        throw Error(source, problem);
+      }
+      field = *choice;
+      return;
     }
     try {
       field = v->get<Field>();
@@ -225,8 +245,7 @@ void TrainConfig::validate(const std::string& source) const {
   inRange(saveEvery, kEveryStepsRange, "save_every");
   inRange(threads, kThreadsRange, "threads");
   inRange(bounces, kBouncesRange, "bounces");
-  require(baseline == "none" || baseline == "rgb", source, "baseline must be \"none\" or \"rgb\"");
-  if (baseline == "rgb")
+  if (baseline == Baseline::Rgb)
     require(bounces == 0 && loss.depth == 0 && loss.normal == 0 && loss.roughness == 0 && loss.f0 == 0 &&
                 loss.specular == 0,
             source, "baseline \"rgb\" trains on the render buffer alone: bounces and the G-buffer and specular "
@@ -255,10 +274,6 @@ void TrainConfig::validate(const std::string& source) const {
   require(prune.weightThreshold >= 0, source, "prune.weight_threshold must be non-negative");
   require(prune.cameraSphereFactor >= 0 && prune.cameraSphereFactor < 1, source,
           "prune.camera_sphere_factor must be in [0, 1)");
-  require(prune.cameraCullRegion == "in-view" || prune.cameraCullRegion == "whole-sphere", source,
-          "prune.camera_cull_region must be \"in-view\" or \"whole-sphere\"");
-  require(initSource == "auto" || initSource == "depth" || initSource == "point-cloud", source,
-          "init.source must be \"auto\", \"depth\" or \"point-cloud\"");
   require(init.pixelStride >= 0 && init.pixelStride <= 16384, source,
           "init.pixel_stride must be in [0, 16384] (0 = automatic)");
   inRange(init.maxPixelSamples, {1, kMaxInitialSamples}, "init.max_pixel_samples");

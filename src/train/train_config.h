@@ -10,6 +10,7 @@
 
 #include "raytrace/trace_settings.h"
 #include "render/gaussian_path.h"
+#include "train/config_choices.h"
 #include "train/dense_init.h"
 #include "train/far_field.h"
 
@@ -66,17 +67,20 @@ struct PruneSettings {
   // "in-view" culls only the part of a sphere its camera sees; "whole-sphere" is the
   // paper's rule, which also removes real walls behind cameras inside a room
   // (train/camera_culling.h).
-  std::string cameraCullRegion = "in-view";
+  CullRegion cameraCullRegion = CullRegion::SphereInView;
 };
 
 // The allowed range of an integer setting, shared by the flag of `glint train` and the
-// field of a config file, so that neither path accepts what the other refuses.
+// field of a config file, so that neither path accepts what the other refuses. Every other
+// range is checked in TrainConfig::validate alone.
 struct IntRange {
   int64_t min, max;
 };
 inline constexpr IntRange kItersRange{1, 100'000'000};
 inline constexpr IntRange kThreadsRange{0, 1024};
 inline constexpr IntRange kBouncesRange{0, 8};
+// `glint render` and `glint eval --bounces` may follow longer paths than training does.
+inline constexpr IntRange kRenderBouncesRange{0, 64};
 inline constexpr IntRange kBatchRaysRange{1, 1 << 24};
 inline constexpr IntRange kBatchViewsRange{1, 1 << 20};
 inline constexpr IntRange kEveryStepsRange{1, 100'000'000};  // eval_every, save_every, prune.every, decay steps
@@ -93,7 +97,7 @@ struct TrainConfig {
   int bounces = 2;   // reflected segments trained after the warm-up (0 = first segment only)
   // "none" trains the method; "rgb" is the ray-traced RGB-only baseline: the first
   // segment's colour is fitted to the render buffer alone (no G-buffers, no reflections).
-  std::string baseline = "none";
+  Baseline baseline = Baseline::None;
   int reflectionWarmup = 750;  // steps of first-segment training before reflections start
   float invalidNormalLength = 0.7f;  // paths end at shorter blended normals
   float backfaceSkip = 0.1f;         // reflection rays ignore back faces this close
@@ -108,7 +112,7 @@ struct TrainConfig {
   PruneSettings prune;
   // Dense initialisation (appendix A.3): "auto" (point_cloud_dense.ply if present, else
   // the depth buffers), "depth" or "point-cloud", and the settings of either.
-  std::string initSource = "auto";
+  InitChoice initSource = InitChoice::Auto;
   DenseInitSettings init;
   FarFieldSettings farField;  // added when reflections start (bounces > 0)
   // Early termination, as in rendering: the exact final transmittance of the A.2 tail
@@ -119,10 +123,10 @@ struct TrainConfig {
   // at step 500 rose from 0.031 to 0.055. "exact_tail": true restores the exact T_f.
   TraceSettings trace;
 
-  // The path settings of rendering and of the reflection loss.
+  // The path settings of rendering and of the reflection loss: how the run renders.
   PathSettings path() const {
     PathSettings p;
-    p.bounces = baseline == "rgb" ? 0 : bounces;
+    p.bounces = baseline == Baseline::Rgb ? 0 : bounces;
     p.invalidNormalLength = invalidNormalLength;
     p.backfaceSkip = backfaceSkip;
     return p;
@@ -133,8 +137,8 @@ struct TrainConfig {
 };
 
 nlohmann::json toJson(const TrainConfig& config);
-// Overrides the fields present in json; unknown keys and wrong types are errors naming
-// `source` (a file name) and the key.
+// Overrides the fields present in json; unknown keys, wrong types and unknown spellings of
+// a choice are errors naming `source` (a file name) and the key; then validates.
 void applyJson(const nlohmann::json& json, TrainConfig* config, const std::string& source);
 TrainConfig readTrainConfig(const std::filesystem::path& path);  // defaults + the file
 

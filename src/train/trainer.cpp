@@ -26,7 +26,7 @@ struct Trainer::Slot {
 
 namespace {
 CullRegion cullRegion(const PruneSettings& p) {
-  return p.cameraCullRegion == "whole-sphere" ? CullRegion::WholeSphere : CullRegion::SphereInView;
+  return p.cameraCullRegion;
 }
 }  // namespace
 

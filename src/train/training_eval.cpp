@@ -1,12 +1,32 @@
-// Rendering and scoring the test views during training.
+// Rendering views to score them, and scoring the test views during training.
 #include "train/training_eval.h"
 
 #include <cmath>
 
 #include "eval/image_metrics.h"
-#include "render/gaussian_renderer.h"
 
 namespace glint {
+
+ViewBuffers renderScoredView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
+                             uint64_t viewKey) {
+  ViewBuffers rendered = renderGaussianView(tracer, camera, settings, viewKey);
+  if (settings.jitter) {
+    RenderSettings centre;
+    centre.jitter = false;
+    ViewBuffers gbuffers = renderGaussianView(tracer, camera, centre, viewKey);
+    for (Buffer b : {Buffer::Depth, Buffer::Normal, Buffer::Roughness, Buffer::F0}) rendered[b] = gbuffers[b];
+  }
+  return rendered;
+}
+
+RenderSettings scoringSettings(int spp, const PathSettings& path, uint64_t seed) {
+  RenderSettings settings;
+  settings.spp = spp;
+  settings.jitter = spp > 1;
+  settings.seed = seed;
+  settings.path = path;
+  return settings;
+}
 
 TestViews TestViews::load(const Dataset& dataset, const DatasetSplit& split, int maxViews) {
   TestViews t;
@@ -22,16 +42,17 @@ TestViews TestViews::load(const Dataset& dataset, const DatasetSplit& split, int
   return t;
 }
 
-TestScore TestViews::score(const GaussianTracer& tracer, int spp) const {
+ViewBuffers TestViews::render(const GaussianTracer& tracer, size_t k, int spp, const PathSettings& path) const {
+  return renderScoredView(tracer, cameras_[k], scoringSettings(spp, path), uint64_t(k));
+}
+
+TestScore TestViews::score(const GaussianTracer& tracer, int spp, const PathSettings& path) const {
+  PathSettings firstSegment = path;
+  firstSegment.bounces = 0;
   TestScore s;
-  RenderSettings pixel, centre;
-  pixel.spp = spp;
-  pixel.jitter = spp > 1;
-  centre.jitter = false;
   for (size_t v = 0; v < cameras_.size(); ++v) {
-    ViewBuffers rendered = renderGaussianView(tracer, cameras_[v], pixel, uint64_t(v));
+    ViewBuffers rendered = render(tracer, v, spp, firstSegment);
     s.diffusePsnr += psnrTonemapped8Bit(rendered[Buffer::Diffuse], diffuse_[v]);
-    if (pixel.jitter) rendered = renderGaussianView(tracer, cameras_[v], centre, uint64_t(v));
     double angle = normalAngleDegrees(rendered[Buffer::Normal], normal_[v], depth_[v]);
     s.normalDegrees += std::isfinite(angle) ? angle : 0.0;
   }

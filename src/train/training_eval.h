@@ -1,15 +1,28 @@
-// The quick test-view score logged during training: diffuse PSNR on the paper's tonemapped
-// 8-bit images and the mean normal error, from pixel-centre renders of the test views.
+// How a trained scene is rendered to be scored against a dataset (training's quick test-view
+// score and `glint eval`), and that quick score: diffuse PSNR on the paper's tonemapped
+// 8-bit images and the mean normal error.
 #pragma once
 
 #include <vector>
 
 #include "raytrace/gaussian_tracer.h"
+#include "render/gaussian_renderer.h"
 #include "scene/buffers.h"
 #include "scene/camera.h"
 #include "scene/dataset.h"
 
 namespace glint {
+
+// A dataset's radiance buffers average the whole pixel and its G-buffers come from the
+// pixel-centre ray (docs/data-format.md). So the radiance passes are rendered with
+// `settings` (jittered samples when settings.jitter) and, when jittered, the G-buffers
+// (depth, normal, roughness, F0) again from one pixel-centre ray.
+ViewBuffers renderScoredView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
+                             uint64_t viewKey);
+
+// The render settings of scoring: spp samples per pixel, jittered when more than one (with
+// one, through the centre only, which aliases edges), along paths of `path`.
+RenderSettings scoringSettings(int spp, const PathSettings& path, uint64_t seed = 0);
 
 struct TestScore {
   double diffusePsnr = 0;     // dB, tonemapped 8-bit, mean over views
@@ -23,9 +36,13 @@ class TestViews {
   static TestViews load(const Dataset& dataset, const DatasetSplit& split, int maxViews);
   bool empty() const { return cameras_.empty(); }
   size_t size() const { return cameras_.size(); }
-  // Diffuse from spp jittered samples per pixel (the ground truth averages the pixel),
-  // normals from the pixel-centre ray (like the ground truth's G-buffers).
-  TestScore score(const GaussianTracer& tracer, int spp) const;
+  const Camera& camera(size_t k) const { return cameras_[k]; }
+  // The buffers of test view k as training renders them (renderScoredView with
+  // scoringSettings(spp, path)); `path` is the run's (TrainConfig::path()).
+  ViewBuffers render(const GaussianTracer& tracer, size_t k, int spp, const PathSettings& path) const;
+  // Diffuse PSNR and normal error of render(). They come from the first segment alone, so
+  // the reflected segments of `path` are not traced: they would triple the cost for nothing.
+  TestScore score(const GaussianTracer& tracer, int spp, const PathSettings& path = {}) const;
 
  private:
   std::vector<Camera> cameras_;

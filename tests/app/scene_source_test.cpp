@@ -39,27 +39,37 @@ class SceneSourceTest : public ::testing::Test {
 TEST_F(SceneSourceTest, APlyFileHasDefaultSettingsAndNoDataset) {
   SceneSource source = loadSceneSource(root_ / "run" / "scene.ply");
   EXPECT_EQ(source.scene.position, scene_.position);
-  EXPECT_TRUE(source.dataset.empty());
+  EXPECT_TRUE(source.settings.dataset.empty());
   TraceSettings defaults;
-  EXPECT_EQ(source.trace.kernelPower, defaults.kernelPower);
-  EXPECT_EQ(source.trace.alphaMin, defaults.alphaMin);
-  EXPECT_EQ(source.trace.minTransmittance, defaults.minTransmittance);
+  EXPECT_EQ(source.settings.trace.kernelPower, defaults.kernelPower);
+  EXPECT_EQ(source.settings.trace.alphaMin, defaults.alphaMin);
+  EXPECT_EQ(source.settings.trace.minTransmittance, defaults.minTransmittance);
+  // Today's render defaults: the paper's path length 3 and the authors' thresholds.
+  PathSettings path = source.settings.path();
+  EXPECT_EQ(path.bounces, 2);
+  EXPECT_EQ(path.invalidNormalLength, PathSettings{}.invalidNormalLength);
+  EXPECT_EQ(path.backfaceSkip, PathSettings{}.backfaceSkip);
 }
 
 TEST_F(SceneSourceTest, ARunFolderTakesItsDatasetAndTraceSettingsFromConfig) {
   // Without config.json: the scene alone.
   SceneSource bare = loadSceneSource(root_ / "run");
   EXPECT_EQ(bare.scene.position, scene_.position);
-  EXPECT_TRUE(bare.dataset.empty());
+  EXPECT_TRUE(bare.settings.dataset.empty());
 
-  // Unknown keys (the trainer's own) are ignored; missing trace keys keep their defaults.
-  writeConfig(R"({"dataset": "/data/spheres", "iters": 8000,
-                  "trace": {"kernel_power": 1.5, "alpha_min": 0.01, "exact_tail": true}})");
+  // Every setting of the run is read; missing keys keep their defaults.
+  writeConfig(R"({"dataset": "/data/spheres", "iters": 8000, "bounces": 3, "invalid_normal_length": 0.5,
+                  "backface_skip": 0.25, "trace": {"kernel_power": 1.5, "alpha_min": 0.01, "exact_tail": true}})");
   SceneSource source = loadSceneSource(root_ / "run");
-  EXPECT_EQ(source.dataset, fs::path("/data/spheres"));
-  EXPECT_EQ(source.trace.kernelPower, 1.5f);
-  EXPECT_EQ(source.trace.alphaMin, 0.01f);
-  EXPECT_EQ(source.trace.minTransmittance, TraceSettings{}.minTransmittance);
+  EXPECT_EQ(source.settings.dataset, "/data/spheres");
+  EXPECT_EQ(source.settings.trace.kernelPower, 1.5f);
+  EXPECT_EQ(source.settings.trace.alphaMin, 0.01f);
+  EXPECT_TRUE(source.settings.trace.exactTail);
+  EXPECT_EQ(source.settings.trace.minTransmittance, TraceSettings{}.minTransmittance);
+  PathSettings path = source.settings.path();
+  EXPECT_EQ(path.bounces, 3);
+  EXPECT_EQ(path.invalidNormalLength, 0.5f);
+  EXPECT_EQ(path.backfaceSkip, 0.25f);
 }
 
 TEST_F(SceneSourceTest, BadRunsAndConfigsAreRejectedNamingTheFile) {
@@ -73,7 +83,8 @@ TEST_F(SceneSourceTest, BadRunsAndConfigsAreRejectedNamingTheFile) {
   const fs::path config = root_ / "run" / "config.json";
   for (const char* text : {"{ not json", "[1, 2]", R"({"dataset": 7})", R"({"trace": 3})",
                            R"({"trace": {"kernel_power": "high"}})", R"({"trace": {"alpha_min": 0.9}})",
-                           R"({"trace": {"min_transmittance": -0.5}})"}) {
+                           R"({"trace": {"min_transmittance": -0.5}})", R"({"trace": {"kernel_power": 100}})",
+                           R"({"invalid_normal_length": -1})", R"({"baseline": "rgbd"})", R"({"itres": 10})"}) {
     writeConfig(text);
     test::expectErrorNaming([&] { loadSceneSource(root_ / "run"); }, config);
   }

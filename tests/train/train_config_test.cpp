@@ -22,12 +22,12 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.loss.normal = 0.5f;
   c.lr.f0 = 0.01f;
   c.prune.start = 17;
-  c.initSource = "depth";
+  c.initSource = InitChoice::DepthBuffers;
   c.trace.kernelPower = 2.0f;
   c.trace.exactTail = true;
   c.farField.count = 1234;
   c.farField.boxes.push_back({Vec3f(-0.5f, 0.9f, 2.4f), Vec3f(0.5f, 1.75f, 2.8f), 5000});
-  c.baseline = "none";
+  c.baseline = Baseline::None;
   TrainConfig back;
   applyJson(toJson(c), &back, "test");
   EXPECT_EQ(toJson(back), toJson(c));
@@ -98,6 +98,47 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
                  "min must be below max");
   expectRejected("{\"baseline\": \"rgbd\"}", "baseline");
   expectRejected("{\"baseline\": \"rgb\"}", "G-buffer");  // bounces and G-buffer weights left on
+}
+
+// The choices are enums in memory and keep their words in config.json, so runs written
+// before they were enums load unchanged.
+TEST(TrainConfig, ChoicesRoundTripThroughTheirJsonWords) {
+  nlohmann::json written = R"({"baseline": "rgb", "bounces": 0,
+      "loss": {"depth": 0, "normal": 0, "roughness": 0, "f0": 0, "specular": 0},
+      "init": {"source": "point-cloud"}, "prune": {"camera_cull_region": "whole-sphere"}})"_json;
+  TrainConfig c;
+  applyJson(written, &c, "test");
+  EXPECT_EQ(c.baseline, Baseline::Rgb);
+  EXPECT_EQ(c.initSource, InitChoice::PointCloud);
+  EXPECT_EQ(c.prune.cameraCullRegion, CullRegion::WholeSphere);
+  nlohmann::json back = toJson(c);
+  EXPECT_EQ(back["baseline"], "rgb");
+  EXPECT_EQ(back["init"]["source"], "point-cloud");
+  EXPECT_EQ(back["prune"]["camera_cull_region"], "whole-sphere");
+
+  for (InitChoice choice : {InitChoice::Auto, InitChoice::DepthBuffers, InitChoice::PointCloud}) {
+    TrainConfig one;
+    one.initSource = choice;
+    TrainConfig read;
+    applyJson(toJson(one), &read, "test");
+    EXPECT_EQ(read.initSource, choice) << choiceName(choice);
+  }
+  for (CullRegion region : {CullRegion::SphereInView, CullRegion::WholeSphere}) {
+    TrainConfig one;
+    one.prune.cameraCullRegion = region;
+    TrainConfig read;
+    applyJson(toJson(one), &read, "test");
+    EXPECT_EQ(read.prune.cameraCullRegion, region) << choiceName(region);
+  }
+}
+
+TEST(TrainConfig, AnUnknownChoiceNamesTheFileTheKeyAndTheWords) {
+  expectRejected(R"({"baseline": "rgbd"})", R"("baseline" is "rgbd"; expected "none" or "rgb")");
+  expectRejected(R"({"init": {"source": "magic"}})",
+                 R"("init.source" is "magic"; expected "auto", "depth" or "point-cloud")");
+  expectRejected(R"({"prune": {"camera_cull_region": "in view"}})",
+                 R"("prune.camera_cull_region" is "in view"; expected "in-view" or "whole-sphere")");
+  expectRejected(R"({"baseline": 1})", R"("baseline" has the wrong type)");
 }
 
 TEST(TrainConfig, RejectsWhatTheFlagsRejectAndNeverWrapsOrOverflows) {

@@ -26,8 +26,10 @@ std::shared_ptr<TracedScene> traceScene(std::shared_ptr<const GaussianScene> sce
   return traced;
 }
 
-ProgressiveRenderer::ProgressiveRenderer(int width, int height, int maxSamples)
-    : width_(width), height_(height), maxSamples_(maxSamples), lastRequest_(std::chrono::steady_clock::now()) {
+ProgressiveRenderer::ProgressiveRenderer(int width, int height, int maxSamples, const PathSettings& path)
+    : width_(width), height_(height), maxSamples_(maxSamples), path_(path),
+      lastRequest_(std::chrono::steady_clock::now()) {
+  settings_.bounces = std::clamp(path.bounces, 0, DisplaySettings::kMaxBounces);
   accumulator_.reset(width, height);
   thread_ = std::thread([this] { run(); });
 }
@@ -160,6 +162,7 @@ void ProgressiveRenderer::run() {
     Camera camera = camera_.camera(std::max(1, width_ / scale), std::max(1, height_ / scale));
     RenderSettings render;
     render.spp = 1;
+    render.path = path_;
     render.path.bounces = settings.bounces;
     // Low-resolution frames go through pixel centres; full-resolution sample k is sample k
     // of `glint render` (seed 0, view 0), so N accumulated samples are its --spp N render.

@@ -17,6 +17,7 @@
 #include "app/viewer/viewer_camera.h"
 #include "io/image.h"
 #include "raytrace/gaussian_tracer.h"
+#include "render/gaussian_path.h"
 #include "scene/gaussians.h"
 
 namespace glint {
@@ -44,8 +45,10 @@ struct Frame {
 
 class ProgressiveRenderer {
  public:
-  // width x height: the full resolution. maxSamples: accumulation stops there.
-  ProgressiveRenderer(int width, int height, int maxSamples = 1024);
+  // width x height: the full resolution. maxSamples: accumulation stops there. Paths are
+  // traced with `path`, but for their bounces, which the display settings hold (starting
+  // at path.bounces).
+  ProgressiveRenderer(int width, int height, int maxSamples, const PathSettings& path);
   ~ProgressiveRenderer();  // stops the thread
   ProgressiveRenderer(const ProgressiveRenderer&) = delete;
   ProgressiveRenderer& operator=(const ProgressiveRenderer&) = delete;
@@ -76,6 +79,7 @@ class ProgressiveRenderer {
   void restart();                                          // mutex_ held
 
   const int width_, height_, maxSamples_;
+  const PathSettings path_;
   mutable std::mutex mutex_;
   mutable std::condition_variable wake_;        // the render thread waits for work
   mutable std::condition_variable frameReady_;  // requests wait for frames

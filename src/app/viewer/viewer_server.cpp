@@ -30,7 +30,7 @@ ViewerServer::ViewerServer(ViewerOptions options, GaussianScene scene, const Tra
   access_.token = options_.token.empty() ? makeAccessToken() : options_.token;
   if (options_.width < 8 || options_.height < 8 || options_.width > 8192 || options_.height > 8192)
     throw Error("glint view", "the viewer's resolution must lie between 8x8 and 8192x8192");
-  renderer_ = std::make_unique<ProgressiveRenderer>(options_.width, options_.height, options_.maxSamples);
+  renderer_ = std::make_unique<ProgressiveRenderer>(options_.width, options_.height, options_.maxSamples, options_.path);
   if (options_.editable) {
     edits_ = std::make_unique<EditSession>(std::move(scene), trace_, options_.maxGaussians);
     renderer_->setScene(edits_->current());

@@ -16,6 +16,7 @@
 #include "app/viewer/viewer_camera.h"
 #include "edit/gaussian_edits.h"
 #include "raytrace/trace_settings.h"
+#include "render/gaussian_path.h"
 #include "scene/gaussians.h"
 
 namespace httplib {
@@ -45,6 +46,13 @@ struct ViewerOptions {
   std::string token;  // required on requests that change anything; empty: a random one
   // Gaussians an edit may leave in the scene; an edit beyond is refused (413).
   size_t maxGaussians = kDefaultMaxGaussians;
+  // How the scene's paths are traced (a run's TrainConfig::path()); the page starts at its
+  // bounces and may change them.
+  PathSettings path = [] {
+    PathSettings p;
+    p.bounces = 2;  // the paper's path length 3
+    return p;
+  }();
 };
 
 // Request bodies above this are refused with 413 (edit operations are a few hundred bytes).

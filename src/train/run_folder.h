@@ -1,0 +1,40 @@
+// A training run folder (made by `glint train`): where each of its files lives, and its
+// settings, read from config.json here for every command that opens a run.
+#pragma once
+
+#include <filesystem>
+
+#include "train/train_config.h"
+
+namespace glint {
+
+class RunFolder {
+ public:
+  explicit RunFolder(std::filesystem::path root) : root_(std::move(root)) {}
+
+  const std::filesystem::path& root() const { return root_; }
+  std::filesystem::path configFile() const { return root_ / "config.json"; }  // every setting (TrainConfig)
+  std::filesystem::path sceneFile() const { return root_ / "scene.ply"; }     // the latest saved scene
+  std::filesystem::path checkpointFile() const { return root_ / "checkpoint" / "state.bin"; }  // resumable state
+  std::filesystem::path logFile() const { return root_ / "log.csv"; }          // one row per step
+  std::filesystem::path evalFolder() const { return root_ / "eval"; }          // `glint eval`'s output
+  std::filesystem::path metricsFile() const { return evalFolder() / "metrics.json"; }
+  std::filesystem::path reportFile() const { return root_ / "report.html"; }
+
+  bool hasConfig() const { return std::filesystem::exists(configFile()); }
+  bool hasCheckpoint() const { return std::filesystem::exists(checkpointFile()); }
+
+  // config.json: the defaults with every setting of the file applied and checked by
+  // TrainConfig::validate, so every command refuses a bad file with the same message,
+  // which names the file and the key. Throws Error.
+  TrainConfig readConfig() const;
+
+  // Makes the folder for a new run and writes config.json. A folder that exists must be
+  // empty unless `force` (then its files are overwritten); throws Error otherwise.
+  void create(const TrainConfig& config, bool force) const;
+
+ private:
+  std::filesystem::path root_;
+};
+
+}  // namespace glint

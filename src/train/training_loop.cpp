@@ -1,0 +1,189 @@
+// The training loop: set-up, steps, test-view scores, log rows, checkpoints.
+#include "train/training_loop.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "core/activity.h"
+#include "core/atomic_file.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "eval/training_log.h"
+#include "scene/gaussian_ply.h"
+#include "train/camera_culling.h"
+#include "train/checkpoint.h"
+#include "train/dense_init.h"
+#include "train/divergence_monitor.h"
+#include "train/scene_extent.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr const char* kLogHeader =
+    "step,loss,diffuse_l1,depth_l1,normal_l1,roughness_l1,f0_l1,specular_l1,gaussians,hits_per_ray,rays_per_s,wall_s,"
+    "test_diffuse_psnr,test_normal_deg\n";
+
+// Keeps the log rows up to `step` (a resumed run rewrites what came after its checkpoint)
+// and returns the wall time of the last kept row. A last row without its newline was cut
+// short by a crash or a full disk and is dropped; any other row that does not parse is an
+// error naming the file and line, since the run's history would be lost with it.
+double truncateLog(const fs::path& log, int64_t step) {
+  std::string text = fs::exists(log) ? readTextFile(log) : std::string(kLogHeader);
+  if (!text.empty() && text.back() != '\n') text.erase(text.rfind('\n') + 1);
+  if (text.empty()) text = kLogHeader;
+  TrainingLog parsed = parseTrainingLog(text, log.string(), {"step", "wall_s"});
+  const std::vector<double>& steps = parsed.column("step");
+  const std::vector<double>& walls = parsed.column("wall_s");
+  std::string kept = kLogHeader;
+  double wall = 0;
+  std::istringstream lines(text);
+  std::string line;
+  std::getline(lines, line);  // the header, rewritten as today's
+  for (size_t row = 0; row < parsed.rows() && std::getline(lines, line);) {
+    if (line.empty() || line == "\r") continue;  // rows the parser skips too
+    if (!(steps[row] <= double(step))) break;
+    wall = walls[row];
+    kept += line + "\n";
+    ++row;
+  }
+  writeTextAtomically(log, kept);
+  return wall;
+}
+
+// One row of log.csv; the test columns are empty on steps without a score.
+std::string logRow(const StepReport& r, double wall, const std::optional<TestScore>& score) {
+  std::string psnrField, normalField;
+  if (score) {
+    char buf[64];
+    std::snprintf(buf, sizeof(buf), "%.3f", score->diffusePsnr);
+    psnrField = buf;
+    std::snprintf(buf, sizeof(buf), "%.3f", score->normalDegrees);
+    normalField = buf;
+  }
+  char line[512];
+  std::snprintf(line, sizeof(line), "%lld,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%zu,%.2f,%.0f,%.2f,%s,%s\n",
+                (long long)r.step, r.loss, r.terms.diffuse, r.terms.depth, r.terms.normal, r.terms.roughness,
+                r.terms.f0, r.terms.specular, r.gaussians, double(r.hits) / double(std::max<int64_t>(r.rays, 1)),
+                double(r.rays) / r.seconds, wall, psnrField.c_str(), normalField.c_str());
+  return line;
+}
+
+GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config, TrainingObserver& observer) {
+  DenseInitSettings settings = config.init;
+  settings.forceDepthBuffers = config.initSource == InitChoice::DepthBuffers;
+  DenseInit init = config.initSource == InitChoice::PointCloud ? initFromPointCloud(dataset, settings)
+                                                                : denseInitialisation(dataset, settings);
+  const DenseInitStats& st = init.stats;
+  char message[320];
+  if (st.source == InitSource::PointCloud)
+    std::snprintf(message, sizeof(message), "initialised %zu Gaussians from point_cloud_dense.ply (%lld points)",
+                  init.scene.size(), (long long)st.pointsUnprojected);
+  else
+    std::snprintf(message, sizeof(message),
+                  "initialised %zu Gaussians from the depth buffers (stride %d, %lld samples, voxel %.4g, %lld of "
+                  "%lld voxels kept)",
+                  init.scene.size(), st.pixelStride, (long long)st.pointsUnprojected, st.voxelSize,
+                  (long long)st.voxelsKept, (long long)st.voxelsOccupied);
+  observer.note(message);
+  return std::move(init.scene);
+}
+
+void saveRun(const RunFolder& run, const Trainer& trainer) {
+  writeCheckpoint(run.checkpointFile(), trainer.state());
+  writeGaussianPly(run.sceneFile(), trainer.scene());
+}
+
+// The trainer of a run: from its checkpoint when resuming one (the settings it was
+// written with must be the config's but for iters), else from the dense initialisation,
+// with log.csv started or cut back to the checkpoint. Returns the wall time already spent.
+double setUpTrainer(const RunFolder& run, const TrainConfig& config, const TrainingSession& session,
+                    const Dataset& dataset, const TrainingViews& views, std::vector<CameraSphere> spheres,
+                    TrainingObserver& observer, std::unique_ptr<Trainer>* trainer) {
+  if (session.resume && run.hasCheckpoint()) {
+    TrainingState state = readCheckpoint(run.checkpointFile());
+    TrainConfig saved = config;
+    applyJson(nlohmann::json::parse(state.configJson), &saved, run.checkpointFile().string());
+    saved.iters = config.iters;
+    if (toJson(saved) != toJson(config))
+      throw Error(run.checkpointFile().string(),
+                  "was written with other settings than " + run.configFile().string() + "; they must not change");
+    observer.note("resuming " + run.root().string() + " at step " + std::to_string(state.step));
+    double wallOffset = truncateLog(run.logFile(), state.step);
+    *trainer = std::make_unique<Trainer>(config, views, std::move(spheres), std::move(state), session.tracer);
+    return wallOffset;
+  }
+  float extent = sceneExtent(dataset.train());
+  GaussianScene initial = initialScene(dataset, config, observer);
+  *trainer = std::make_unique<Trainer>(config, views, std::move(spheres), std::move(initial), extent, session.tracer);
+  writeTextAtomically(run.logFile(), kLogHeader);
+  return 0;
+}
+
+}  // namespace
+
+TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const TrainingSession& session,
+                         TrainingObserver& observer) {
+  ActivityScope activity("preparing the training run " + run.root().string());
+  ThreadLimit threads(config.threads);
+  activity.describe("loading the dataset " + config.dataset);
+  Dataset dataset = Dataset::open(config.dataset);
+  TrainingViews views = TrainingViews::load(dataset, dataset.train(),
+                                            config.baseline == Baseline::Rgb ? ColourTarget::Render
+                                                                             : ColourTarget::Diffuse);
+  std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);
+  TestViews testViews = TestViews::load(dataset, dataset.test(), session.evalViews);
+
+  activity.describe("setting up the training of " + run.root().string());
+  const bool checkpointAtStart = session.resume && run.hasCheckpoint();
+  std::unique_ptr<Trainer> trainer;
+  double wallOffset = setUpTrainer(run, config, session, dataset, views, std::move(spheres), observer, &trainer);
+  observer.started(*trainer, dataset, views);
+
+  std::ofstream log(run.logFile(), std::ios::app);
+  auto start = std::chrono::steady_clock::now();
+  DivergenceMonitor divergence(trainer->sceneExtent());
+  bool saveDue = false;  // a checkpoint waits while the monitor suspects a collapse
+  int64_t lastSaved = trainer->stepCount();
+  bool checkpointOnDisk = checkpointAtStart;
+  while (trainer->stepCount() < config.iters) {
+    activity.describe("training step " + std::to_string(trainer->stepCount() + 1) + " of " + run.root().string());
+    StepReport r = trainer->step();
+    if (std::optional<std::string> problem = divergence.check(r, trainer->scene())) {
+      std::string kept = checkpointOnDisk ? "the last good checkpoint (step " + std::to_string(lastSaved) +
+                                                ") is kept in " + run.checkpointFile().string()
+                                          : "no checkpoint was written";
+      throw Error(run.root().string(), "training diverged " + *problem + "; " + kept +
+                                           ". Likely cause: learning rates (lr.* in --config) or loss weights too "
+                                           "large for this scene; start again with smaller ones");
+    }
+    double wall = wallOffset + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::optional<TestScore> score;
+    if (!testViews.empty() && (r.step % config.evalEvery == 0 || r.step == config.iters))
+      score = testViews.score(trainer->tracer(), session.evalSpp, config.path());
+    log << logRow(r, wall, score) << std::flush;
+    observer.stepped(r, score);
+    saveDue = saveDue || r.step % config.saveEvery == 0 || r.step == config.iters;
+    if (saveDue && (divergence.clean() || r.step == config.iters)) {
+      saveRun(run, *trainer);
+      saveDue = false;
+      lastSaved = r.step;
+      checkpointOnDisk = true;
+    }
+    observer.betweenSteps(*trainer, r);
+    if (observer.stopRequested()) {
+      saveRun(run, *trainer);
+      return {true, r.step, trainer->scene().size()};
+    }
+  }
+  if (trainer->stepCount() >= config.iters && !fs::exists(run.sceneFile())) saveRun(run, *trainer);
+  return {false, trainer->stepCount(), trainer->scene().size()};
+}
+
+}  // namespace glint
