@@ -14,11 +14,23 @@
 
 namespace glint {
 
+// x^p, with the small integer powers (the kernel powers 1 to 4 that runs use) as products:
+// within an ulp of std::pow and several times faster, as the fast tracer's lanes compute
+// them, so the backward pass re-evaluates what the forward pass did.
+template <typename T>
+inline T kernelPow(T x, T p) {
+  if (p == T(1)) return x;
+  if (p == T(2)) return x * x;
+  if (p == T(3)) return (x * x) * x;
+  if (p == T(4)) return (x * x) * (x * x);
+  return std::pow(x, p);
+}
+
 // G(r^2) = exp(-(r^2)^p / (2p)): r is the distance in units of the scales (Mahalanobis
 // distance); p = 1 gives the ordinary Gaussian exp(-r^2 / 2).
 template <typename T>
 inline T gaussianResponse(T r2, T power) {
-  return std::exp(-std::pow(r2, power) / (T(2) * power));
+  return std::exp(-kernelPow(r2, power) / (T(2) * power));
 }
 
 // Radius (in local, scale units) of the ellipsoid on which kMaxAlpha * opacity * G equals

@@ -112,9 +112,14 @@ LocalRay<T> closestApproach_vjp(const LocalRay<T>& ray, const ClosestApproach<T>
 
 // dG/dr2 = -G (r^2)^(p-1) / 2; finite at r2 = 0 for p >= 1.
 template <typename T>
+T gaussianResponse_vjp(T r2, T power, T G, T v_G) {
+  return -v_G * G * kernelPow(r2, power - T(1)) / T(2);
+}
+
+// The same, computing G.
+template <typename T>
 T gaussianResponse_vjp(T r2, T power, T v_G) {
-  T G = gaussianResponse(r2, power);
-  return -v_G * G * std::pow(r2, power - T(1)) / T(2);
+  return gaussianResponse_vjp(r2, power, gaussianResponse(r2, power), v_G);
 }
 
 // ---- Alpha = kMaxAlpha * opacity * G (D8; primal hitAlpha) ----
@@ -158,7 +163,7 @@ KernelGrad<T> evaluateGaussian_vjp(const KernelParams<T>& params, const Vec3<T>&
   KernelGrad<T> grad;
   T v_opacity, v_response;
   hitAlpha_vjp(opacity, response, v_alpha, &v_opacity, &v_response);
-  T v_r2 = gaussianResponse_vjp(c.r2, power, v_response);
+  T v_r2 = gaussianResponse_vjp(c.r2, power, response, v_response);
   T v_tc = hitKey_vjp(tPeak, tMin, v_key);  // tPeak = t0 + tc with t0 held fixed (D5)
   LocalRay<T> v_local = closestApproach_vjp(local, c, v_tc, v_r2);
   Mat3<T> v_W = zeroMat3<T>();
