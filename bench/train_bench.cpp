@@ -109,15 +109,12 @@ int main(int argc, char** argv) {
     for (const auto& batch : rays) trainer.forwardBackward(batch, true, &fusedReport);
   });
   // The forward pass's paths alone, four ways on the trainer's own scene and settings: the
-  // wavefront as the trainer runs it (reflected rays sorted by origin and octant), with
-  // them in path order, with the camera rays traced one by one instead of in bundles
-  // (a tracer built the same way with bundles off), and the per-ray design that training
-  // ran before the wavefront (each thread traces whole paths with tracePath, one by one).
+  // wavefront as the trainer runs it (camera rays traced one by one, reflected rays sorted
+  // by origin and octant), with the reflected rays in path order, with the camera rays in
+  // bundles (as renders trace them), and the per-ray design that training ran before the
+  // wavefront (each thread traces whole paths with tracePath, one by one).
   PathSettings paths = config.path();
   paths.hitListCapacity = hitCapacityWithoutOverflow(config.trace);
-  FastGaussianTracer unbundled;
-  unbundled.setBundleRays(0);
-  unbundled.build(trainer.scene(), config.trace);
   std::vector<std::vector<TraceRay>> primaries(rays.size());
   std::vector<std::vector<PathKey>> keys(rays.size());
   for (size_t b = 0; b < rays.size(); ++b)
@@ -126,19 +123,20 @@ int main(int argc, char** argv) {
       keys[b].push_back({r.view, r.pixel, uint64_t(1000000 + b)});
     }
   std::vector<PathResult> pathResults(static_cast<size_t>(batchRays));
-  auto wavefrontSeconds = [&](const GaussianTracer& tracer, ReflectedRayOrder order) {
+  auto wavefrontSeconds = [&](ReflectedRayOrder order, RayCoherence coherence) {
     PathSettings p = paths;
     p.reflectedOrder = order;
+    p.primaryCoherence = coherence;
     PathBatch wavefront;
-    wavefront.trace(tracer, primaries[0], keys[0], config.seed, p, pathResults, /*record=*/true);  // warm
+    wavefront.trace(trainer.tracer(), primaries[0], keys[0], config.seed, p, pathResults, /*record=*/true);  // warm
     return secondsOf([&] {
       for (size_t b = 0; b < rays.size(); ++b)
-        wavefront.trace(tracer, primaries[b], keys[b], config.seed, p, pathResults, /*record=*/true);
+        wavefront.trace(trainer.tracer(), primaries[b], keys[b], config.seed, p, pathResults, /*record=*/true);
     });
   };
-  const double sortedSeconds = wavefrontSeconds(trainer.tracer(), ReflectedRayOrder::OriginAndOctant);
-  const double pathOrderSeconds = wavefrontSeconds(trainer.tracer(), ReflectedRayOrder::PathOrder);
-  const double unbundledSeconds = wavefrontSeconds(unbundled, ReflectedRayOrder::OriginAndOctant);
+  const double sortedSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Scattered);
+  const double pathOrderSeconds = wavefrontSeconds(ReflectedRayOrder::PathOrder, RayCoherence::Scattered);
+  const double bundledSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Coherent);
   const double perRaySeconds = secondsOf([&] {
     for (size_t b = 0; b < rays.size(); ++b)
       parallelForChunks(int64_t(primaries[b].size()), 64, [&](int64_t begin, int64_t end) {
@@ -162,7 +160,7 @@ int main(int argc, char** argv) {
               {"fused forward+backward", fusedSeconds},
               {"paths only: wavefront (as trained)", sortedSeconds},
               {"paths only: wavefront, reflected rays in path order", pathOrderSeconds},
-              {"paths only: wavefront, camera rays without bundles", unbundledSeconds},
+              {"paths only: wavefront, camera rays in bundles", bundledSeconds},
               {"paths only: per-ray design before the wavefront", perRaySeconds},
               {"whole step (+ reduction, Adam, refit)", stepSeconds}};
   std::printf("train_bench: %zu Gaussians, %.1f composited hits per ray, %d rays per batch, %d batches, %d threads\n",

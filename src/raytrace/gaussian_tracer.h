@@ -24,6 +24,13 @@ struct TraceRay {
   float backfaceSkip = 0;
 };
 
+// What a caller knows of a batch's rays: camera rays of whole images, many sharing an
+// origin and pointing close together (the fast tracer bundles them), or scattered rays
+// (reflected segments, or pixels drawn at random over an image: bundles of those gather
+// candidates for a wide cone that few of their rays hit, and measured slower than tracing
+// each ray alone in train_bench).
+enum class RayCoherence { Coherent, Scattered };
+
 class GaussianTracer {
  public:
   virtual ~GaussianTracer() = default;
@@ -40,7 +47,7 @@ class GaussianTracer {
   // results of trace() to rounding. hits, if not empty, holds one list per ray (its
   // capacity set by the caller) and receives each ray's composited hits, as trace() does.
   virtual void traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results,
-                          std::span<HitList> hits = {}) const;
+                          std::span<HitList> hits = {}, RayCoherence coherence = RayCoherence::Coherent) const;
   // Bytes held by the acceleration structure (for benchmarks).
   virtual size_t memoryBytes() const = 0;
 };

@@ -147,7 +147,8 @@ void PathBatch::trace(const GaussianTracer& tracer, std::span<const TraceRay> pr
       if (hits_.size() < m) hits_.resize(m);
       for (size_t j = 0; j < m; ++j) hits_[j].capacity = settings.hitListCapacity;
     }
-    tracer.traceBatch(rays_, results_, record ? std::span<HitList>(hits_.data(), m) : std::span<HitList>());
+    tracer.traceBatch(rays_, results_, record ? std::span<HitList>(hits_.data(), m) : std::span<HitList>(),
+                      k == 0 ? settings.primaryCoherence : RayCoherence::Scattered);
     // Each path takes its segment's light (and record); then the ones that go on draw
     // their next segment. Paths are independent, so the loop is parallel.
     nextRays_.resize(m);

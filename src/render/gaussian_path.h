@@ -35,6 +35,9 @@ struct PathSettings {
   float backfaceSkip = 0.1f;
   size_t hitListCapacity = 512;  // of the hit lists recorded in PathSegment
   ReflectedRayOrder reflectedOrder = ReflectedRayOrder::OriginAndOctant;  // PathBatch only; no effect on results
+  // PathBatch only, no effect on results: the first segments are camera rays of whole
+  // images (Coherent), or pixels scattered over images (training's batches).
+  RayCoherence primaryCoherence = RayCoherence::Coherent;
 };
 
 // Reflected segments whose light PathResult also keeps one by one (the viewer's per-bounce

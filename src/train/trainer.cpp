@@ -87,6 +87,9 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   PathSettings pathSettings = config_.path();
   if (!reflections) pathSettings.bounces = 0;
   pathSettings.hitListCapacity = hitCapacityWithoutOverflow(config_.trace);
+  // A batch's pixels are scattered over its views (train_bench: bundles of them were
+  // slower than tracing each ray alone).
+  pathSettings.primaryCoherence = RayCoherence::Scattered;
   // The forward pass: the batch's paths as one wavefront, every segment recorded with its
   // hits. The sample key is the step, so each step draws new reflection directions.
   rays_.resize(batch.size());

@@ -459,7 +459,7 @@ RayResult FastGaussianTracer::trace(const TraceRay& ray, HitList* hits) const {
 }
 
 void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results,
-                                    std::span<HitList> hits) const {
+                                    std::span<HitList> hits, RayCoherence coherence) const {
   GLINT_CHECK(built_, "trace before build");
   GLINT_CHECK(rays.size() == results.size(), "traceBatch: one result per ray");
   GLINT_CHECK(hits.empty() || hits.size() == rays.size(), "traceBatch: one hit list per ray, or none");
@@ -473,7 +473,7 @@ void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<Ra
   };
   std::vector<Span> bundles;
   std::vector<uint32_t> alone;
-  const size_t bundleRays = size_t(std::max(bundleRays_, 0));
+  const size_t bundleRays = coherence == RayCoherence::Coherent ? size_t(std::max(bundleRays_, 0)) : 0;
   for (size_t i = 0; i < rays.size();) {
     size_t j = i + 1;
     const Vec3f& o = rays[i].origin;

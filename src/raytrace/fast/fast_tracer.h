@@ -39,8 +39,9 @@ class FastGaussianTracer final : public GaussianTracer {
   // Rays that share an origin are ordered by direction and traced in bundles of
   // kBundleRays (ray_bundle.h): the bundle gathers its candidate Gaussians once and each
   // ray composites them in the same exact order as trace(). Other rays go one by one.
-  void traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results,
-                  std::span<HitList> hits = {}) const override;
+  // Scattered batches are traced ray by ray.
+  void traceBatch(std::span<const TraceRay> rays, std::span<RayResult> results, std::span<HitList> hits = {},
+                  RayCoherence coherence = RayCoherence::Coherent) const override;
   // Bundle size (tests set it; 0 turns bundles off and traces every ray alone).
   void setBundleRays(int rays) { bundleRays_ = rays; }
   size_t memoryBytes() const override { return bvh_.memoryBytes(); }
