@@ -124,6 +124,9 @@ inline constexpr bool kParameterTableWellFormed = [] {
   return ok && plyOrders == (size_t(1) << kGaussianParameterCount) - 1;
 }();
 static_assert(kParameterTableWellFormed, "parameter indices must count 0, 1, ... and plyOrder permute them");
+// GaussianScene holds nothing but its parameter arrays, so an array without an entry shows.
+static_assert(sizeof(GaussianScene) == kGaussianParameterCount * sizeof(std::vector<float>),
+              "every array of GaussianScene needs an entry in forEachParameter");
 
 // Calls f(parameter) for every parameter in the order of Glint's PLY columns.
 template <typename F>

@@ -1,6 +1,6 @@
 // Adam's learning rate of each Gaussian parameter, beside the parameters themselves so that
 // the parameter table (scene/gaussian_parameters.h) can name each one's rate, as 3DGS's
-// parameter groups carry theirs. Read from JSON with the rest of the config (train/train_config.h).
+// parameter groups carry theirs. The config's "lr" keys are the table's (train/train_config.cpp).
 #pragma once
 
 namespace glint {
