@@ -77,8 +77,12 @@ struct GaussianGradients {
   template <auto member, typename V>
   void addTo(size_t i, const V& v) {
     constexpr auto parameter = parameterOf(member);
+    // Every load before any store: as far as the compiler knows, out may alias v, and a
+    // load after a store keeps it from adding the components with one vector instruction.
     float* out = values[parameter.index].data() + i * parameter.components;
-    for (int k = 0; k < parameter.components; ++k) out[k] += float(component(v, k));
+    float sum[parameter.components];
+    for (int k = 0; k < parameter.components; ++k) sum[k] = out[k] + float(component(v, k));
+    for (int k = 0; k < parameter.components; ++k) out[k] = sum[k];
   }
 };
 
