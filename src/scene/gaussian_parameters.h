@@ -1,6 +1,7 @@
 // The trainable parameters of a Gaussian, listed once: resizing and filtering scenes,
-// gradient buffers, Adam, checkpoints, PLY files and the divergence checks all walk this
-// table, so a new parameter is one entry here (plus its maths in the backward pass).
+// gradient buffers, Adam and its rates, checkpoints, PLY files and the divergence checks
+// walk this table, so a new parameter is its array, one entry here and a default rate in
+// LearningRates, plus its maths (docs/architecture.md, "The parameter table").
 #pragma once
 
 #include <array>
