@@ -21,8 +21,8 @@
 #include "core/parallel.h"
 #include "room_scene.h"
 #include "math/rng.h"
-#include "raytrace/embree_tracer.h"
 #include "raytrace/fast/fast_tracer.h"
+#include "tracers/embree_tracer.h"
 
 using namespace glint;
 

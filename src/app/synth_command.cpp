@@ -11,12 +11,12 @@
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "edit/edit_file.h"
-#include "edit/mesh_edits.h"
 #include "io/image.h"
 #include "synth/builtin_scenes.h"
 #include "synth/camera_paths.h"
 #include "synth/dataset_generator.h"
 #include "synth/gltf_import.h"
+#include "synth_edit/mesh_edits.h"
 
 namespace glint {
 

@@ -1,6 +1,6 @@
 // The in-memory form of an edit file (docs/edit-files.md): named selections and an ordered
 // list of operations. Both the Gaussian side (edit/gaussian_edits) and the mesh side
-// (edit/mesh_edits, for `glint synth --edits`) apply the same document.
+// (synth_edit/mesh_edits, for `glint synth --edits`) apply the same document.
 #pragma once
 
 #include <map>

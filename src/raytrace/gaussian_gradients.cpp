@@ -1,4 +1,5 @@
-// Gradient accumulators: sizing, clearing and the per-range reduction.
+// Gradient accumulators: sizing, clearing, filtering and the per-range reduction, each over
+// every parameter's float array.
 #include "raytrace/gaussian_gradients.h"
 
 #include <algorithm>
@@ -8,59 +9,45 @@
 namespace glint {
 
 void GaussianGradients::reset(size_t n) {
-  position.assign(n, Vec3f(0.0f));
-  rotation.assign(n, Quatf{0, 0, 0, 0});
-  logScale.assign(n, Vec3f(0.0f));
-  opacityLogit.assign(n, 0.0f);
-  diffuse.assign(n, Rgb(0.0f));
-  normal.assign(n, Vec3f(0.0f));
-  roughness.assign(n, 0.0f);
-  f0.assign(n, Rgb(0.0f));
+  forEachParameter([&](const auto& p) { values[p.index].assign(n * p.components, 0.0f); });
   weight.assign(n, 0.0f);
 }
 
 void GaussianGradients::grow(size_t n) {
   GLINT_CHECK(n >= size(), "GaussianGradients::grow cannot shrink");
-  const size_t old = size();
-  position.resize(n);
-  rotation.resize(n);
-  logScale.resize(n);
-  opacityLogit.resize(n);
-  diffuse.resize(n);
-  normal.resize(n);
-  roughness.resize(n);
-  f0.resize(n);
+  // resize value-initialises the new floats: zero.
+  forEachParameter([&](const auto& p) { values[p.index].resize(n * p.components); });
   weight.resize(n);
-  zero(old, n);
 }
 
 void GaussianGradients::zero(size_t begin, size_t end) {
-  std::fill(position.begin() + begin, position.begin() + end, Vec3f(0.0f));
-  std::fill(rotation.begin() + begin, rotation.begin() + end, Quatf{0, 0, 0, 0});
-  std::fill(logScale.begin() + begin, logScale.begin() + end, Vec3f(0.0f));
-  std::fill(opacityLogit.begin() + begin, opacityLogit.begin() + end, 0.0f);
-  std::fill(diffuse.begin() + begin, diffuse.begin() + end, Rgb(0.0f));
-  std::fill(normal.begin() + begin, normal.begin() + end, Vec3f(0.0f));
-  std::fill(roughness.begin() + begin, roughness.begin() + end, 0.0f);
-  std::fill(f0.begin() + begin, f0.begin() + end, Rgb(0.0f));
+  forEachParameter([&](const auto& p) {
+    std::vector<float>& v = values[p.index];
+    std::fill(v.begin() + begin * p.components, v.begin() + end * p.components, 0.0f);
+  });
   std::fill(weight.begin() + begin, weight.begin() + end, 0.0f);
 }
 
+void GaussianGradients::filter(const std::vector<bool>& keep) {
+  GLINT_CHECK(keep.size() == size(), "keep mask must match the gradient arrays");
+  forEachParameter([&](const auto& p) { keepSelected(values[p.index], keep, p.components); });
+  keepSelected(weight, keep);
+}
+
+namespace {
+// to[j] += from[j] over [begin, end): one contiguous loop the compiler vectorises.
+void addFloats(std::vector<float>& to, const std::vector<float>& from, size_t begin, size_t end) {
+  float* t = to.data();
+  const float* f = from.data();
+  for (size_t j = begin; j < end; ++j) t[j] += f[j];
+}
+}  // namespace
+
 void GaussianGradients::addRange(const GaussianGradients& o, size_t begin, size_t end) {
-  for (size_t i = begin; i < end; ++i) {
-    position[i] += o.position[i];
-    rotation[i].w += o.rotation[i].w;
-    rotation[i].x += o.rotation[i].x;
-    rotation[i].y += o.rotation[i].y;
-    rotation[i].z += o.rotation[i].z;
-    logScale[i] += o.logScale[i];
-    opacityLogit[i] += o.opacityLogit[i];
-    diffuse[i] += o.diffuse[i];
-    normal[i] += o.normal[i];
-    roughness[i] += o.roughness[i];
-    f0[i] += o.f0[i];
-    weight[i] += o.weight[i];
-  }
+  forEachParameter([&](const auto& p) {
+    addFloats(values[p.index], o.values[p.index], begin * p.components, end * p.components);
+  });
+  addFloats(weight, o.weight, begin, end);
 }
 
 }  // namespace glint

@@ -53,7 +53,9 @@ class GaussianTracer {
 };
 
 // "fast" (our wide BVH), "embree-k16" (3DGRT-style baseline) or "reference" (every ray
-// against every Gaussian, in double precision). Throws Error for another name.
+// against every Gaussian, in double precision). Throws Error for another name. Defined in
+// src/tracers/ (link glint_tracers), which links Embree for the baseline; glint_raytrace
+// itself does not.
 std::unique_ptr<GaussianTracer> makeGaussianTracer(const std::string& kind);
 std::vector<std::string> gaussianTracerNames();
 

@@ -1,4 +1,5 @@
-// Gaussian scene PLY layouts: mapping named PLY columns to GaussianScene arrays and back.
+// Gaussian scene PLY layouts: mapping named PLY columns to GaussianScene arrays and back,
+// through the parameter table's property names (scene/gaussian_parameters.h).
 #include "scene/gaussian_ply.h"
 
 #include <array>
@@ -6,6 +7,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "scene/gaussian_parameters.h"
 
 namespace glint {
 
@@ -27,12 +29,15 @@ const std::vector<float>& required(const PlyTable& table, const std::string& nam
   return table.columns[size_t(index)];
 }
 
-// The columns of an optional group (e.g. normal_0..2): all present, or none (empty result).
+// The columns of a parameter's group (e.g. normal_0..2), looked up by name: a required
+// group must be complete; an optional one is all present, or none (empty result).
 template <size_t N>
-std::vector<const std::vector<float>*> optionalGroup(const PlyTable& table, const std::array<const char*, N>& names) {
+std::vector<const std::vector<float>*> columnGroup(const PlyTable& table, const std::array<const char*, N>& names,
+                                                   bool isRequired) {
   std::vector<const std::vector<float>*> columns;
   for (const char* name : names) {
-    if (table.has(name)) columns.push_back(&table.columns[size_t(table.find(name))]);
+    if (isRequired) columns.push_back(&required(table, name));
+    else if (table.has(name)) columns.push_back(&table.columns[size_t(table.find(name))]);
   }
   if (!columns.empty() && columns.size() != N) {
     const char* present = nullptr;
@@ -47,8 +52,6 @@ std::vector<const std::vector<float>*> optionalGroup(const PlyTable& table, cons
   return columns;
 }
 
-Vec3f gather3(const std::vector<const std::vector<float>*>& c, size_t i) { return {(*c[0])[i], (*c[1])[i], (*c[2])[i]}; }
-
 }  // namespace
 
 const char* plyLayoutName(PlyLayout layout) {
@@ -62,47 +65,39 @@ const char* plyLayoutName(PlyLayout layout) {
 
 PlyLayout detectGaussianPlyLayout(const PlyTable& table) {
   bool has3dgsOnly = table.has("f_rest_0") || table.has("nx");
-  bool hasGlintOnly = table.has("normal_0") || table.has("roughness") || table.has("f0_0");
+  // Glint's optional groups (normal, roughness, F0) are what only Glint writes.
+  bool hasGlintOnly = false;
+  forEachParameter([&](const auto& p) { hasGlintOnly = hasGlintOnly || (!p.plyRequired && table.has(p.plyNames[0])); });
   return has3dgsOnly && !hasGlintOnly ? PlyLayout::ThreeDgs : PlyLayout::Glint;
 }
 
 GaussianScene gaussianSceneFromPly(const PlyTable& table, PlyLayout layout) {
   if (layout == PlyLayout::Auto) layout = detectGaussianPlyLayout(table);
-  std::string file = sourceName(table);
 
-  // Look every column up first, so that a missing property is reported before any work.
-  const auto& x = required(table, "x");
-  const auto& y = required(table, "y");
-  const auto& z = required(table, "z");
-  std::array<const std::vector<float>*, 3> colour, scale;
-  std::array<const std::vector<float>*, 4> rot;
-  for (int k = 0; k < 3; ++k) colour[k] = &required(table, "f_dc_" + std::to_string(k));
-  const auto& opacity = required(table, "opacity");
-  for (int k = 0; k < 3; ++k) scale[k] = &required(table, "scale_" + std::to_string(k));
-  for (int k = 0; k < 4; ++k) rot[k] = &required(table, "rot_" + std::to_string(k));
-  auto normal = optionalGroup(table, std::array<const char*, 3>{"normal_0", "normal_1", "normal_2"});
-  auto roughness = optionalGroup(table, std::array<const char*, 1>{"roughness"});
-  auto f0 = optionalGroup(table, std::array<const char*, 3>{"f0_0", "f0_1", "f0_2"});
+  // Look every column up first, in the file's order, so that a missing property is
+  // reported before any work.
+  std::array<std::vector<const std::vector<float>*>, kGaussianParameterCount> columns;
+  forEachParameterInPlyOrder(
+      [&](const auto& p) { columns[p.index] = columnGroup(table, p.plyNames, p.plyRequired); });
 
   GaussianScene scene;
-  scene.resize(table.count);  // defaults for absent optional groups: normal 0, roughness 0, F0 0.04
+  scene.resize(table.count);  // absent optional groups keep their neutral values
+  forEachParameter([&](const auto& p) {
+    const auto& group = columns[p.index];
+    if (group.empty()) return;
+    auto& values = scene.*p.values;
+    for (size_t i = 0; i < table.count; ++i)
+      for (int k = 0; k < p.components; ++k) component(values[i], k) = (*group[size_t(k)])[i];
+  });
   for (size_t i = 0; i < table.count; ++i) {
-    scene.position[i] = {x[i], y[i], z[i]};
-    Quatf q{(*rot[0])[i], (*rot[1])[i], (*rot[2])[i], (*rot[3])[i]};
+    const Quatf& q = scene.rotation[i];
     if (q.w == 0.0f && q.x == 0.0f && q.y == 0.0f && q.z == 0.0f) {
-      throw Error(file, "vertex " + std::to_string(i) + " has a zero rotation quaternion (rot_0..3 are all 0)");
+      throw Error(sourceName(table), "vertex " + std::to_string(i) + " has a zero rotation quaternion (rot_0..3 are all 0)");
     }
-    scene.rotation[i] = q;
-    scene.logScale[i] = {(*scale[0])[i], (*scale[1])[i], (*scale[2])[i]};
-    scene.opacityLogit[i] = opacity[i];
-    Rgb c{(*colour[0])[i], (*colour[1])[i], (*colour[2])[i]};
-    if (layout == PlyLayout::ThreeDgs) {
+  }
+  if (layout == PlyLayout::ThreeDgs) {
+    for (Rgb& c : scene.diffuse)
       for (int k = 0; k < 3; ++k) c[k] = float(0.5 + kShC0 * double(c[k]));
-    }
-    scene.diffuse[i] = c;
-    if (!normal.empty()) scene.normal[i] = gather3(normal, i);
-    if (!roughness.empty()) scene.roughness[i] = (*roughness[0])[i];
-    if (!f0.empty()) scene.f0[i] = gather3(f0, i);
   }
   return scene;
 }
@@ -116,34 +111,15 @@ GaussianScene readGaussianPly(const fs::path& path, PlyLayout layout, PlyLayout*
 
 namespace {
 
-// Adds name_0.. name_{N-1} columns from component k of each element of values.
-template <typename V>
-void addComponents(PlyTable& table, const std::string& prefix, const std::vector<V>& values, int components,
-                   float (*get)(const V&, int)) {
-  for (int k = 0; k < components; ++k) {
+// Adds one column per component of a parameter, named as the table names them.
+template <typename Parameter>
+void addParameter(PlyTable& table, const GaussianScene& scene, const Parameter& p) {
+  const auto& values = scene.*p.values;
+  for (int k = 0; k < p.components; ++k) {
     std::vector<float> column(values.size());
-    for (size_t i = 0; i < values.size(); ++i) column[i] = get(values[i], k);
-    table.add(prefix + std::to_string(k), std::move(column));
+    for (size_t i = 0; i < values.size(); ++i) column[i] = component(values[i], k);
+    table.add(p.plyNames[size_t(k)], std::move(column));
   }
-}
-
-float vecComponent(const Vec3f& v, int k) { return v[k]; }
-float quatComponent(const Quatf& q, int k) { return k == 0 ? q.w : k == 1 ? q.x : k == 2 ? q.y : q.z; }
-
-// Position, opacity, scale and rotation are stored alike in both layouts.
-void addPosition(PlyTable& table, const GaussianScene& scene) {
-  const char* names[] = {"x", "y", "z"};
-  for (int k = 0; k < 3; ++k) {
-    std::vector<float> column(scene.size());
-    for (size_t i = 0; i < scene.size(); ++i) column[i] = scene.position[i][k];
-    table.add(names[k], std::move(column));
-  }
-}
-
-void addShape(PlyTable& table, const GaussianScene& scene) {
-  table.add("opacity", scene.opacityLogit);
-  addComponents(table, "scale_", scene.logScale, 3, vecComponent);
-  addComponents(table, "rot_", scene.rotation, 4, quatComponent);
 }
 
 }  // namespace
@@ -152,12 +128,7 @@ void writeGaussianPly(const fs::path& path, const GaussianScene& scene) {
   GLINT_CHECK(scene.consistent(), "writeGaussianPly: the scene's arrays have different sizes");
   PlyTable table;
   table.count = scene.size();
-  addPosition(table, scene);
-  addComponents(table, "f_dc_", scene.diffuse, 3, vecComponent);
-  addShape(table, scene);
-  addComponents(table, "normal_", scene.normal, 3, vecComponent);
-  table.add("roughness", scene.roughness);
-  addComponents(table, "f0_", scene.f0, 3, vecComponent);
+  forEachParameterInPlyOrder([&](const auto& p) { addParameter(table, scene, p); });
   // The comment tells a reader of the header that f_dc is not spherical harmonics.
   writePly(path, table, {{"Glint Gaussian scene: f_dc_0..2 is linear diffuse colour (not SH)"}});
 }
@@ -167,7 +138,7 @@ void exportGaussianPly3dgs(const fs::path& path, const GaussianScene& scene) {
   size_t n = scene.size();
   PlyTable table;
   table.count = n;
-  addPosition(table, scene);
+  addParameter(table, scene, parameterOf(&GaussianScene::position));
   for (const char* name : {"nx", "ny", "nz"}) table.add(name, std::vector<float>(n, 0.0f));
   for (int k = 0; k < 3; ++k) {
     std::vector<float> column(n);
@@ -175,7 +146,10 @@ void exportGaussianPly3dgs(const fs::path& path, const GaussianScene& scene) {
     table.add("f_dc_" + std::to_string(k), std::move(column));
   }
   for (int k = 0; k < kShRestCount; ++k) table.add("f_rest_" + std::to_string(k), std::vector<float>(n, 0.0f));
-  addShape(table, scene);
+  // Opacity, scale and rotation are stored as in Glint's layout.
+  addParameter(table, scene, parameterOf(&GaussianScene::opacityLogit));
+  addParameter(table, scene, parameterOf(&GaussianScene::logScale));
+  addParameter(table, scene, parameterOf(&GaussianScene::rotation));
   writePly(path, table);
 }
 

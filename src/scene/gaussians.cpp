@@ -1,61 +1,32 @@
-// GaussianScene bookkeeping: resizing, appending, filtering.
+// GaussianScene bookkeeping: resizing, appending, filtering, each over every array of the
+// parameter table (scene/gaussian_parameters.h).
 #include "scene/gaussians.h"
 
 #include <cmath>
 
 #include "core/error.h"
+#include "scene/gaussian_parameters.h"
 
 namespace glint {
 
 void GaussianScene::resize(size_t n) {
-  position.resize(n, Vec3f(0.0f));
-  rotation.resize(n, Quatf{});
-  logScale.resize(n, Vec3f(0.0f));
-  opacityLogit.resize(n, 0.0f);
-  diffuse.resize(n, Rgb(0.0f));
-  normal.resize(n, Vec3f(0.0f));
-  roughness.resize(n, 0.0f);
-  f0.resize(n, Rgb(0.04f));
+  forEachParameter([&](const auto& p) { (this->*p.values).resize(n, p.neutral); });
 }
 
 void GaussianScene::append(const GaussianScene& other, size_t i) {
   GLINT_CHECK(i < other.size(), "append: index out of range");
-  position.push_back(other.position[i]);
-  rotation.push_back(other.rotation[i]);
-  logScale.push_back(other.logScale[i]);
-  opacityLogit.push_back(other.opacityLogit[i]);
-  diffuse.push_back(other.diffuse[i]);
-  normal.push_back(other.normal[i]);
-  roughness.push_back(other.roughness[i]);
-  f0.push_back(other.f0[i]);
+  forEachParameter([&](const auto& p) { (this->*p.values).push_back((other.*p.values)[i]); });
 }
-
-namespace {
-template <typename T>
-void keepSelected(std::vector<T>& values, const std::vector<bool>& keep) {
-  size_t out = 0;
-  for (size_t i = 0; i < values.size(); ++i)
-    if (keep[i]) values[out++] = values[i];
-  values.resize(out);
-}
-}  // namespace
 
 void GaussianScene::filter(const std::vector<bool>& keep) {
   GLINT_CHECK(keep.size() == size(), "filter: mask size differs from the scene");
-  keepSelected(position, keep);
-  keepSelected(rotation, keep);
-  keepSelected(logScale, keep);
-  keepSelected(opacityLogit, keep);
-  keepSelected(diffuse, keep);
-  keepSelected(normal, keep);
-  keepSelected(roughness, keep);
-  keepSelected(f0, keep);
+  forEachParameter([&](const auto& p) { keepSelected(this->*p.values, keep); });
 }
 
 bool GaussianScene::consistent() const {
-  size_t n = position.size();
-  return rotation.size() == n && logScale.size() == n && opacityLogit.size() == n && diffuse.size() == n &&
-         normal.size() == n && roughness.size() == n && f0.size() == n;
+  bool same = true;
+  forEachParameter([&](const auto& p) { same = same && (this->*p.values).size() == size(); });
+  return same;
 }
 
 float GaussianScene::opacity(size_t i) const { return sigmoid(opacityLogit[i]); }

@@ -12,6 +12,8 @@
 
 namespace glint {
 
+// Every array is also an entry of the parameter table (scene/gaussian_parameters.h), which
+// the code that handles all parameters walks: a new array needs an entry there.
 struct GaussianScene {
   std::vector<Vec3f> position;      // mean, world space
   std::vector<Quatf> rotation;      // (w, x, y, z); normalised on use
@@ -24,8 +26,8 @@ struct GaussianScene {
 
   size_t size() const { return position.size(); }
   bool empty() const { return position.empty(); }
-  // Resizes every array; new Gaussians get neutral values (identity rotation, zero scale
-  // logs, opacity 0.5, zero colour and normal, roughness 0, F0 0.04).
+  // Resizes every array; new Gaussians get the table's neutral values (identity rotation,
+  // zero scale logs, opacity 0.5, zero colour and normal, roughness 0, F0 0.04).
   void resize(size_t n);
   // Appends Gaussian `index` of `other`.
   void append(const GaussianScene& other, size_t index);

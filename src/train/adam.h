@@ -1,24 +1,33 @@
-// Adam (Kingma and Ba 2015) over the parameter arrays of a GaussianScene, one learning rate
-// per parameter group, with the bias correction of PyTorch's implementation (3DGS's).
+// Adam (Kingma and Ba 2015) over the parameter arrays of a GaussianScene (the parameter
+// table's), one learning rate per parameter, with the bias correction of PyTorch's
+// implementation (3DGS's).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "raytrace/gaussian_gradients.h"
+#include "scene/gaussian_parameters.h"
 #include "scene/gaussians.h"
 #include "train/train_config.h"
 
 namespace glint {
 
-// Learning rates of one step.
+// Learning rates of one step, one per parameter (indexed by the table's index).
 struct StepLearningRates {
-  float position, rotation, scale, opacity, diffuse, normal, roughness, f0;
+  std::array<float, kGaussianParameterCount> rate{};
+
+  // The rate of the parameter stored in `member`, e.g. of(&GaussianScene::position).
+  template <typename V>
+  float of(std::vector<V> GaussianScene::*member) const {
+    return rate[parameterOf(member).index];
+  }
 };
 
-// The rates at a step: position log-linear from init to final x extent over its decay
-// steps (constant at final afterwards), normal likewise from normal to normalFinal; the
-// other groups are constant.
+// The rates at a step, as the parameter table names them: a decaying rate log-linear from
+// its initial to its final value over its decay steps (constant at final afterwards; the
+// position's times the scene extent), the others constant.
 StepLearningRates learningRatesAt(const LearningRates& lr, float sceneExtent, int64_t step);
 
 class AdamOptimizer {
@@ -47,8 +56,5 @@ class AdamOptimizer {
   GaussianGradients m_, v_;
   int64_t step_ = 0;
 };
-
-// Keeps the entries of g whose keep[i] is true, in order.
-void filterGradients(GaussianGradients* g, const std::vector<bool>& keep);
 
 }  // namespace glint

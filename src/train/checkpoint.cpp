@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "scene/gaussian_parameters.h"
 
 namespace glint {
 
@@ -18,6 +19,7 @@ constexpr uint32_t kVersion = 1;
 
 class Writer {
  public:
+  explicit Writer(size_t capacity) { data_.reserve(capacity); }
   void bytes(const void* p, size_t n) {
     const char* c = static_cast<const char*>(p);
     data_.insert(data_.end(), c, c + n);
@@ -27,10 +29,10 @@ class Writer {
     static_assert(std::is_trivially_copyable_v<T>);
     bytes(&v, sizeof(T));
   }
-  template <typename T>
-  void array(const std::vector<T>& v) {
-    value(uint64_t(v.size()));
-    bytes(v.data(), v.size() * sizeof(T));
+  // An array of `count` entries of `entrySize` bytes each, preceded by its count.
+  void array(const void* entries, size_t count, size_t entrySize) {
+    value(uint64_t(count));
+    bytes(entries, count * entrySize);
   }
   const std::vector<char>& data() const { return data_; }
 
@@ -43,7 +45,7 @@ class Reader {
   Reader(const std::vector<char>& data, size_t end, std::string file) : data_(data), end_(end), file_(std::move(file)) {}
   void bytes(void* p, size_t n) {
     if (n > end_ - pos_) throw Error(file_, "is truncated");
-    std::memcpy(p, data_.data() + pos_, n);
+    if (n > 0) std::memcpy(p, data_.data() + pos_, n);  // p may be null for an empty array
     pos_ += n;
   }
   template <typename T>
@@ -52,13 +54,12 @@ class Reader {
     bytes(&v, sizeof(T));
     return v;
   }
-  template <typename T>
-  void array(std::vector<T>* v, size_t expected) {
+  // An array written by Writer::array, into `entries` (room for `expected` of them).
+  void array(void* entries, size_t expected, size_t entrySize) {
     uint64_t n = value<uint64_t>();
     if (n != expected) throw Error(file_, "is corrupt: an array has " + std::to_string(n) + " entries, expected " +
                                               std::to_string(expected));
-    v->resize(n);
-    bytes(v->data(), n * sizeof(T));
+    bytes(entries, n * entrySize);
   }
   bool atEnd() const { return pos_ == end_; }
 
@@ -74,22 +75,27 @@ uint64_t fnv1a(const char* p, size_t n) {
   return h;
 }
 
-// Scene may be const or not (writing and reading share the order).
-template <typename Scene, typename Visit>
-void forEachSceneArray(Scene& s, Visit&& visit) {
-  visit(s.position), visit(s.rotation), visit(s.logScale), visit(s.opacityLogit);
-  visit(s.diffuse), visit(s.normal), visit(s.roughness), visit(s.f0);
-}
-template <typename Moments, typename Visit>
-void forEachMomentArray(Moments& g, Visit&& visit) {
-  visit(g.position), visit(g.rotation), visit(g.logScale), visit(g.opacityLogit);
-  visit(g.diffuse), visit(g.normal), visit(g.roughness), visit(g.f0);
+// The arrays of a checkpoint, in the parameter table's order: the scene's values, then the
+// first and the second moments. An entry is one Gaussian's value of the parameter; a
+// moment's floats are in the order of the value's components, so both are the bytes the
+// structure-of-arrays layout of version 1 wrote. Scene and Moments may be const or not.
+template <typename Scene, typename Moments, typename Visit>
+void forEachStateArray(Scene& scene, Moments& first, Moments& second, Visit&& visit) {
+  forEachParameter([&](const auto& p) { visit((scene.*p.values).data(), sizeof((scene.*p.values)[0])); });
+  for (Moments* moments : {&first, &second})
+    forEachParameter([&](const auto& p) { visit(moments->values[p.index].data(), p.components * sizeof(float)); });
 }
 
 }  // namespace
 
 void writeCheckpoint(const std::filesystem::path& file, const TrainingState& state) {
-  Writer w;
+  // The whole file is reserved at once: the header, the config, each array's count and
+  // floats (the values and both moments of every parameter, and the prune weight), the checksum.
+  const size_t n = state.scene.size();
+  size_t floatsPerGaussian = 1;
+  forEachParameter([&](const auto& p) { floatsPerGaussian += 3 * p.components; });
+  Writer w(128 + state.configJson.size() + (3 * kGaussianParameterCount + 1) * sizeof(uint64_t) +
+           n * floatsPerGaussian * sizeof(float));
   w.bytes(kMagic, sizeof(kMagic));
   w.value(kVersion);
   w.value(state.step);
@@ -98,10 +104,12 @@ void writeCheckpoint(const std::filesystem::path& file, const TrainingState& sta
   w.value(uint64_t(state.scene.size()));
   w.value(uint64_t(state.configJson.size()));
   w.bytes(state.configJson.data(), state.configJson.size());
-  forEachSceneArray(state.scene, [&](const auto& a) { w.array(a); });
-  forEachMomentArray(state.adam.firstMoment(), [&](const auto& a) { w.array(a); });
-  forEachMomentArray(state.adam.secondMoment(), [&](const auto& a) { w.array(a); });
-  w.array(state.pruneWeight);
+  GLINT_CHECK(state.scene.consistent() && state.adam.firstMoment().size() == n &&
+                  state.adam.secondMoment().size() == n && state.pruneWeight.size() == n,
+              "writeCheckpoint: every array must have one entry per Gaussian");
+  forEachStateArray(state.scene, state.adam.firstMoment(), state.adam.secondMoment(),
+                    [&](const void* entries, size_t entrySize) { w.array(entries, n, entrySize); });
+  w.array(state.pruneWeight.data(), state.pruneWeight.size(), sizeof(float));
   uint64_t checksum = fnv1a(w.data().data(), w.data().size());
   w.value(checksum);
   std::filesystem::create_directories(file.parent_path());
@@ -140,13 +148,14 @@ TrainingState readCheckpoint(const std::filesystem::path& file) {
   if (configLength > body) throw Error(name, "is corrupt: bad config length");
   state.configJson.resize(configLength);
   r.bytes(state.configJson.data(), configLength);
+  if (n > body) throw Error(name, "is corrupt: bad Gaussian count");  // before sizing arrays by it
   state.scene.resize(n);
-  forEachSceneArray(state.scene, [&](auto& a) { r.array(&a, n); });
   state.adam.reset(n);
-  forEachMomentArray(state.adam.firstMoment(), [&](auto& a) { r.array(&a, n); });
-  forEachMomentArray(state.adam.secondMoment(), [&](auto& a) { r.array(&a, n); });
+  forEachStateArray(state.scene, state.adam.firstMoment(), state.adam.secondMoment(),
+                    [&](void* entries, size_t entrySize) { r.array(entries, n, entrySize); });
   state.adam.setStepCount(adamStep);
-  r.array(&state.pruneWeight, n);
+  state.pruneWeight.resize(n);
+  r.array(state.pruneWeight.data(), n, sizeof(float));
   if (!r.atEnd()) throw Error(name, "is corrupt: unexpected bytes after the last array");
   return state;
 }

@@ -9,26 +9,21 @@
 #include <vector>
 
 #include "core/parallel.h"
+#include "scene/gaussian_parameters.h"
 
 namespace glint {
 
 namespace {
 
-bool finite(const Vec3f& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-bool finite(const Quatf& q) { return std::isfinite(q.w) && std::isfinite(q.x) && std::isfinite(q.y) && std::isfinite(q.z); }
-bool finite(float v) { return std::isfinite(v); }
-
-// The name of the first non-finite parameter of Gaussian i, or nullptr.
+// The label of the first parameter (in table order) of Gaussian i with a non-finite
+// component, or nullptr.
 const char* nonFiniteParameterOf(const GaussianScene& s, size_t i) {
-  if (!finite(s.position[i])) return "position";
-  if (!finite(s.rotation[i])) return "rotation";
-  if (!finite(s.logScale[i])) return "scale";
-  if (!finite(s.opacityLogit[i])) return "opacity";
-  if (!finite(s.diffuse[i])) return "diffuse colour";
-  if (!finite(s.normal[i])) return "normal";
-  if (!finite(s.roughness[i])) return "roughness";
-  if (!finite(s.f0[i])) return "F0";
-  return nullptr;
+  const char* label = nullptr;
+  forEachParameter([&](const auto& p) {
+    for (int k = 0; k < p.components && !label; ++k)
+      if (!std::isfinite(component((s.*p.values)[i], k))) label = p.label;
+  });
+  return label;
 }
 
 std::string formatLoss(double v) {

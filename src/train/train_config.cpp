@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/printable_text.h"
 #include "io/json_file.h"
+#include "scene/gaussian_parameters.h"
 
 namespace glint {
 
@@ -72,18 +73,13 @@ void forEachField(Config& c, F&& f) {
   f("loss", "roughness", c.loss.roughness);
   f("loss", "f0", c.loss.f0);
   f("loss", "specular", c.loss.specular);
-  f("lr", "position_init", c.lr.positionInit);
-  f("lr", "position_final", c.lr.positionFinal);
-  f("lr", "position_decay_steps", c.lr.positionDecaySteps);
-  f("lr", "rotation", c.lr.rotation);
-  f("lr", "scale", c.lr.scale);
-  f("lr", "opacity", c.lr.opacity);
-  f("lr", "diffuse", c.lr.diffuse);
-  f("lr", "normal", c.lr.normal);
-  f("lr", "normal_final", c.lr.normalFinal);
-  f("lr", "normal_decay_steps", c.lr.normalDecaySteps);
-  f("lr", "roughness", c.lr.roughness);
-  f("lr", "f0", c.lr.f0);
+  // The learning rates, named by the parameter table.
+  forEachParameter([&](const auto& p) {
+    f("lr", p.rate.key, c.lr.*p.rate.initial);
+    if (!p.rate.final) return;
+    f("lr", p.rate.finalKey, c.lr.*p.rate.final);
+    f("lr", p.rate.decayStepsKey, c.lr.*p.rate.decaySteps);
+  });
   f("adam", "beta1", c.adam.beta1);
   f("adam", "beta2", c.adam.beta2);
   f("adam", "epsilon", c.adam.epsilon);
@@ -259,13 +255,17 @@ void TrainConfig::validate(const std::string& source) const {
           "reflection_warmup must be at most " + std::to_string(kItersRange.max));
   for (float w : {loss.diffuse, loss.depth, loss.normal, loss.roughness, loss.f0, loss.specular})
     require(w >= 0 && w <= kMaxLossWeight, source, "loss weights must be in [0, 1e6]");
-  for (float r : {lr.positionInit, lr.positionFinal, lr.rotation, lr.scale, lr.opacity, lr.diffuse, lr.normal,
-                  lr.normalFinal, lr.roughness, lr.f0})
-    require(r >= 0 && r < kMaxLearningRate, source, "learning rates must be in [0, 10)");
-  inRange(lr.positionDecaySteps, kEveryStepsRange, "lr.position_decay_steps");
-  require(lr.positionFinal <= lr.positionInit, source, "lr.position_final must not exceed lr.position_init");
-  inRange(lr.normalDecaySteps, kEveryStepsRange, "lr.normal_decay_steps");
-  require(lr.normalFinal <= lr.normal, source, "lr.normal_final must not exceed lr.normal");
+  forEachParameter([&](const auto& p) {
+    for (float LearningRates::*rate : {p.rate.initial, p.rate.final})
+      if (rate) require(lr.*rate >= 0 && lr.*rate < kMaxLearningRate, source, "learning rates must be in [0, 10)");
+  });
+  forEachParameter([&](const auto& p) {
+    const ParameterRate& r = p.rate;
+    if (!r.final) return;
+    inRange(lr.*r.decaySteps, kEveryStepsRange, keyName("lr", r.decayStepsKey).c_str());
+    require(lr.*r.final <= lr.*r.initial, source,
+            keyName("lr", r.finalKey) + " must not exceed " + keyName("lr", r.key));
+  });
   require(adam.beta1 >= 0 && adam.beta1 < 1 && adam.beta2 >= 0 && adam.beta2 < 1, source,
           "adam.beta1 and adam.beta2 must be in [0, 1)");
   require(adam.epsilon > 0 && adam.epsilon <= 1, source, "adam.epsilon must be in (0, 1]");

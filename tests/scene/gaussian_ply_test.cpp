@@ -117,6 +117,29 @@ TEST(GaussianPly, EmptySceneRoundTrips) {
   EXPECT_TRUE(readGaussianPly(path).empty());
 }
 
+// A scene written before the parameter table (scene/gaussian_parameters.h) chose the
+// columns (tests/data/README.md) loads with every value in its place, and is written again
+// byte for byte.
+TEST(GaussianPly, SceneWrittenBeforeTheParameterTableLoadsAndRewritesIdentically) {
+  const fs::path fixture = fs::path(GLINT_TEST_DATA) / "version1_run" / "scene.ply";
+  GaussianScene scene = readGaussianPly(fixture);
+  ASSERT_EQ(scene.size(), 2u);
+  // Gaussian 1 as the file stores it, x to f0_2.
+  EXPECT_EQ(scene.position[1], Vec3f(1.8507344722747803f, 0.7678765058517456f, 0.29158538579940796f));
+  EXPECT_EQ(scene.diffuse[1], Rgb(0.0007831563707441092f, 0.0008220239542424679f, 0.0008220239542424679f));
+  EXPECT_EQ(scene.opacityLogit[1], -1.89443039894104f);
+  EXPECT_EQ(scene.logScale[1], Vec3f(-0.9734911322593689f, -0.9294913411140442f, -0.9274319410324097f));
+  EXPECT_TRUE(sameBits(scene.rotation[1], Quatf{1.0069531202316284f, -0.0024051975924521685f,
+                                                -0.0017471248283982277f, 0.0007140557281672955f}));
+  EXPECT_EQ(scene.normal[1], Vec3f(0.02996869571506977f, 0.012363441288471222f, -0.001348507939837873f));
+  EXPECT_EQ(scene.roughness[1], 0.1303783655166626f);
+  EXPECT_EQ(scene.f0[1], Rgb(0.0703783705830574f));
+
+  TempFolder folder;
+  writeGaussianPly(folder / "again.ply", scene);
+  EXPECT_EQ(test::readBytes(folder / "again.ply"), test::readBytes(fixture));
+}
+
 TEST(GaussianPly, ThreeDgsExportIsStandardAndLoadsBack) {
   TempFolder folder;
   GaussianScene scene = randomScene(300, 11);

@@ -19,7 +19,7 @@ TEST(Adam, MatchesTheAlgorithmStepByStep) {
   settings.epsilon = 1e-8f;
   AdamOptimizer adam(settings);
   adam.reset(scene.size());
-  StepLearningRates rates{0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f, 0.8f};
+  StepLearningRates rates{{0.1f, 0.2f, 0.3f, 0.4f, 0.5f, 0.6f, 0.7f, 0.8f}};  // table order
   Rng rng(3);
   double p = scene.opacityLogit[1], m = 0, v = 0;  // one parameter followed in double
   double q = scene.diffuse[2].y, mq = 0, vq = 0;
@@ -27,8 +27,8 @@ TEST(Adam, MatchesTheAlgorithmStepByStep) {
     GaussianGradients g;
     g.reset(scene.size());
     float gp = float(rng.uniformDouble() * 2 - 1), gq = float(rng.uniformDouble() * 2 - 1);
-    g.opacityLogit[1] = gp;
-    g.diffuse[2].y = gq;
+    g.of(&GaussianScene::opacityLogit)[1] = gp;
+    g.of(&GaussianScene::diffuse)[2 * 3 + 1] = gq;  // Gaussian 2's green
     adam.step(&scene, g, rates);
     auto reference = [&](double& x, double& mm, double& vv, double grad, double lr) {
       mm = 0.9 * mm + 0.1 * grad;
@@ -49,19 +49,19 @@ TEST(Adam, MatchesTheAlgorithmStepByStep) {
 TEST(Adam, PositionAndNormalRatesDecayLogLinearly) {
   LearningRates lr;
   float extent = 2.5f;
-  EXPECT_NEAR(learningRatesAt(lr, extent, 0).position, 1.6e-4 * 2.5, 1e-9);
-  EXPECT_NEAR(learningRatesAt(lr, extent, 16000).position, std::sqrt(1.6e-4 * 1.6e-6) * 2.5, 1e-9);
-  EXPECT_NEAR(learningRatesAt(lr, extent, 32000).position, 1.6e-6 * 2.5, 1e-10);
-  EXPECT_NEAR(learningRatesAt(lr, extent, 90000).position, 1.6e-6 * 2.5, 1e-10);
-  EXPECT_EQ(learningRatesAt(lr, extent, 123).diffuse, lr.diffuse);
-  EXPECT_EQ(learningRatesAt(lr, extent, 123).opacity, lr.opacity);
+  EXPECT_NEAR(learningRatesAt(lr, extent, 0).of(&GaussianScene::position), 1.6e-4 * 2.5, 1e-9);
+  EXPECT_NEAR(learningRatesAt(lr, extent, 16000).of(&GaussianScene::position), std::sqrt(1.6e-4 * 1.6e-6) * 2.5, 1e-9);
+  EXPECT_NEAR(learningRatesAt(lr, extent, 32000).of(&GaussianScene::position), 1.6e-6 * 2.5, 1e-10);
+  EXPECT_NEAR(learningRatesAt(lr, extent, 90000).of(&GaussianScene::position), 1.6e-6 * 2.5, 1e-10);
+  EXPECT_EQ(learningRatesAt(lr, extent, 123).of(&GaussianScene::diffuse), lr.diffuse);
+  EXPECT_EQ(learningRatesAt(lr, extent, 123).of(&GaussianScene::opacityLogit), lr.opacity);
   // The normal rate is constant by default, and decays like the position rate when asked.
-  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 5000).normal, lr.normal);
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 5000).of(&GaussianScene::normal), lr.normal);
   lr.normalFinal = lr.normal / 100;
   lr.normalDecaySteps = 4000;
-  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 0).normal, lr.normal);
-  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 2000).normal, lr.normal / 10);
-  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 9000).normal, lr.normal / 100);
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 0).of(&GaussianScene::normal), lr.normal);
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 2000).of(&GaussianScene::normal), lr.normal / 10);
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 9000).of(&GaussianScene::normal), lr.normal / 100);
 }
 
 TEST(Adam, FilterKeepsTheMomentsOfKeptGaussians) {
@@ -71,13 +71,13 @@ TEST(Adam, FilterKeepsTheMomentsOfKeptGaussians) {
   adam.reset(4);
   GaussianGradients g;
   g.reset(4);
-  for (int i = 0; i < 4; ++i) g.roughness[i] = float(i + 1);
-  adam.step(&scene, g, StepLearningRates{1, 1, 1, 1, 1, 1, 1, 1});
+  for (int i = 0; i < 4; ++i) g.of(&GaussianScene::roughness)[i] = float(i + 1);
+  adam.step(&scene, g, StepLearningRates{{1, 1, 1, 1, 1, 1, 1, 1}});
   adam.filter({true, false, false, true});
   ASSERT_EQ(adam.firstMoment().size(), 2u);
-  EXPECT_FLOAT_EQ(adam.firstMoment().roughness[0], 0.1f * 1);
-  EXPECT_FLOAT_EQ(adam.firstMoment().roughness[1], 0.1f * 4);
-  EXPECT_NEAR(adam.secondMoment().roughness[1], 0.001 * 16, 1e-6);
+  EXPECT_FLOAT_EQ(adam.firstMoment().of(&GaussianScene::roughness)[0], 0.1f * 1);
+  EXPECT_FLOAT_EQ(adam.firstMoment().of(&GaussianScene::roughness)[1], 0.1f * 4);
+  EXPECT_NEAR(adam.secondMoment().of(&GaussianScene::roughness)[1], 0.001 * 16, 1e-6);
 }
 
 }  // namespace

@@ -1,12 +1,12 @@
 // Each operation moves whole nodes (every vertex and normal of a mesh, a sphere's centre and
 // radius), copies or removes them, or changes the factors of their materials.
-#include "edit/mesh_edits.h"
+#include "synth_edit/mesh_edits.h"
 
 #include <numbers>
 
 #include "edit/edit_file.h"
-#include "edit/material_colors.h"
 #include "edit/value_changes.h"
+#include "synth_edit/material_colors.h"
 
 namespace glint {
 
@@ -101,7 +101,7 @@ std::vector<int> ownMaterials(const NodeMask& mask, MeshScene& scene) {
 }
 
 // Changes a material's factors: roughness directly; F0 or diffuse through the
-// metallic-roughness mapping, keeping the other colour (edit/material_colors.h).
+// metallic-roughness mapping, keeping the other colour (synth_edit/material_colors.h).
 void changeMaterial(const Operation& op, Material& material) {
   SurfaceMaterial factors = materialFactors(material);
   switch (op.kind) {

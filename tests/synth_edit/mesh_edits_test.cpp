@@ -1,12 +1,12 @@
 // Edits of ground-truth mesh scenes: each operation gives exactly the expected vertices,
 // normals, sphere centres and radii and material factors; shared materials are split; the
 // surface the path tracer sees after an F0 or diffuse edit has the requested colours.
-#include "edit/mesh_edits.h"
+#include "synth_edit/mesh_edits.h"
 
 #include <gtest/gtest.h>
 
 #include "edit/hsv.h"
-#include "edit/mesh_scene_fixture.h"
+#include "synth_edit/mesh_scene_fixture.h"
 
 namespace glint {
 namespace {

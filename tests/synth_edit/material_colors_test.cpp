@@ -1,6 +1,6 @@
 // Re-expressing materials for a requested diffuse and F0: every kind of material (dielectric,
 // partial metal, pure metal, tinted specular) ends with exactly the requested factors.
-#include "edit/material_colors.h"
+#include "synth_edit/material_colors.h"
 
 #include <gtest/gtest.h>
 

@@ -2,7 +2,7 @@
 // (every Gaussian, full sort by (key, id)): random scenes, both kernel powers, both
 // thresholds, exact tail on and off, rays from outside and inside the cloud, many k-buffer
 // rounds, refit versus a fresh build, and the degenerate scenes.
-#include "raytrace/embree_tracer.h"
+#include "tracers/embree_tracer.h"
 
 #include <gtest/gtest.h>
 

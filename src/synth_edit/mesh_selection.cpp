@@ -1,5 +1,5 @@
 // Selections over mesh-scene nodes: a handful of nodes, so plain loops suffice.
-#include "edit/mesh_selection.h"
+#include "synth_edit/mesh_selection.h"
 
 #include <limits>
 

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "edit/edit_document.h"
-#include "edit/mesh_selection.h"
 #include "synth/mesh_scene.h"
+#include "synth_edit/mesh_selection.h"
 
 namespace glint {
 

@@ -1,10 +1,10 @@
 // Mesh selections: shapes pick whole nodes by the centre of their bounds, filters test the
 // material factors, and combinations are set operations on nodes.
-#include "edit/mesh_selection.h"
+#include "synth_edit/mesh_selection.h"
 
 #include <gtest/gtest.h>
 
-#include "edit/mesh_scene_fixture.h"
+#include "synth_edit/mesh_scene_fixture.h"
 
 namespace glint {
 namespace {

@@ -1,9 +1,10 @@
-// Creates a Gaussian tracer by name: the one place that knows every implementation.
+// Creates a Gaussian tracer by name: the one place that knows every implementation. It lives
+// in glint_tracers, beside the Embree baseline, so that glint_raytrace does not link Embree.
 #include "core/error.h"
-#include "raytrace/embree_tracer.h"
 #include "raytrace/fast/fast_tracer.h"
 #include "raytrace/gaussian_tracer.h"
 #include "raytrace/reference/reference_tracer.h"
+#include "tracers/embree_tracer.h"
 
 namespace glint {
 

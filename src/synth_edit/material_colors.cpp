@@ -1,5 +1,5 @@
 // Solving the metallic-roughness mapping of synth/mesh_scene for a requested diffuse and F0.
-#include "edit/material_colors.h"
+#include "synth_edit/material_colors.h"
 
 #include <algorithm>
 

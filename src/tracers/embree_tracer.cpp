@@ -1,7 +1,7 @@
 // Embree 3 implementation of the 3DGRT k-buffer tracer: the device and its error and memory
 // callbacks, the Gaussian user geometry (bounds and intersect callbacks), and the per-ray
 // traversal rounds.
-#include "raytrace/embree_tracer.h"
+#include "tracers/embree_tracer.h"
 
 #include <embree3/rtcore.h>
 

@@ -1,0 +1,30 @@
+// Adam's learning rate of each Gaussian parameter, beside the parameters themselves so that
+// the parameter table (scene/gaussian_parameters.h) can name each one's rate, as 3DGS's
+// parameter groups carry theirs. The config's "lr" keys are the table's (train/train_config.cpp).
+#pragma once
+
+namespace glint {
+
+// Adam learning rates per parameter group (defaults of the paper's code). The position
+// rate is multiplied by the scene extent and decays log-linearly from positionInit to
+// positionFinal over positionDecaySteps steps (3DGS).
+struct LearningRates {
+  float positionInit = 1.6e-4f;
+  float positionFinal = 1.6e-6f;
+  int positionDecaySteps = 32000;
+  float rotation = 1e-3f;
+  float scale = 5e-3f;
+  float opacity = 2.5e-2f;
+  float diffuse = 5e-3f;
+  float normal = 2.5e-3f;
+  // The normal rate decays log-linearly from `normal` to this over normalDecaySteps steps
+  // (constant afterwards); equal to `normal` (the paper's schedule), it stays constant.
+  // Adam moves each parameter by about its rate per step whatever the gradient's size, so
+  // a constant rate keeps normals jittering by about that much: reflected rays magnify it.
+  float normalFinal = 2.5e-3f;
+  int normalDecaySteps = 8000;
+  float roughness = 2.5e-3f;
+  float f0 = 2.5e-3f;
+};
+
+}  // namespace glint
