@@ -18,6 +18,7 @@
 
 #include "core/parallel.h"
 #include "raytrace/fast/fast_tracer.h"
+#include "render/gaussian_path.h"
 #include "render/gaussian_renderer.h"
 #include "room_scene.h"
 
@@ -69,13 +70,16 @@ int main(int argc, char** argv) {
   TraceSettings trace;  // the defaults glint render uses for a scene without a run
   std::printf("render_bench: renderGaussianView at %dx%d, 1 spp, %d views x %d repeats per measurement, %d threads\n",
               width, height, views, repeats, threads);
-  std::printf("%-9s %-8s %-8s %12s %12s %8s %14s %10s %10s\n", "gaussians", "cameras", "bounces", "fast s",
-              "embree s", "ratio", "fast unsorted s", "fast MB", "embree MB");
+  std::printf("%-9s %-8s %-8s %10s %10s %10s %8s %16s %9s %10s\n", "gaussians", "cameras", "bounces", "refl/path",
+              "fast s", "embree s", "ratio", "fast unsorted s", "fast MB", "embree MB");
   nlohmann::json json;
   json["width"] = width, json["height"] = height, json["views"] = views, json["threads"] = threads;
   const std::vector<Camera> inside = roomCameras(true, width, height), outside = roomCameras(false, width, height);
   for (int count : counts) {
     GaussianScene scene = makeRoom(size_t(count), 1);
+    // Unit normals facing up, so that paths reflect (the room's random normals blend to
+    // invalid ones and would end every path at its first segment).
+    for (Vec3f& n : scene.normal) n = Vec3f(0, 1, 0);
     std::unique_ptr<GaussianTracer> fast = makeGaussianTracer("fast"), embree = makeGaussianTracer("embree-k16");
     double fastBuild = secondsOf([&] { fast->build(scene, trace); });
     double embreeBuild = secondsOf([&] { embree->build(scene, trace); });
@@ -89,6 +93,24 @@ int main(int argc, char** argv) {
             for (size_t v = 0; v < cameras->size(); ++v) renderGaussianView(tracer, (*cameras)[v], settings, v);
         };
         renderAll(*fast);  // warm-up: first-touch of the tracers' scratch
+        // Reflected segments per path, from one wavefront of the first camera's rays.
+        double reflectedPerPath = 0;
+        {
+          const Camera& c = (*cameras)[0];
+          std::vector<TraceRay> primaries;
+          std::vector<PathKey> keys;
+          for (int y = 0; y < c.height; ++y)
+            for (int x = 0; x < c.width; ++x) {
+              Ray r = c.generateRay(x + 0.5, y + 0.5);
+              primaries.push_back({Vec3f(r.origin), Vec3f(r.direction), 0.0f});
+              keys.push_back({0, uint64_t(y) * uint64_t(c.width) + uint64_t(x), 0});
+            }
+          std::vector<PathResult> results(primaries.size());
+          PathBatch batch;
+          batch.trace(*fast, primaries, keys, 0, settings.path, results, /*record=*/false);
+          for (const PathResult& r : results) reflectedPerPath += r.segments - 1;
+          reflectedPerPath /= double(results.size());
+        }
         double fastSeconds = secondsOf([&] { renderAll(*fast); });
         double embreeSeconds = secondsOf([&] { renderAll(*embree); });
         // The reflected rays in path order instead of sorted by origin and octant.
@@ -98,11 +120,11 @@ int main(int argc, char** argv) {
           unsortedSeconds = secondsOf([&] { renderAll(*fast); });
           settings.path.reflectedOrder = ReflectedRayOrder::OriginAndOctant;
         }
-        std::printf("%-9zu %-8s %-8d %12.3f %12.3f %7.2fx %14.3f %10.1f %10.1f\n", scene.size(), where, bounces,
-                    fastSeconds, embreeSeconds, embreeSeconds / fastSeconds, unsortedSeconds, fast->memoryBytes() / 1e6,
-                    embree->memoryBytes() / 1e6);
+        std::printf("%-9zu %-8s %-8d %10.2f %10.3f %10.3f %7.2fx %16.3f %9.1f %10.1f\n", scene.size(), where, bounces,
+                    reflectedPerPath, fastSeconds, embreeSeconds, embreeSeconds / fastSeconds, unsortedSeconds,
+                    fast->memoryBytes() / 1e6, embree->memoryBytes() / 1e6);
         json["runs"].push_back({{"gaussians", scene.size()}, {"cameras", where}, {"bounces", bounces},
-                                {"fast_s", fastSeconds}, {"embree_s", embreeSeconds},
+                                {"reflected_segments_per_path", reflectedPerPath}, {"fast_s", fastSeconds}, {"embree_s", embreeSeconds},
                                 {"ratio", embreeSeconds / fastSeconds}, {"fast_unsorted_reflections_s", unsortedSeconds},
                                 {"fast_build_s", fastBuild},
                                 {"embree_build_s", embreeBuild}, {"fast_tracer_bytes", fast->memoryBytes()},
