@@ -128,10 +128,17 @@ int main(int argc, char** argv) {
     p.reflectedOrder = order;
     p.primaryCoherence = coherence;
     PathBatch wavefront;
-    wavefront.trace(trainer.tracer(), primaries[0], keys[0], config.seed, p, pathResults, /*record=*/true);  // warm
+    pathResults.resize(std::min(primaries[0].size(), size_t(Trainer::kWavefrontRays)));
+    wavefront.trace(trainer.tracer(), std::span(primaries[0]).first(pathResults.size()),
+                    std::span(keys[0]).first(pathResults.size()), config.seed, p, pathResults, /*record=*/true);  // warm
     return secondsOf([&] {
       for (size_t b = 0; b < rays.size(); ++b)
-        wavefront.trace(trainer.tracer(), primaries[b], keys[b], config.seed, p, pathResults, /*record=*/true);
+        for (size_t first = 0; first < primaries[b].size(); first += size_t(Trainer::kWavefrontRays)) {
+          const size_t count = std::min(size_t(Trainer::kWavefrontRays), primaries[b].size() - first);
+          pathResults.resize(count);
+          wavefront.trace(trainer.tracer(), std::span(primaries[b]).subspan(first, count),
+                          std::span(keys[b]).subspan(first, count), config.seed, p, pathResults, /*record=*/true);
+        }
     });
   };
   const double sortedSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Scattered);
@@ -176,10 +183,11 @@ int main(int argc, char** argv) {
     std::printf("%-55s %10.3f %11.2fx\n", r.name, totalRays / r.seconds / 1e6, r.seconds / forwardSeconds);
     json["passes"][r.name] = {{"mrays_per_s", totalRays / r.seconds / 1e6}, {"ratio_to_training_forward", r.seconds / forwardSeconds}};
   }
-  std::printf("reflected segments per ray %.2f; wavefront records %.1f MB for %d rays (%.0f B per ray, shared by "
-              "the threads); fast tracer scratch %.1f KB per thread\n",
+  const double wavefrontRays = double(std::min<int64_t>(batchRays, Trainer::kWavefrontRays));
+  std::printf("reflected segments per ray %.2f; wavefront records %.1f MB for a wavefront of %.0f rays (%.0f B per "
+              "ray, shared by the threads); fast tracer scratch %.1f KB per thread\n",
               double(fusedReport.reflectedSegments) / double(fusedReport.rays), trainer.wavefrontBytes() / 1e6,
-              batchRays, double(trainer.wavefrontBytes()) / batchRays, FastGaussianTracer::threadScratchBytes() / 1e3);
+              wavefrontRays, double(trainer.wavefrontBytes()) / wavefrontRays, FastGaussianTracer::threadScratchBytes() / 1e3);
   json["reflected_segments_per_ray"] = double(fusedReport.reflectedSegments) / double(fusedReport.rays);
   json["wavefront_bytes"] = trainer.wavefrontBytes();
   json["fast_thread_scratch_bytes"] = FastGaussianTracer::threadScratchBytes();

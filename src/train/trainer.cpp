@@ -1,8 +1,8 @@
 // The training step. Determinism: a step's rays depend only on (seed, step); its paths are
-// traced as one wavefront (each path's result depends on its keys alone); the batch is
-// split into one contiguous range per slot (one slot per thread), each slot accumulates
-// into its own gradient buffer, and the buffers are summed in slot order, so a run is
-// reproducible bit for bit for a given seed and thread count, resumed or not.
+// traced in wavefronts of fixed size (each path's result depends on its keys alone); each
+// wavefront is split into one contiguous range per slot (one slot per thread), each slot
+// accumulates into its own gradient buffer, and the buffers are summed in slot order, so a
+// run is reproducible bit for bit for a given seed and thread count, resumed or not.
 #include "train/trainer.h"
 
 #include <algorithm>
@@ -90,17 +90,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   // A batch's pixels are scattered over its views (train_bench: bundles of them were
   // slower than tracing each ray alone).
   pathSettings.primaryCoherence = RayCoherence::Scattered;
-  // The forward pass: the batch's paths as one wavefront, every segment recorded with its
-  // hits. The sample key is the step, so each step draws new reflection directions.
-  rays_.resize(batch.size());
-  keys_.resize(batch.size());
-  paths_.resize(batch.size());
-  for (size_t r = 0; r < batch.size(); ++r) {
-    rays_[r] = batch[r].ray;
-    keys_[r] = {batch[r].view, batch[r].pixel, uint64_t(step_)};
-  }
-  pathBatch_.trace(*tracer_, rays_, keys_, config_.seed, pathSettings, paths_, /*record=*/true);
-  // The losses and the backward pass, per path, into per-slot gradients.
+  // Slots start empty; each accumulates its share of every wavefront.
   parallelFor(slotCount, 1, [&](int64_t s) {
     Slot& slot = *slots_[s];
     if (slot.gradient.size() != n)
@@ -109,27 +99,47 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
       slot.gradient.zero(0, n);
     slot.terms = {};
     slot.hitCount = slot.overflowed = slot.reflected = 0;
-    auto sink = [&](uint32_t id, const HitGradient<float>& g) { slot.gradient.add(id, g); };
-    for (int64_t r = rays * s / slotCount; r < rays * (s + 1) / slotCount; ++r) {
-      const BatchRay& b = batch[size_t(r)];
-      const PixelTarget& target = views_.target(b.view, b.pixel);
-      std::span<const PathSegment> path = pathBatch_.path(size_t(r));
-      const RayResult& result = path[0].result;
-      slot.terms += rayLoss(result, target, norm);
-      slot.hitCount += int64_t(path[0].hits.hits.size());
-      Rgb v_specular(0.0f);
-      if (reflections) {
-        const Rgb& specular = paths_[size_t(r)].specular;
-        slot.terms.specular += specularLoss(specular, target, norm);
-        slot.reflected += int64_t(path.size()) - 1;
-        v_specular = specularLoss_vjp(specular, target, norm, config_.loss);
-      }
-      if (!backward) continue;
-      RayResultAdjoint v_first = rayLoss_vjp(result, target, norm, config_.loss);
-      slot.overflowed += tracePath_vjp<float>(scene_, config_.trace, path, v_first, v_specular, /*weighted=*/true,
-                                              slot.scratch, sink);
-    }
   });
+  // The batch goes in wavefronts of at most kWavefrontRays paths: each is traced with every
+  // segment recorded (hits included), then its losses and backward pass run, split over
+  // the slots in contiguous ranges. The records' memory (about 6 KB per path) stays bounded
+  // whatever the batch size. The sample key is the step, so each step draws new reflection
+  // directions.
+  for (int64_t first = 0; first < rays; first += kWavefrontRays) {
+    const int64_t count = std::min(kWavefrontRays, rays - first);
+    rays_.resize(size_t(count));
+    keys_.resize(size_t(count));
+    paths_.resize(size_t(count));
+    for (int64_t r = 0; r < count; ++r) {
+      const BatchRay& b = batch[size_t(first + r)];
+      rays_[size_t(r)] = b.ray;
+      keys_[size_t(r)] = {b.view, b.pixel, uint64_t(step_)};
+    }
+    pathBatch_.trace(*tracer_, rays_, keys_, config_.seed, pathSettings, paths_, /*record=*/true);
+    parallelFor(slotCount, 1, [&](int64_t s) {
+      Slot& slot = *slots_[s];
+      auto sink = [&](uint32_t id, const HitGradient<float>& g) { slot.gradient.add(id, g); };
+      for (int64_t r = count * s / slotCount; r < count * (s + 1) / slotCount; ++r) {
+        const BatchRay& b = batch[size_t(first + r)];
+        const PixelTarget& target = views_.target(b.view, b.pixel);
+        std::span<const PathSegment> path = pathBatch_.path(size_t(r));
+        const RayResult& result = path[0].result;
+        slot.terms += rayLoss(result, target, norm);
+        slot.hitCount += int64_t(path[0].hits.hits.size());
+        Rgb v_specular(0.0f);
+        if (reflections) {
+          const Rgb& specular = paths_[size_t(r)].specular;
+          slot.terms.specular += specularLoss(specular, target, norm);
+          slot.reflected += int64_t(path.size()) - 1;
+          v_specular = specularLoss_vjp(specular, target, norm, config_.loss);
+        }
+        if (!backward) continue;
+        RayResultAdjoint v_first = rayLoss_vjp(result, target, norm, config_.loss);
+        slot.overflowed += tracePath_vjp<float>(scene_, config_.trace, path, v_first, v_specular, /*weighted=*/true,
+                                                slot.scratch, sink);
+      }
+    });
+  }
   // Reduce into slot 0, in slot order for every Gaussian.
   GaussianGradients& total = slots_[0]->gradient;
   parallelForChunks(int64_t(n), 8192, [&](int64_t begin, int64_t end) {

@@ -39,6 +39,11 @@ struct StepReport {
 
 class Trainer {
  public:
+  // Paths per wavefront of a step: a batch is traced and back-propagated in wavefronts of
+  // at most this many paths, so the records (hit lists of every segment, about 6 KB per
+  // path) stay bounded whatever the batch size.
+  static constexpr int64_t kWavefrontRays = 8192;
+
   // Starts from `initial` (the dense initialisation) at step 0. The views and spheres
   // are referenced and must outlive the trainer. Gaussians inside the camera spheres are
   // removed at once.
