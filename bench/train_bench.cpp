@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/parallel.h"
+#include "math/rng.h"
 #include "raytrace/fast/fast_tracer.h"
 #include "scene/dataset.h"
 #include "synth/builtin_scenes.h"
@@ -144,6 +145,34 @@ int main(int argc, char** argv) {
   const double sortedSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Scattered);
   const double pathOrderSeconds = wavefrontSeconds(ReflectedRayOrder::PathOrder, RayCoherence::Scattered);
   const double bundledSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Coherent);
+  // A what-if for the next step: the same views, each view's pixels drawn as 8x8 tiles
+  // (64 random tiles of the image's 8x8 grid per view) instead of scattered, traced in
+  // bundles and ray by ray. Not what training does today.
+  const std::vector<std::vector<TraceRay>> scattered = primaries;
+  const std::vector<std::vector<PathKey>> scatteredKeys = keys;
+  for (size_t b = 0; b < rays.size(); ++b) {
+    primaries[b].clear(), keys[b].clear();
+    Rng rng(1000 + b);
+    const int tilesX = views.width() / 8, tilesY = views.height() / 8;
+    size_t first = 0;
+    while (first < rays[b].size()) {
+      const uint32_t view = rays[b][first].view;
+      size_t count = 0;
+      while (first + count < rays[b].size() && rays[b][first + count].view == view) ++count;
+      for (size_t t = 0; t * 64 < count; ++t) {
+        const int tx = int(rng.uniformInt(uint32_t(tilesX))), ty = int(rng.uniformInt(uint32_t(tilesY)));
+        for (int k = 0; k < 64 && t * 64 + size_t(k) < count; ++k) {
+          const uint64_t pixel = uint64_t(ty * 8 + k / 8) * uint64_t(views.width()) + uint64_t(tx * 8 + k % 8);
+          primaries[b].push_back(views.pixelRay(view, pixel));
+          keys[b].push_back({view, pixel, uint64_t(1000000 + b)});
+        }
+      }
+      first += count;
+    }
+  }
+  const double tilesBundledSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Coherent);
+  const double tilesAloneSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Scattered);
+  primaries = scattered, keys = scatteredKeys;
   const double perRaySeconds = secondsOf([&] {
     for (size_t b = 0; b < rays.size(); ++b)
       parallelForChunks(int64_t(primaries[b].size()), 64, [&](int64_t begin, int64_t end) {
@@ -168,6 +197,8 @@ int main(int argc, char** argv) {
               {"paths only: wavefront (as trained)", sortedSeconds},
               {"paths only: wavefront, reflected rays in path order", pathOrderSeconds},
               {"paths only: wavefront, camera rays in bundles", bundledSeconds},
+              {"paths only, what-if 8x8 tiles: camera rays in bundles", tilesBundledSeconds},
+              {"paths only, what-if 8x8 tiles: camera rays one by one", tilesAloneSeconds},
               {"paths only: per-ray design before the wavefront", perRaySeconds},
               {"whole step (+ reduction, Adam, refit)", stepSeconds}};
   std::printf("train_bench: %zu Gaussians, %.1f composited hits per ray, %d rays per batch, %d batches, %d threads\n",
