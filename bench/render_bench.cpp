@@ -21,16 +21,11 @@
 #include "render/gaussian_path.h"
 #include "render/gaussian_renderer.h"
 #include "room_scene.h"
+#include "bench_timing.h"
 
 using namespace glint;
 
 namespace {
-
-double secondsOf(const std::function<void()>& f) {
-  auto start = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // 4 pinhole cameras (60 degrees): inside, at the room's centre looking along +-x and +-z;
 // outside, on a circle of 9 m around the room looking at its centre (tracer_bench's

@@ -25,19 +25,10 @@
 #include "train/scene_extent.h"
 #include "render/gaussian_path.h"
 #include "train/trainer.h"
+#include "bench_timing.h"
 
 using namespace glint;
 namespace fs = std::filesystem;
-
-namespace {
-
-double secondsOf(const std::function<void()>& f) {
-  auto start = std::chrono::steady_clock::now();
-  f();
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app{"Forward vs fused forward+backward throughput of Glint's training pass"};
@@ -191,7 +182,7 @@ int main(int argc, char** argv) {
   struct Row {
     const char* name;
     double seconds;
-  } rows[] = {{"forward, rendering mode", renderSeconds},
+  } rows[] = {{"forward, rendering mode (batch camera rays, bundled)", renderSeconds},
               {"forward, training mode (paths, hit lists, loss)", forwardSeconds},
               {"fused forward+backward", fusedSeconds},
               {"paths only: wavefront (as trained)", sortedSeconds},

@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -20,6 +21,7 @@
 #include "app/scene_source.h"
 #include "app/viewer/access_policy.h"
 #include "app/viewer/viewer_server.h"
+#include "app/viewer/viewer_setup.h"
 #include "scene/dataset.h"
 #include "core/parallel.h"
 #include "io/image.h"
@@ -106,18 +108,6 @@ class PageClient {
   std::string token_;
 };
 
-// The viewer's start camera when no dataset gives one (viewer_setup.cpp's overview).
-ViewerCamera overviewCamera(const GaussianScene& scene) {
-  Vec3f lo = scene.position[0], hi = lo;
-  for (const Vec3f& p : scene.position) lo = min(lo, p), hi = max(hi, p);
-  Vec3d center((lo + hi) * 0.5f);
-  double radius = std::max(0.5 * double(length(hi - lo)), 1e-3);
-  ViewerCamera c;
-  c.eye = center + Vec3d(0, 0.3 * radius, 2.2 * radius);
-  c.forward = normalize(center - c.eye);
-  return c;
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -141,28 +131,23 @@ int main(int argc, char** argv) {
   ThreadLimit limit(threads);
   SceneSource source;
   std::string sceneName = run;
-  ViewerOptions options;
-  options.width = width, options.height = height;
-  options.maxSamples = 1 << 20;
-  options.editable = false;
   if (run.empty()) {
     source.scene = makeSurfaceScene(size_t(gaussians), 1);
     sceneName = "generated " + std::to_string(gaussians / 1000) + "k";
   } else {
     source = loadSceneSource(run);
   }
-  // The cameras `glint view` offers: the dataset's training (then test) cameras, the first
-  // of them the start camera; else the overview.
-  options.initialCamera = overviewCamera(source.scene);
-  if (!source.settings.dataset.empty() && std::filesystem::exists(source.settings.dataset)) {
-    Dataset dataset = Dataset::open(source.settings.dataset, /*requireBuffers=*/false);
-    for (const DatasetSplit* split : {&dataset.train(), &dataset.test()})
-      for (size_t i = 0; i < split->views.size(); ++i)
-        options.trainingCameras.push_back(
-            {split->name + " " + std::to_string(i),
-             ViewerCamera::fromCameraToWorld(split->views[i].cameraToWorld, split->cameraAngleX)});
-    if (!options.trainingCameras.empty()) options.initialCamera = options.trainingCameras[0].camera;
-  }
+  // The options `glint view` makes: the dataset's training (then test) cameras, the first
+  // of them the start camera, else the overview; the run's path settings. Nothing is
+  // saved, so the output folder is never written.
+  std::optional<Dataset> dataset;
+  if (!source.settings.dataset.empty()) dataset = Dataset::open(source.settings.dataset, /*requireBuffers=*/false);
+  ViewerFlags flags;
+  flags.resolution = std::to_string(width) + "x" + std::to_string(height);
+  flags.maxSamples = 1 << 20;
+  ViewerOptions options =
+      makeViewerOptions(flags, dataset, source.scene, std::filesystem::temp_directory_path() / "glint_viewer_bench");
+  options.path = source.settings.path();
   std::vector<std::pair<std::string, ViewerCamera>> still{{"start camera", options.initialCamera}};
   const size_t trainingCount = options.trainingCameras.size();
   for (int c = 1; c < cameras && trainingCount > 1; ++c) {
@@ -170,7 +155,6 @@ int main(int argc, char** argv) {
     still.emplace_back(e.name, e.camera);
   }
   const size_t sceneSize = source.scene.size();
-  options.path = source.settings.path();  // as `glint view RUN` traces: the run's path settings
   ViewerServer server(options, std::move(source.scene), source.settings.trace);
   const int port = server.bind();
   server.start();

@@ -51,35 +51,6 @@ uint32_t spreadBits3(uint32_t x) {
   return x;
 }
 
-// Reorders the level's rays (and what goes with them) so that rays traced one after the
-// other start close together and point into the same octant: the key is the direction's
-// octant, then the Morton code of the origin in the level's bounding box. Neighbouring
-// rays then walk the same BVH nodes while those are in the cache. Ties keep path order.
-void sortByOriginAndOctant(std::vector<uint32_t>& active, std::vector<TraceRay>& rays, std::vector<Rgb>& throughput,
-                           std::vector<std::pair<uint64_t, uint32_t>>& keys) {
-  const size_t m = rays.size();
-  Vec3f lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
-  for (const TraceRay& r : rays) lo = min(lo, r.origin), hi = max(hi, r.origin);
-  const Vec3f extent = max(hi - lo, Vec3f(1e-20f));
-  keys.resize(m);
-  for (size_t j = 0; j < m; ++j) {
-    const TraceRay& r = rays[j];
-    uint32_t q[3];
-    for (int a = 0; a < 3; ++a) q[a] = uint32_t(std::clamp((r.origin[a] - lo[a]) / extent[a], 0.0f, 1.0f) * 1023.0f);
-    uint64_t octant = uint64_t(r.direction.x < 0) | uint64_t(r.direction.y < 0) << 1 | uint64_t(r.direction.z < 0) << 2;
-    keys[j] = {octant << 30 | spreadBits3(q[0]) | spreadBits3(q[1]) << 1 | spreadBits3(q[2]) << 2, uint32_t(j)};
-  }
-  std::sort(keys.begin(), keys.end());
-  std::vector<uint32_t> a(m);
-  std::vector<TraceRay> r(m);
-  std::vector<Rgb> t(m);
-  for (size_t j = 0; j < m; ++j) {
-    const uint32_t from = keys[j].second;
-    a[j] = active[from], r[j] = rays[from], t[j] = throughput[from];
-  }
-  active.swap(a), rays.swap(r), throughput.swap(t);
-}
-
 // Adds segment k's light to the path's sums.
 void addLight(PathResult* path, int k, const Rgb& light) {
   path->specular += light;
@@ -196,13 +167,40 @@ void PathBatch::trace(const GaussianTracer& tracer, std::span<const TraceRay> pr
     active_.resize(alive);
     rays_.resize(alive);
     throughput_.resize(alive);
-    if (settings.reflectedOrder == ReflectedRayOrder::OriginAndOctant) sortByOriginAndOctant(active_, rays_, throughput_, sortKeys_);
+    if (settings.reflectedOrder == ReflectedRayOrder::OriginAndOctant) sortByOriginAndOctant();
   }
 }
 
+void PathBatch::sortByOriginAndOctant() {
+  const size_t m = rays_.size();
+  Vec3f lo(std::numeric_limits<float>::infinity()), hi(-std::numeric_limits<float>::infinity());
+  for (const TraceRay& r : rays_) lo = min(lo, r.origin), hi = max(hi, r.origin);
+  const Vec3f extent = max(hi - lo, Vec3f(1e-20f));
+  sortKeys_.resize(m);
+  for (size_t j = 0; j < m; ++j) {
+    const TraceRay& r = rays_[j];
+    uint32_t q[3];
+    for (int a = 0; a < 3; ++a) q[a] = uint32_t(std::clamp((r.origin[a] - lo[a]) / extent[a], 0.0f, 1.0f) * 1023.0f);
+    uint64_t octant = uint64_t(r.direction.x < 0) | uint64_t(r.direction.y < 0) << 1 | uint64_t(r.direction.z < 0) << 2;
+    sortKeys_[j] = {octant << 30 | spreadBits3(q[0]) | spreadBits3(q[1]) << 1 | spreadBits3(q[2]) << 2, uint32_t(j)};
+  }
+  std::sort(sortKeys_.begin(), sortKeys_.end());
+  // Gathered into the next level's candidate arrays (unused until the next level is
+  // drawn), then swapped in, so sorting allocates nothing once warm.
+  nextRays_.resize(m);
+  nextThroughput_.resize(m);
+  sortedActive_.resize(m);
+  for (size_t j = 0; j < m; ++j) {
+    const uint32_t from = sortKeys_[j].second;
+    sortedActive_[j] = active_[from], nextRays_[j] = rays_[from], nextThroughput_[j] = throughput_[from];
+  }
+  active_.swap(sortedActive_), rays_.swap(nextRays_), throughput_.swap(nextThroughput_);
+}
+
 size_t PathBatch::memoryBytes() const {
-  size_t bytes = active_.capacity() * sizeof(uint32_t) + (rays_.capacity() + nextRays_.capacity()) * sizeof(TraceRay) +
-                 results_.capacity() * sizeof(RayResult) +
+  size_t bytes = (active_.capacity() + sortedActive_.capacity()) * sizeof(uint32_t) +
+                 sortKeys_.capacity() * sizeof(sortKeys_[0]) +
+                 (rays_.capacity() + nextRays_.capacity()) * sizeof(TraceRay) + results_.capacity() * sizeof(RayResult) +
                  (throughput_.capacity() + nextThroughput_.capacity()) * sizeof(Rgb) + continues_.capacity() +
                  counts_.capacity() + segments_.capacity() * sizeof(PathSegment) + hits_.capacity() * sizeof(HitList);
   for (const HitList& h : hits_) bytes += h.hits.capacity() * sizeof(HitRecord);

@@ -102,7 +102,15 @@ class PathBatch {
   static size_t bytesPerPath(bool record);
 
  private:
+  // Reorders the current level's rays (and what goes with them) so that rays traced one
+  // after the other start close together and point into the same octant: the key is the
+  // direction's octant, then the Morton code of the origin in the level's bounding box.
+  // Neighbouring rays then walk the same BVH nodes while those are in the cache. Ties keep
+  // path order.
+  void sortByOriginAndOctant();
+
   std::vector<std::pair<uint64_t, uint32_t>> sortKeys_;
+  std::vector<uint32_t> sortedActive_;
   // The paths still alive at the current level, each with its last segment.
   std::vector<uint32_t> active_;
   std::vector<TraceRay> rays_;

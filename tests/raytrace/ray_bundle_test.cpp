@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "common/camera_rays.h"
 #include "common/random_gaussians.h"
 #include "math/rng.h"
 #include "raytrace/fast/fast_tracer.h"
@@ -19,22 +20,7 @@
 namespace glint {
 namespace {
 
-// width x height pinhole rays from eye towards target (60 degrees), jittered in the pixel.
-std::vector<TraceRay> cameraRays(Vec3f eye, Vec3f target, int width, int height, uint64_t seed, float tMin = 0.0f) {
-  Rng rng(seed);
-  Vec3f forward = normalize(target - eye);
-  Vec3f right = normalize(cross(forward, Vec3f(0, 1, 0)));
-  Vec3f up = cross(right, forward);
-  float focal = 0.5f * float(width) / std::tan(0.5f * 60.0f * 3.14159265f / 180.0f);
-  std::vector<TraceRay> rays;
-  for (int j = 0; j < height; ++j)
-    for (int i = 0; i < width; ++i) {
-      float x = (float(i) + rng.uniform() - 0.5f * float(width)) / focal;
-      float y = -(float(j) + rng.uniform() - 0.5f * float(height)) / focal;
-      rays.push_back({eye, normalize(forward + right * x + up * y), tMin});
-    }
-  return rays;
-}
+using test::cameraRays;
 
 bool near(float a, float b, float tolerance) { return std::abs(a - b) <= tolerance * std::max(1.0f, std::abs(b)); }
 bool near(const Vec3f& a, const Vec3f& b, float tolerance) {

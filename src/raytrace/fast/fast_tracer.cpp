@@ -464,6 +464,13 @@ void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<Ra
   GLINT_CHECK(rays.size() == results.size(), "traceBatch: one result per ray");
   GLINT_CHECK(hits.empty() || hits.size() == rays.size(), "traceBatch: one hit list per ray, or none");
   GLINT_CHECK(rays.size() < size_t(UINT32_MAX), "traceBatch: too many rays");
+  auto traceAlone = [&](size_t k) { results[k] = trace(rays[k], hits.empty() ? nullptr : &hits[k]); };
+  if (coherence == RayCoherence::Scattered || bundleRays_ < 2) {
+    parallelForChunks(int64_t(rays.size()), 64, [&](int64_t begin, int64_t end) {
+      for (int64_t k = begin; k < end; ++k) traceAlone(size_t(k));
+    });
+    return;
+  }
   // Runs of consecutive rays with one origin, ordered by direction and cut into bundles;
   // every other ray is traced alone.
   std::vector<uint32_t> order(rays.size());
@@ -473,13 +480,13 @@ void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<Ra
   };
   std::vector<Span> bundles;
   std::vector<uint32_t> alone;
-  const size_t bundleRays = coherence == RayCoherence::Coherent ? size_t(std::max(bundleRays_, 0)) : 0;
+  const size_t bundleRays = size_t(bundleRays_);
   for (size_t i = 0; i < rays.size();) {
     size_t j = i + 1;
     const Vec3f& o = rays[i].origin;
     while (j < rays.size() && rays[j].origin.x == o.x && rays[j].origin.y == o.y && rays[j].origin.z == o.z) ++j;
     size_t inside = 0;
-    if (bundleRays >= 2 && j - i >= bundleRays) {
+    if (j - i >= bundleRays) {
       inside = orderByDirection(rays, std::span<uint32_t>(order).subspan(i, j - i));
       for (size_t b = i; b < i + inside; b += bundleRays) bundles.push_back({b, std::min(b + bundleRays, i + inside)});
     }
@@ -487,7 +494,6 @@ void FastGaussianTracer::traceBatch(std::span<const TraceRay> rays, std::span<Ra
     i = j;
   }
 
-  auto traceAlone = [&](uint32_t k) { results[k] = trace(rays[k], hits.empty() ? nullptr : &hits[k]); };
   parallelFor(int64_t(bundles.size()), 1, [&](int64_t b) {
     thread_local BundleCandidates candidates;
     std::span<const uint32_t> members = std::span<const uint32_t>(order).subspan(
