@@ -26,7 +26,8 @@ std::vector<double> gaussianKernel(double sigma) {
 
 // One pass of the separable blur along x (dx = 1) or y (dx = 0). Where `weight` is given
 // (1 per pixel: 1 = contributes), the result is a normalised convolution of weight x value.
-Image blurPass(const Image& image, const std::vector<double>& kernel, bool alongX, const Image* weight, Image* outWeight) {
+Image blurPass(const Image& image, const std::vector<double>& kernel, bool alongX, const Image* weight,
+               Image* outWeight) {
   int radius = int(kernel.size() / 2);
   Image out(image.width, image.height, image.channels);
   if (outWeight) *outWeight = Image(image.width, image.height, 1);
@@ -154,7 +155,8 @@ ViewBuffers degradeBuffers(const ViewBuffers& exact, const BufferDegradation& de
   if (g.depthNoise > 0) {
     Image noise = addGaussianNoise(Image(depth.width, depth.height, 1), g.depthNoise, hashKeys({g.seed, view, 1}));
     for (size_t p = 0; p < noisyDepth.pixels.size(); ++p)
-      if (hasSurface(noisyDepth.pixels[p])) noisyDepth.pixels[p] = std::max(0.0f, noisyDepth.pixels[p] + noise.pixels[p]);
+      if (hasSurface(noisyDepth.pixels[p]))
+        noisyDepth.pixels[p] = std::max(0.0f, noisyDepth.pixels[p] + noise.pixels[p]);
   }
   out[Buffer::Depth] = noisyDepth;
 

@@ -35,7 +35,7 @@ Image biasRoughness(const Image& roughness, double scale, double offset);
 // All of the above for one view's buffers. Radiance buffers are left as they are (they
 // are the photographs' stand-ins); f0 gets the blur only.
 struct BufferDegradation {
-  double blurSigma = 0;          // pixels, applied to the G-buffers before the rest
+  double blurSigma = 0;  // pixels, applied to the G-buffers before the rest
   double depthScale = 1, depthOffset = 0;
   double depthNoise = 0;         // standard deviation, depth units
   double normalMeanAngle = 0;    // radians

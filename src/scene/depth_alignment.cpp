@@ -150,8 +150,8 @@ DepthFit fitDepthAffine(std::span<const DepthPair> pairs, const DepthFitOptions&
                            std::to_string(std::max(options.minPairs, 2)) + ")");
   fit.medianAbsResidualBefore = medianAbsZResidual(used, [&](double d) { return zFromFitSpace(d, options.space); });
 
-  auto [minX, maxX] = std::minmax_element(points.begin(), points.end(),
-                                          [](const FitPoint& p, const FitPoint& q) { return p.x < q.x; });
+  auto [minX, maxX] =
+      std::minmax_element(points.begin(), points.end(), [](const FitPoint& p, const FitPoint& q) { return p.x < q.x; });
   double rangeX = maxX->x - minX->x;
   if (!(rangeX > 1e-12 * std::max(1.0, std::abs(maxX->x)))) return refuse(fit, "the predicted depths do not vary");
 

@@ -30,15 +30,15 @@ enum class DepthFitSpace {
 
 struct DepthFitOptions {
   DepthFitSpace space = DepthFitSpace::Depth;
-  int minPairs = 20;           // fewer usable pairs: the fit is refused
+  int minPairs = 20;               // fewer usable pairs: the fit is refused
   double minInlierFraction = 0.5;  // least median of squares breaks down beyond 50% outliers
-  int samplingRounds = 256;    // two-pair samples tried by the least-median-of-squares search
-  double inlierThreshold = 0;  // residual bound for inliers in fit-space units; 0 = 2.5 robust sigmas
+  int samplingRounds = 256;        // two-pair samples tried by the least-median-of-squares search
+  double inlierThreshold = 0;      // residual bound for inliers in fit-space units; 0 = 2.5 robust sigmas
   // The bound never exceeds this fraction of the median |z| (or |1/z|): when outliers are
   // the majority the robust sigma grows with them, and this keeps them from all becoming
   // inliers, so such data is refused instead of fitted.
   double maxRelativeThreshold = 0.2;
-  uint64_t seed = 0;           // the fit is a pure function of (pairs, options)
+  uint64_t seed = 0;  // the fit is a pure function of (pairs, options)
 };
 
 // The fit and how good it is, for the loader to report.
@@ -46,10 +46,10 @@ struct DepthFit {
   bool ok = false;
   std::string problem;  // why the fit was refused (empty when ok)
   DepthFitSpace space = DepthFitSpace::Depth;
-  double a = 0, b = 0;  // in `space`: z = a d + b, or 1/z = a d + b
-  int pairsGiven = 0;   // pairs passed in
-  int pairsUsed = 0;    // finite pairs with z > 0 (and d > 0 in disparity space)
-  int inliers = 0;      // pairs within the inlier threshold of the final fit
+  double a = 0, b = 0;         // in `space`: z = a d + b, or 1/z = a d + b
+  int pairsGiven = 0;          // pairs passed in
+  int pairsUsed = 0;           // finite pairs with z > 0 (and d > 0 in disparity space)
+  int inliers = 0;             // pairs within the inlier threshold of the final fit
   double inlierThreshold = 0;  // fit-space units
   // Median |z' - z| over the used pairs, in z-depth units: before alignment (the raw
   // prediction read as z, or as 1/z in disparity space) and after.

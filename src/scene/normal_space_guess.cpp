@@ -64,7 +64,8 @@ void tallyView(const NormalSpaceView& view, Tally* tally) {
       Vec3d toCamera = -cameraRay(view.intrinsics, i + 0.5, j + 0.5);
       ++tally->pixels;
       tally->worldFacing += dot(view.cameraToWorld.transposeTimes(n), toCamera) > 0;
-      for (int a = 0; a < kCameraAxesCount; ++a) tally->cameraFacing[a] += dot(toOpenGlAxes(n, kAllAxes[a]), toCamera) > 0;
+      for (int a = 0; a < kCameraAxesCount; ++a)
+        tally->cameraFacing[a] += dot(toOpenGlAxes(n, kAllAxes[a]), toCamera) > 0;
       Vec3d surface;
       if (!withDepth || !depthNormal(*view.zDepth, view.intrinsics, i, j, &surface)) continue;
       ++tally->depthPixels;

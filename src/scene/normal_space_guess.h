@@ -19,7 +19,7 @@ struct NormalSpaceView {
   const Image* normals = nullptr;  // 3 channels, unit or 0 ("no surface")
   Mat3d cameraToWorld;             // rotation, OpenGL camera axes
   RayIntrinsics intrinsics;
-  const Image* zDepth = nullptr;   // optional, 1 channel: separates the x-mirrored axes
+  const Image* zDepth = nullptr;  // optional, 1 channel: separates the x-mirrored axes
 };
 
 // The evidence and the verdict. A surface a pixel sees faces that pixel's camera, so under
@@ -34,8 +34,8 @@ struct NormalSpaceGuess {
   // The same for the choice of camera axes. OpenGL and the paper's axes differ only by the
   // sign of x, which the facing test barely sees: without depth this stays near 0.
   double axesConfidence = 0;
-  double worldFacing = 0;                                // fraction facing, read as world space
-  std::array<double, kCameraAxesCount> cameraFacing{};   // read as camera space, per CameraAxes
+  double worldFacing = 0;                               // fraction facing, read as world space
+  std::array<double, kCameraAxesCount> cameraFacing{};  // read as camera space, per CameraAxes
   // Mean cosine between each camera-space reading and the normal of the depth map's surface
   // (-2 when no view gave depth).
   std::array<double, kCameraAxesCount> depthAgreement{-2, -2, -2};

@@ -121,8 +121,7 @@ float perceptualFromAlpha(float alpha) { return std::sqrt(std::clamp(alpha, 0.0f
 Image toPerceptualRoughness(const Image& roughness, RoughnessKind kind) {
   GLINT_CHECK(roughness.channels == 1, "roughness has one channel");
   Image out = roughness;
-  for (float& r : out.pixels)
-    r = kind == RoughnessKind::Alpha ? perceptualFromAlpha(r) : std::clamp(r, 0.0f, 1.0f);
+  for (float& r : out.pixels) r = kind == RoughnessKind::Alpha ? perceptualFromAlpha(r) : std::clamp(r, 0.0f, 1.0f);
   return out;
 }
 

@@ -19,8 +19,7 @@ double gaussian(Rng& rng) {
 
 // Pairs with z = a d + b + noise, d in [0.05, 1] (a relative depth map), and a fraction
 // of gross outliers whose z is anywhere in [0.1, 10].
-std::vector<DepthPair> affinePairs(int count, double a, double b, double noise, double outlierFraction,
-                                   uint64_t seed) {
+std::vector<DepthPair> affinePairs(int count, double a, double b, double noise, double outlierFraction, uint64_t seed) {
   Rng rng(seed);
   std::vector<DepthPair> pairs;
   for (int n = 0; n < count; ++n) {
@@ -54,7 +53,8 @@ TEST(DepthAlignment, PlainLeastSquaresWouldFailTheSameData) {
   double n = 0, mx = 0, my = 0, sxx = 0, sxy = 0;
   for (const DepthPair& p : pairs) n += 1, mx += p.predicted, my += p.zDepth;
   mx /= n, my /= n;
-  for (const DepthPair& p : pairs) sxx += (p.predicted - mx) * (p.predicted - mx), sxy += (p.predicted - mx) * (p.zDepth - my);
+  for (const DepthPair& p : pairs)
+    sxx += (p.predicted - mx) * (p.predicted - mx), sxy += (p.predicted - mx) * (p.zDepth - my);
   EXPECT_GT(std::abs(sxy / sxx - 3.2), 0.3);
 }
 

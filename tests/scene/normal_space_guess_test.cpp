@@ -100,7 +100,8 @@ std::vector<Vec3d> orbit() {
 template <typename Scene>
 NormalSpaceGuess guessOrbit(Scene scene, Written written, bool withDepth, double eyeScale = 1.0) {
   std::vector<RenderedView> views;
-  for (const Vec3d& eye : orbit()) views.push_back(render(scene, eye * eyeScale, lookAt(eye * eyeScale, {0, 0, 0}), written));
+  for (const Vec3d& eye : orbit())
+    views.push_back(render(scene, eye * eyeScale, lookAt(eye * eyeScale, {0, 0, 0}), written));
   std::vector<NormalSpaceView> inputs;
   for (const RenderedView& v : views)
     inputs.push_back({&v.normals, v.cameraToWorld, v.k, withDepth ? &v.zDepth : nullptr});
