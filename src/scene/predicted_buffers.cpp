@@ -17,25 +17,26 @@ double rayLengthPerZ(const RayIntrinsics& k, int i, int j) { return length(camer
 
 namespace {
 
-// Multiplies every surface depth by rayLengthPerZ to the given power (+1: z -> distance,
-// -1: distance -> z); "no surface" values are kept.
-Image scaleDepthByRayLength(const Image& depth, const RayIntrinsics& k, double power) {
+// Multiplies (z -> distance) or divides (distance -> z) every surface depth by the pixel's
+// rayLengthPerZ; "no surface" values are kept.
+Image scaleDepthByRayLength(const Image& depth, const RayIntrinsics& k, bool toDistance) {
   GLINT_CHECK(depth.channels == 1, "depth must have one channel");
   Image out = depth;
   for (int j = 0; j < depth.height; ++j)
     for (int i = 0; i < depth.width; ++i) {
       float& d = out.at(i, j);
-      if (hasSurface(d)) d = static_cast<float>(d * std::pow(rayLengthPerZ(k, i, j), power));
+      double s = rayLengthPerZ(k, i, j);
+      if (hasSurface(d)) d = static_cast<float>(toDistance ? d * s : d / s);
     }
   return out;
 }
 
 }  // namespace
 
-Image zDepthToDistance(const Image& zDepth, const RayIntrinsics& k) { return scaleDepthByRayLength(zDepth, k, 1.0); }
+Image zDepthToDistance(const Image& zDepth, const RayIntrinsics& k) { return scaleDepthByRayLength(zDepth, k, true); }
 
 Image distanceToZDepth(const Image& distance, const RayIntrinsics& k) {
-  return scaleDepthByRayLength(distance, k, -1.0);
+  return scaleDepthByRayLength(distance, k, false);
 }
 
 const char* cameraAxesName(CameraAxes axes) {
