@@ -109,6 +109,15 @@ TEST(NormalDecoding, EightBitMapsDecodeWithinQuantisationAndBackgroundIsZero) {
   EXPECT_EQ(length(decoded.rgb(3, 0)), 0.0f);
 }
 
+TEST(NormalDecoding, SixteenBitMapsDecodeFarMorePrecisely) {
+  Vec3d n = normalize(Vec3d(-0.7, 0.1, 0.7));
+  Image encoded(1, 1, 3);
+  for (int c = 0; c < 3; ++c) encoded.at(0, 0, c) = std::round((float(n[c]) * 0.5f + 0.5f) * 65535.0f) / 65535.0f;
+  Vec3d d(decodeNormalMap(encoded).rgb(0, 0));
+  // 2 asin(|d - n| / 2) measures small angles without the rounding of acos near 1.
+  EXPECT_LT(2.0 * std::asin(length(d - n) / 2.0), 0.005 * kPi / 180.0);  // 16-bit steps are ~0.002 degrees
+}
+
 TEST(NormalDecoding, RenormalisingKeepsZeroAndFixesLength) {
   Image normals(2, 1, 3);
   normals.setRgb(0, 0, Rgb(0.0f, 0.0f, 0.5f));
