@@ -1,0 +1,96 @@
+// The sRGB, filmic and linear transfers, per value and over an image's colour channels.
+#include "io/transfer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "core/error.h"
+#include "core/printable_text.h"
+#include "io/tonemap.h"
+
+namespace glint {
+
+namespace {
+
+constexpr Transfer kAllTransfers[] = {Transfer::Srgb, Transfer::Filmic, Transfer::Linear};
+
+// IEC 61966-2-1: display V <= 0.04045 is linear, L = V / 12.92; above, L = ((V + 0.055) /
+// 1.055)^2.4. The standard's encoder switches at L = 0.0031308, a rounding of the decoder's
+// break mapped through the linear segment; here the encoder switches at the exact image
+// of the float break instead, so that each value goes back through the branch it came
+// from and the pair is inverse everywhere. The standard's rounded constants leave a jump
+// of 2.3e-9 in L at the break, about 10 float steps there and far below a 16-bit code.
+constexpr float kSrgbDisplayBreak = 0.04045f;
+constexpr double kSrgbSlope = 12.92;
+constexpr float kSrgbLinearBreak = float(double(kSrgbDisplayBreak) / kSrgbSlope);
+constexpr double kSrgbOffset = 0.055;
+constexpr double kSrgbGamma = 2.4;
+
+// Evaluated in double and rounded once, so the round trip loses at most a few float steps.
+float srgbToLinear(float v) {
+  if (v <= kSrgbDisplayBreak) return float(double(v) / kSrgbSlope);
+  return float(std::pow((double(v) + kSrgbOffset) / (1.0 + kSrgbOffset), kSrgbGamma));
+}
+
+float srgbToDisplay(float l) {
+  if (l <= kSrgbLinearBreak) return float(double(l) * kSrgbSlope);
+  return float((1.0 + kSrgbOffset) * std::pow(double(l), 1.0 / kSrgbGamma) - kSrgbOffset);
+}
+
+// Applies f to the colour channels of every pixel: the first three, or the only one.
+template <typename F>
+Image mapColourChannels(Image image, F f) {
+  int colourChannels = std::min(image.channels, 3);
+  for (size_t p = 0; p < image.pixels.size(); p += size_t(image.channels)) {
+    for (int c = 0; c < colourChannels; ++c) image.pixels[p + size_t(c)] = f(image.pixels[p + size_t(c)]);
+  }
+  return image;
+}
+
+}  // namespace
+
+const char* transferName(Transfer transfer) {
+  switch (transfer) {
+    case Transfer::Srgb: return "srgb";
+    case Transfer::Filmic: return "filmic";
+    case Transfer::Linear: return "linear";
+  }
+  return "unknown";
+}
+
+Transfer parseTransfer(const std::string& name) {
+  for (Transfer t : kAllTransfers)
+    if (name == transferName(t)) return t;
+  throw Error("unknown transfer '" + printableText(name) + "' (expected srgb, filmic or linear)");
+}
+
+float toLinear(Transfer transfer, float display) {
+  switch (transfer) {
+    case Transfer::Srgb: return srgbToLinear(display);
+    case Transfer::Filmic: return untonemapFilmic(display);
+    case Transfer::Linear: return display;
+  }
+  return display;
+}
+
+float toDisplay(Transfer transfer, float linear) {
+  switch (transfer) {
+    case Transfer::Srgb: return srgbToDisplay(linear);
+    case Transfer::Filmic: return tonemapFilmic(linear);
+    case Transfer::Linear: return linear;
+  }
+  return linear;
+}
+
+Image toLinear(Transfer transfer, Image image) {
+  if (transfer == Transfer::Linear) return image;
+  return mapColourChannels(std::move(image), [transfer](float v) { return toLinear(transfer, v); });
+}
+
+Image toDisplay(Transfer transfer, Image image) {
+  if (transfer == Transfer::Linear) return image;
+  return mapColourChannels(std::move(image), [transfer](float v) { return toDisplay(transfer, v); });
+}
+
+}  // namespace glint
