@@ -179,6 +179,7 @@ TEST(ImageJpeg, ReadsProgressiveSubsampledAndRgbCodedFiles) {
       {"progressive.jpg", JCS_RGB, [](jpeg_compress_struct& info) { jpeg_simple_progression(&info); }},
       {"rgb_coded.jpg", JCS_RGB, [](jpeg_compress_struct& info) { jpeg_set_colorspace(&info, JCS_RGB); }},
       {"restart_markers.jpg", JCS_RGB, [](jpeg_compress_struct& info) { info.restart_in_rows = 1; }},
+      {"arithmetic.jpg", JCS_RGB, [](jpeg_compress_struct& info) { info.arith_code = TRUE; }},
   };
   for (const Variant& variant : variants) {
     auto path = folder / variant.name;
