@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "core/error.h"
 #include "io/tonemap.h"
@@ -128,6 +129,24 @@ TEST(Transfer, LinearIsTheIdentity) {
     EXPECT_EQ(toLinear(Transfer::Linear, v), v);
     EXPECT_EQ(toDisplay(Transfer::Linear, v), v);
   }
+}
+
+// Images take a table look-up for values that are 8- or 16-bit codes; it must give exactly
+// what the per-value function gives, for codes and for any other value.
+TEST(Transfer, ImagesGiveExactlyThePerValueResult) {
+  std::vector<float> values;
+  for (int k = 0; k <= 65535; ++k) values.push_back(float(k) / 65535.0f);
+  for (int c = 0; c <= 255; ++c) values.push_back(float(c) / 255.0f);
+  for (float v : {-0.25f, -0.0f, 0.3f, 0.5f + 1e-7f, std::nextafter(1.0f, 2.0f), 1.5f, 300.0f}) values.push_back(v);
+  Image image(int(values.size()), 1, 1);
+  image.pixels = values;
+  for (Transfer t : kAll) {
+    Image linear = toLinear(t, image);
+    for (size_t i = 0; i < values.size(); ++i)
+      ASSERT_EQ(linear.pixels[i], toLinear(t, values[i])) << transferName(t) << " at " << values[i];
+  }
+  Image notANumber(1, 1, 1, std::numeric_limits<float>::quiet_NaN());
+  EXPECT_TRUE(std::isnan(toLinear(Transfer::Srgb, notANumber).pixels[0]));
 }
 
 TEST(Transfer, ImagesChangeTheirColourChannelsOnly) {
