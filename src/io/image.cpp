@@ -20,7 +20,8 @@ ImageFormat imageFormatFromPath(const fs::path& path) {
   if (ext == ".exr") return ImageFormat::Exr;
   if (ext == ".tif" || ext == ".tiff") return ImageFormat::Tiff;
   if (ext == ".png") return ImageFormat::Png;
-  throw Error(path.string(), "unknown image extension '" + ext + "' (expected .exr, .tif, .tiff or .png)");
+  if (ext == ".jpg" || ext == ".jpeg") return ImageFormat::Jpeg;
+  throw Error(path.string(), "unknown image extension '" + ext + "' (expected .exr, .tif, .tiff, .png, .jpg or .jpeg)");
 }
 
 const char* imageFormatExtension(ImageFormat format) {
@@ -28,6 +29,7 @@ const char* imageFormatExtension(ImageFormat format) {
     case ImageFormat::Exr: return ".exr";
     case ImageFormat::Tiff: return ".tiff";
     case ImageFormat::Png: return ".png";
+    case ImageFormat::Jpeg: return ".jpg";
   }
   return "";
 }
@@ -44,6 +46,7 @@ Image readImage(const fs::path& path) {
     case ImageFormat::Exr: image = detail::readExr(name); break;
     case ImageFormat::Tiff: image = detail::readTiff(name); break;
     case ImageFormat::Png: image = detail::readPng(name); break;
+    case ImageFormat::Jpeg: image = detail::readJpeg(name); break;
   }
   // The codecs check this already; kept as the one place the Image invariant is stated.
   GLINT_CHECK(image.width > 0 && image.height > 0 && (image.channels == 1 || image.channels == 3) &&
@@ -52,9 +55,13 @@ Image readImage(const fs::path& path) {
   return image;
 }
 
-void writeImage(const fs::path& path, const Image& image) {
+void writeImage(const fs::path& path, const Image& image, const ImageWriteOptions& options) {
   ImageFormat format = imageFormatFromPath(path);
   std::string name = path.string();
+  GLINT_CHECK(options.pngBitDepth == 8 || options.pngBitDepth == 16,
+              "PNG bit depth must be 8 or 16, writing " + name);
+  if (format == ImageFormat::Jpeg && options.pngBitDepth == 16)
+    throw Error(name, "JPEG holds 8-bit samples only; write 16-bit samples as .png");
   GLINT_CHECK(image.pixels.size() == size_t(std::max(image.width, 0)) * std::max(image.height, 0) *
                                          std::max(image.channels, 0),
               "image pixel count does not match its size, writing " + name);
@@ -71,7 +78,8 @@ void writeImage(const fs::path& path, const Image& image) {
     switch (format) {
       case ImageFormat::Exr: detail::writeExr(temp, name, image); break;
       case ImageFormat::Tiff: detail::writeTiff(temp, name, image); break;
-      case ImageFormat::Png: detail::writePng(temp, name, image); break;
+      case ImageFormat::Png: detail::writePng(temp, name, image, options.pngBitDepth); break;
+      case ImageFormat::Jpeg: detail::writeJpeg(temp, name, image); break;
     }
   });
 }

@@ -1,4 +1,4 @@
-// Float images and their file encodings: OpenEXR (float32), 16-bit float TIFF, 8-bit PNG.
+// Float images and their file encodings: OpenEXR (float32), 16-bit float TIFF, 8/16-bit PNG, JPEG.
 #pragma once
 
 #include <filesystem>
@@ -36,17 +36,22 @@ struct Image {
   }
 };
 
-enum class ImageFormat { Exr, Tiff, Png };
+enum class ImageFormat { Exr, Tiff, Png, Jpeg };
 
-// Format from the file extension (.exr, .tif/.tiff, .png, case-insensitive); throws Error
-// naming the file for any other extension.
+// Format from the file extension (.exr, .tif/.tiff, .png, .jpg/.jpeg, case-insensitive);
+// throws Error naming the file for any other extension.
 ImageFormat imageFormatFromPath(const std::filesystem::path& path);
-const char* imageFormatExtension(ImageFormat format);  // ".exr", ".tiff", ".png"
+const char* imageFormatExtension(ImageFormat format);  // ".exr", ".tiff", ".png", ".jpg"
 
 // Reads an image. EXR: half or float, channels R,G,B (A ignored) or one channel (Y or any
 // single name). TIFF: 16- or 32-bit float, or 8/16-bit unsigned (scaled to [0,1]), 1 or 3+
-// samples. PNG: 8- or 16-bit gray/RGB (alpha ignored), scaled to [0,1]. Throws Error naming
-// the file and the problem (missing, truncated, unsupported layout, ...).
+// samples. PNG: 8- or 16-bit gray/RGB (alpha ignored), scaled to [0,1]. JPEG: 8-bit
+// greyscale (1 channel) or colour (3 channels, YCbCr or RGB), scaled to [0,1]; CMYK is
+// refused. Values are the file's display-referred codes: no transfer is undone here (see
+// io/transfer.h), embedded ICC profiles are ignored, and the EXIF orientation is not
+// applied, so pixels are in stored order, as COLMAP and other photogrammetry tools use
+// them. Throws Error naming the file and the problem (missing, truncated, unsupported
+// layout, ...).
 Image readImage(const std::filesystem::path& path);
 
 // The bytes of an 8-bit PNG of the image (values clamped to [0,1] and rounded, as
@@ -54,9 +59,18 @@ Image readImage(const std::filesystem::path& path);
 // must be non-empty with 1, 3 or 4 channels.
 std::string encodePng(const Image& image);
 
+// How writeImage stores samples where a format offers a choice.
+struct ImageWriteOptions {
+  // Bits per PNG sample, 8 or 16. 16 is for data a byte cannot resolve (a predictor's depth
+  // or normals). EXR and TIFF store floats and ignore it; JPEG holds only 8 bits, so asking
+  // it for 16 is an error rather than a silent loss of precision.
+  int pngBitDepth = 8;
+};
+
 // Writes an image atomically in the format of the extension: EXR float32, TIFF 16-bit
-// float (half), PNG 8-bit (values clamped to [0,1] and rounded). Images with 1 or 3
-// channels (PNG also 4). Throws Error naming the file.
-void writeImage(const std::filesystem::path& path, const Image& image);
+// float (half), PNG 8- or 16-bit, JPEG 8-bit at quality 95 without chroma subsampling
+// (PNG and JPEG clamp values to [0,1] and round them). Images with 1 or 3 channels (PNG
+// also 4). Throws Error naming the file.
+void writeImage(const std::filesystem::path& path, const Image& image, const ImageWriteOptions& options = {});
 
 }  // namespace glint

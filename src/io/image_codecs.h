@@ -1,7 +1,10 @@
 // Internal to src/io: the per-format image readers and writers that image.cpp dispatches to.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "io/image.h"
@@ -17,17 +20,32 @@ constexpr size_t kMaxImagePixels = size_t(1) << 32;
 Image readExr(const std::string& path);
 Image readTiff(const std::string& path);
 Image readPng(const std::string& path);
+Image readJpeg(const std::string& path);
 
 // Writers write to filePath (a temporary file) but name displayPath in errors. The image
 // has already been checked to be non-empty with a channel count the format supports.
 void writeExr(const std::string& filePath, const std::string& displayPath, const Image& image);
 void writeTiff(const std::string& filePath, const std::string& displayPath, const Image& image);
-void writePng(const std::string& filePath, const std::string& displayPath, const Image& image);
+void writePng(const std::string& filePath, const std::string& displayPath, const Image& image, int bitDepth);
+void writeJpeg(const std::string& filePath, const std::string& displayPath, const Image& image);
+
+// [0, 1] -> 0..255 or 0..65535, rounding to nearest; NaN and negatives -> 0, above 1 -> the
+// top code. Shared by the integer writers so PNG and JPEG quantise alike.
+inline uint8_t quantize8(float v) {
+  if (!(v > 0.0f)) return 0;
+  return uint8_t(std::lround(std::min(v, 1.0f) * 255.0f));
+}
+inline uint16_t quantize16(float v) {
+  if (!(v > 0.0f)) return 0;
+  return uint16_t(std::lround(std::min(v, 1.0f) * 65535.0f));
+}
 
 // The most bytes of samples the file at path can decode to: kMaxCompressionRatio times its
 // size, but at least kMinDecodedBytes. No codec Glint reads expands data further (deflate
-// at most about 1032 times, LZW about 1400, PackBits and EXR's RLE and PIZ less), so a
-// header asking for more describes data that is not in the file.
+// at most about 1032 times, LZW about 1400, PackBits and EXR's RLE and PIZ less; Huffman-
+// coded JPEG spends at least a bit on each 8x8 block, under 1400 times even with 4x4 chroma
+// subsampling), so a header asking for more describes data that is not in the file. Only
+// arithmetic-coded JPEG of a nearly uniform image can beat the ratio: not a photograph.
 constexpr size_t kMaxCompressionRatio = 4096;
 constexpr size_t kMinDecodedBytes = size_t(64) << 20;
 size_t maxDecodedBytes(const std::string& path);

@@ -1,11 +1,11 @@
-// PNG reading (8/16-bit grey, RGB, palette; alpha dropped) and 8-bit writing, to a file or
-// to memory, through libpng.
+// PNG reading (8/16-bit grey, RGB, palette; alpha dropped) and 8/16-bit writing, to a file
+// or to memory, through libpng.
 #include <png.h>
 
 #include <algorithm>
 #include <cerrno>
-#include <cmath>
 #include <csetjmp>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <new>
@@ -30,7 +30,7 @@ struct PngJob {
   // Read: filled by decodePng. Write: filled by the caller.
   png_uint_32 width = 0, height = 0;
   int channels = 0;  // after transforms: 1 grey, 3 RGB (write: also 4 RGBA)
-  int bitDepth = 8;  // 8 or 16 after transforms
+  int bitDepth = 8;  // read: 8 or 16 after transforms; write: as asked
   size_t maxBytes = 0;  // read: the most decoded bytes the file can justify (maxDecodedBytes)
   std::vector<png_byte> data;
   std::vector<png_bytep> rows;
@@ -115,8 +115,8 @@ void appendToMemory(png_structp png, png_bytep data, png_size_t length) {
   if (!appendBytes(*static_cast<PngJob*>(png_get_io_ptr(png)), data, length)) png_error(png, "out of memory");
 }
 
-// Encodes job.rows (8-bit, job.channels) into job.file, or job.memory when there is no
-// file. Returns false (job.error set) on failure.
+// Encodes job.rows (job.bitDepth, job.channels) into job.file, or job.memory when there is
+// no file. Returns false (job.error set) on failure.
 bool encodePng(PngJob& job) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &job, onPngError, onPngWarning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -136,19 +136,13 @@ bool encodePng(PngJob& job) {
   int colorType = job.channels == 1 ? PNG_COLOR_TYPE_GRAY
                   : job.channels == 3 ? PNG_COLOR_TYPE_RGB
                                       : PNG_COLOR_TYPE_RGB_ALPHA;
-  png_set_IHDR(png, info, job.width, job.height, 8, colorType, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+  png_set_IHDR(png, info, job.width, job.height, job.bitDepth, colorType, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   png_write_image(png, job.rows.data());
   png_write_end(png, nullptr);
   png_destroy_write_struct(&png, &info);
   return true;
-}
-
-// [0, 1] -> 0..255, rounding to nearest; NaN and negatives -> 0.
-png_byte quantize8(float v) {
-  if (!(v > 0.0f)) return 0;
-  return png_byte(std::lround(std::min(v, 1.0f) * 255.0f));
 }
 
 }  // namespace
@@ -183,22 +177,33 @@ Image readPng(const std::string& path) {
 
 namespace {
 
-// Quantises the image into job.data and points job.rows at it.
-void fillRows(PngJob& job, const Image& image) {
+// Quantises the image to bitDepth (8 or 16) into job.data and points job.rows at it.
+void fillRows(PngJob& job, const Image& image, int bitDepth) {
   job.width = png_uint_32(image.width);
   job.height = png_uint_32(image.height);
   job.channels = image.channels;
-  job.data.resize(image.pixels.size());
-  std::transform(image.pixels.begin(), image.pixels.end(), job.data.begin(), quantize8);
+  job.bitDepth = bitDepth;
+  size_t bytesPerSample = bitDepth / 8;
+  job.data.resize(image.pixels.size() * bytesPerSample);
+  if (bitDepth == 8) {
+    std::transform(image.pixels.begin(), image.pixels.end(), job.data.begin(), quantize8);
+  } else {  // PNG stores 16-bit samples big-endian
+    for (size_t i = 0; i < image.pixels.size(); ++i) {
+      uint16_t v = quantize16(image.pixels[i]);
+      job.data[2 * i] = png_byte(v >> 8);
+      job.data[2 * i + 1] = png_byte(v & 0xff);
+    }
+  }
+  size_t rowBytes = size_t(image.width) * image.channels * bytesPerSample;
   job.rows.resize(job.height);
-  for (png_uint_32 y = 0; y < job.height; ++y) job.rows[y] = job.data.data() + size_t(image.width) * image.channels * y;
+  for (png_uint_32 y = 0; y < job.height; ++y) job.rows[y] = job.data.data() + rowBytes * y;
 }
 
 }  // namespace
 
-void writePng(const std::string& filePath, const std::string& displayPath, const Image& image) {
+void writePng(const std::string& filePath, const std::string& displayPath, const Image& image, int bitDepth) {
   PngJob job;
-  fillRows(job, image);
+  fillRows(job, image, bitDepth);
   job.file = std::fopen(filePath.c_str(), "wb");
   if (!job.file) throw Error(displayPath, std::string("cannot open for writing: ") + std::strerror(errno));
   bool ok = encodePng(job);
@@ -219,7 +224,7 @@ std::string encodePng(const Image& image) {
               "encodePng needs a non-empty image with 1, 3 or 4 channels");
   std::string bytes;
   detail::PngJob job;
-  detail::fillRows(job, image);
+  detail::fillRows(job, image, 8);
   job.memory = &bytes;
   if (!detail::encodePng(job)) throw Error("cannot encode a PNG in memory: " + job.error);
   return bytes;
