@@ -52,12 +52,12 @@ const ColmapCameraModel* findColmapCameraModel(const std::string& name) {
 }
 
 std::string undistortionCommand(const fs::path& modelFolder) {
-  std::string images = "<images folder>", output = "<new folder>";
-  std::string input = modelFolder.empty() ? "<model folder>" : modelFolder.string();
+  std::string images = "<images folder>", output = "<new folder>", input = "<model folder>";
   if (!modelFolder.empty()) {
-    // COLMAP's project layout: <project>/images beside <project>/sparse/0 (or sparse).
     fs::path model = modelFolder.lexically_normal();
     if (!model.has_filename()) model = model.parent_path();  // a trailing slash
+    input = model.string();
+    // COLMAP's project layout: <project>/images beside <project>/sparse/0 (or sparse).
     fs::path project = model.parent_path();
     if (project.filename() == "sparse") project = project.parent_path();
     std::error_code ignored;
