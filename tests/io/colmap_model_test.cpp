@@ -159,6 +159,17 @@ TEST(ColmapModel, FolderReaderPrefersBinaryAndSaysWhichItRead) {
   test::expectSameModel(read, other);
 }
 
+TEST(ColmapModel, CommittedFixtureReadsAndWritesBackByteForByte) {
+  std::filesystem::path fixture = std::filesystem::path(GLINT_TEST_DATA) / "colmap_small";
+  ColmapModel read = readColmapModel(fixture);
+  EXPECT_EQ(read.format, ColmapFormat::Text);
+  test::expectSameModel(read, parseColmapModel(test::smallColmapText(), ColmapFormat::Text, "a"));
+  test::TempFolder folder;
+  writeColmapModelText(folder.path(), read);
+  for (const char* name : {"cameras.txt", "images.txt", "points3D.txt"})
+    EXPECT_EQ(test::readBytes(folder / name), test::readBytes(fixture / name)) << name;
+}
+
 TEST(ColmapModel, FolderErrorsNameTheFolderOrFile) {
   test::TempFolder folder;
   auto message = [](const std::filesystem::path& path) -> std::string {
