@@ -1,0 +1,81 @@
+// COLMAP sparse models (cameras, images, points3D) in their text and binary forms:
+// strict parsing, and writing for fixtures and round trips (docs/capture-format.md).
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "math/quat.h"
+#include "math/vec.h"
+
+namespace glint {
+
+// One line of cameras.txt / record of cameras.bin.
+struct ColmapCamera {
+  uint32_t id = 0;
+  std::string model;           // COLMAP's model name, e.g. "PINHOLE"
+  int width = 0, height = 0;   // pixels
+  std::vector<double> params;  // as many as the model takes (io/colmap_camera_models.h)
+};
+
+// One image's pose. COLMAP stores world-to-camera: x_camera = R(qvec) x_world + tvec, with
+// OpenCV camera axes (x right, y down, z forward). The 2D points of the image are checked
+// and skipped.
+struct ColmapImage {
+  uint32_t id = 0;
+  Quatd qvec;  // (w, x, y, z), Hamilton; kept as stored, its norm checked to be 1 within 1e-3
+  Vec3d tvec;
+  uint32_t cameraId = 0;
+  std::string name;  // relative to the project's image folder
+};
+
+// One 3D point of points3D; its track is checked and skipped.
+struct ColmapPoint {
+  uint64_t id = 0;
+  Vec3d xyz;
+  std::array<uint8_t, 3> rgb{};
+  double error = 0;  // mean reprojection error in pixels; COLMAP writes -1 when not computed
+};
+
+enum class ColmapFormat { Text, Binary };
+
+struct ColmapModel {
+  std::vector<ColmapCamera> cameras;  // in file order
+  std::vector<ColmapImage> images;
+  std::vector<ColmapPoint> points;
+  ColmapFormat format = ColmapFormat::Binary;  // which files were read
+};
+
+// The contents of a model's three files, in either form.
+struct ColmapFiles {
+  std::string cameras, images, points;
+};
+
+// Parses the three files of a model (text or binary); folderName is used for error
+// messages only ("<folderName>/cameras.txt: line 4: ..."). Checks each file's syntax
+// (binary: truncation, counts larger than the remaining bytes, trailing bytes), known
+// camera models with the right number of parameters, finite numbers, image sizes in
+// [1, 2^20], quaternion norms within 1e-3 of 1, unique camera, image and point ids and
+// unique image names, and that every image's camera exists. Camera models are not
+// checked for distortion here (see readColmapModel). Throws Error naming the file, the
+// line (text) or record index and byte offset (binary), and the problem.
+ColmapModel parseColmapModel(const ColmapFiles& files, ColmapFormat format, const std::string& folderName);
+
+// Reads the model in folder: cameras.bin, images.bin and points3D.bin if cameras.bin
+// exists (COLMAP's own preference), otherwise the .txt files. Beyond parseColmapModel it
+// refuses cameras with lens distortion (colmapPinholeIntrinsics), naming the
+// colmap image_undistorter command that fixes them. Throws Error naming the file.
+ColmapModel readColmapModel(const std::filesystem::path& folder);
+
+// The three files of a model in COLMAP's text form (with COLMAP's header comments,
+// numbers at full round-trip precision, empty 2D point lines and tracks) or binary form.
+ColmapFiles formatColmapModel(const ColmapModel& model, ColmapFormat format);
+// Writes cameras, images and points3D (.txt or .bin) into folder, each atomically,
+// creating the folder if needed.
+void writeColmapModelText(const std::filesystem::path& folder, const ColmapModel& model);
+void writeColmapModelBinary(const std::filesystem::path& folder, const ColmapModel& model);
+
+}  // namespace glint
