@@ -67,8 +67,11 @@ ColmapModel readColmapModel(const fs::path& folder) {
   // Glint traces pinhole rays: a distorted camera is refused here, with the command that
   // undistorts it, rather than trained with a wrong projection.
   std::string camerasName = filePath(folder.string(), "cameras", format);
+  std::vector<int> lines;
+  if (format == ColmapFormat::Text) lines = colmapTextRecordLines(files.cameras);
   for (size_t i = 0; i < model.cameras.size(); ++i) {
-    std::string where = format == ColmapFormat::Binary ? "record " + std::to_string(i) + ": " : "";
+    std::string where = format == ColmapFormat::Binary ? "record " + std::to_string(i) + ": "
+                                                       : "line " + std::to_string(lines.at(i)) + ": ";
     colmapPinholeIntrinsics(model.cameras[i], camerasName, where, folder);
   }
   return model;

@@ -135,6 +135,14 @@ void appendFields(std::string& out, std::initializer_list<std::string> fields) {
 
 }  // namespace
 
+std::vector<int> colmapTextRecordLines(const std::string& text) {
+  std::vector<int> numbers;
+  LineReader lines(text);
+  std::string_view line;
+  while (lines.nextData(&line)) numbers.push_back(lines.number());
+  return numbers;
+}
+
 std::vector<ColmapCamera> parseColmapCamerasText(const std::string& text, const std::string& fileName) {
   std::vector<ColmapCamera> cameras;
   std::unordered_set<uint32_t> ids;

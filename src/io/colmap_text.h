@@ -17,6 +17,10 @@ std::vector<ColmapImage> parseColmapImagesText(const std::string& text, const st
 // TRACK[] (IMAGE_ID POINT2D_IDX pairs) is checked and skipped.
 std::vector<ColmapPoint> parseColmapPointsText(const std::string& text, const std::string& fileName);
 
+// The 1-based line number of each record of cameras.txt or points3D.txt (the lines that
+// are neither blank nor comments), for messages about records found after parsing.
+std::vector<int> colmapTextRecordLines(const std::string& text);
+
 // COLMAP's text layout with its header comments; numbers at shortest round-trip precision.
 std::string formatColmapCamerasText(const std::vector<ColmapCamera>& cameras);
 std::string formatColmapImagesText(const std::vector<ColmapImage>& images);

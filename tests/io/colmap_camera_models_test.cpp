@@ -117,6 +117,17 @@ TEST(ColmapCameraModels, CommandFillsInTheProjectsPaths) {
         << message;
     EXPECT_NE(message.find(expected), std::string::npos) << message;
   }
+  // In text form the message names the camera's line.
+  std::filesystem::remove(folder / "project/sparse/0/cameras.bin");
+  writeColmapModelText(folder / "project/sparse/0", model);
+  try {
+    readColmapModel(folder / "project/sparse/0");
+    FAIL() << "distorted model accepted";
+  } catch (const Error& e) {
+    std::string message = e.what();
+    EXPECT_EQ(message.rfind(project + "/sparse/0/cameras.txt: line 4: camera 1 uses the OPENCV model", 0), 0u)
+        << message;
+  }
 }
 
 }  // namespace
