@@ -141,7 +141,9 @@ bool decodePixels(JpegReadJob& job) {
 // The format whose signature starts bytes, for telling the user what a mislabelled file
 // really is; nullptr if none Glint reads.
 const char* formatBySignature(const std::string& bytes) {
-  auto startsWith = [&](const char* signature, size_t length) { return bytes.compare(0, length, signature, length) == 0; };
+  auto startsWith = [&](const char* signature, size_t length) {
+    return bytes.compare(0, length, signature, length) == 0;
+  };
   if (startsWith("\x89PNG", 4)) return "PNG";
   if (startsWith("II*\0", 4) || startsWith("MM\0*", 4)) return "TIFF";
   if (startsWith("\x76\x2f\x31\x01", 4)) return "OpenEXR";

@@ -136,8 +136,8 @@ bool encodePng(PngJob& job) {
   int colorType = job.channels == 1 ? PNG_COLOR_TYPE_GRAY
                   : job.channels == 3 ? PNG_COLOR_TYPE_RGB
                                       : PNG_COLOR_TYPE_RGB_ALPHA;
-  png_set_IHDR(png, info, job.width, job.height, job.bitDepth, colorType, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
-               PNG_FILTER_TYPE_DEFAULT);
+  png_set_IHDR(png, info, job.width, job.height, job.bitDepth, colorType, PNG_INTERLACE_NONE,
+               PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
   png_write_info(png, info);
   png_write_image(png, job.rows.data());
   png_write_end(png, nullptr);

@@ -39,7 +39,10 @@ Image smoothImage(int width, int height, int channels) {
 // Peak signal-to-noise ratio in dB for values in [0, 1].
 double psnr(const Image& a, const Image& b) {
   double squared = 0.0;
-  for (size_t i = 0; i < a.pixels.size(); ++i) squared += double(a.pixels[i] - b.pixels[i]) * (a.pixels[i] - b.pixels[i]);
+  for (size_t i = 0; i < a.pixels.size(); ++i) {
+    double difference = double(a.pixels[i]) - double(b.pixels[i]);
+    squared += difference * difference;
+  }
   return 10.0 * std::log10(double(a.pixels.size()) / squared);
 }
 

@@ -29,7 +29,8 @@ TEST(Transfer, NamesRoundTripAndUnknownNamesListTheValidOnes) {
     } catch (const Error& e) {
       std::string message = e.what();
       EXPECT_NE(message.find("'" + std::string(bad) + "'"), std::string::npos) << message;
-      for (const char* valid : {"srgb", "filmic", "linear"}) EXPECT_NE(message.find(valid), std::string::npos) << message;
+      for (const char* valid : {"srgb", "filmic", "linear"})
+        EXPECT_NE(message.find(valid), std::string::npos) << message;
     }
   }
 }
