@@ -36,11 +36,8 @@ std::vector<Camera> roomCameras(bool inside, int width, int height) {
     double a = 1.5707963 * v;
     Vec3d eye = inside ? Vec3d(0.0) : Vec3d(9.0 * std::sin(a), 0.5, 9.0 * std::cos(a));
     Vec3d target = inside ? Vec3d(std::sin(a), 0.0, -std::cos(a)) : Vec3d(0.0);
-    Camera c;
-    c.cameraToWorld = Mat4::lookAt(eye, target, {0, 1, 0});
-    c.fovX = 60.0 * 3.14159265 / 180.0;
-    c.width = width, c.height = height;
-    cameras.push_back(c);
+    cameras.push_back(Camera::fromFieldOfView(Mat4::lookAt(eye, target, {0, 1, 0}), 60.0 * 3.14159265 / 180.0, width,
+                                              height));
   }
   return cameras;
 }

@@ -41,7 +41,7 @@ Row measure(const std::string& name, int threads, int width, int height, int spp
   caster.resetRayCount();
   auto start = std::chrono::steady_clock::now();
   for (int v = 0; v < views; ++v) {
-    Camera camera{poses[v], scene.cameras.fovX, width, height};
+    Camera camera = Camera::fromFieldOfView(poses[v], scene.cameras.fovX, width, height);
     renderView(tracer, camera, settings, uint64_t(v));
   }
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -144,7 +144,8 @@ int main(int argc, char** argv) {
   for (size_t b = 0; b < rays.size(); ++b) {
     primaries[b].clear(), keys[b].clear();
     Rng rng(1000 + b);
-    const int tilesX = views.width() / 8, tilesY = views.height() / 8;
+    const int width = views.camera(0).width;  // the bench's datasets have one image size
+    const int tilesX = width / 8, tilesY = views.camera(0).height / 8;
     size_t first = 0;
     while (first < rays[b].size()) {
       const uint32_t view = rays[b][first].view;
@@ -153,7 +154,7 @@ int main(int argc, char** argv) {
       for (size_t t = 0; t * 64 < count; ++t) {
         const int tx = int(rng.uniformInt(uint32_t(tilesX))), ty = int(rng.uniformInt(uint32_t(tilesY)));
         for (int k = 0; k < 64 && t * 64 + size_t(k) < count; ++k) {
-          const uint64_t pixel = uint64_t(ty * 8 + k / 8) * uint64_t(views.width()) + uint64_t(tx * 8 + k % 8);
+          const uint64_t pixel = uint64_t(ty * 8 + k / 8) * uint64_t(width) + uint64_t(tx * 8 + k % 8);
           primaries[b].push_back(views.pixelRay(view, pixel));
           keys[b].push_back({view, pixel, uint64_t(1000000 + b)});
         }

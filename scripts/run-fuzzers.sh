@@ -10,7 +10,7 @@ seconds=${FUZZ_SECONDS:-60}
 source_dir=$(cd "$(dirname "$0")/.." && pwd)
 harnesses=("$@")
 if [ ${#harnesses[@]} -eq 0 ]; then
-  harnesses=(ply exr png tiff transforms edit_file train_config request gltf)
+  harnesses=(ply exr png jpeg tiff transforms edit_file train_config request gltf colmap_text colmap_binary nerfstudio)
 fi
 
 # Longest input per format: a few times the largest seed, so mutations can grow a file

@@ -125,7 +125,7 @@ void runEval(const EvalOptions& o) {
   if (datasetPath.empty())
     throw Error(o.run, "names no dataset to compare with (only a training run's config.json can): pass --dataset");
 
-  Dataset dataset = Dataset::open(datasetPath);
+  Dataset dataset = Dataset::open(datasetPath, /*requireBuffers=*/true, source.settings.holdout);
   const DatasetSplit& split = dataset.split(o.split);
   if (split.views.empty()) throw Error(datasetPath.string(), "the " + o.split + " split has no views to evaluate");
 

@@ -107,7 +107,7 @@ void writeFramePng(const fs::path& path, const Image& radiance) {
 // Renders frames along the camera path into OUT/path/frame_####.png (and, with --denoise,
 // OUT/path_denoised/), then encodes OUT/path.mp4 from the shown frames when ffmpeg exists.
 void renderCameraPath(const RenderOptions& o, const GaussianTracer& tracer, const RenderSettings& settings,
-                      const std::vector<Mat4>& path, double fovX, int width, int height) {
+                      const std::vector<Mat4>& path, const Camera& intrinsics) {
   fs::path framesDir = fs::path(o.output) / "path", denoisedDir = fs::path(o.output) / "path_denoised";
   fs::create_directories(framesDir);
   if (o.denoise) fs::create_directories(denoisedDir);
@@ -115,7 +115,8 @@ void renderCameraPath(const RenderOptions& o, const GaussianTracer& tracer, cons
   ProgressBar progress("render " + o.path, int64_t(path.size()), "frames");
   for (size_t f = 0; f < path.size(); ++f) {
     std::snprintf(name, sizeof(name), "frame_%04zu.png", f);
-    Camera camera{path[f], fovX, width, height};
+    Camera camera = intrinsics;
+    camera.cameraToWorld = path[f];
     auto write = [&](const ViewBuffers& buffers, int /*samples*/) {
       writeFramePng(framesDir / name, buffers[Buffer::Render]);
       if (o.denoise) writeFramePng(denoisedDir / name, denoiseView(buffers));
@@ -153,43 +154,47 @@ void runRender(const RenderOptions& o) {
     pathKind = cameraPathFromName(o.path);
     if (!o.debugPixel.empty()) throw Error("--path", "renders frames; it cannot be combined with --debug-pixel");
   }
-  Dataset dataset = Dataset::open(datasetPath, /*requireBuffers=*/false);
+  Dataset dataset = Dataset::open(datasetPath, /*requireBuffers=*/false, source.settings.holdout);
   // dataset-test walks through the test cameras whatever --split says.
   const DatasetSplit& split = dataset.split(pathKind == CameraPathKind::DatasetTest ? "test" : o.split);
-  int width, height;
-  if (!o.resolution.empty()) {
-    Vec2i r = parseResolution(o.resolution, "--res");
-    width = r.x, height = r.y;
-  } else {
-    std::optional<fs::path> first = dataset.findBufferFile(split.views[0], Buffer::Render);
-    if (!first)
-      throw Error(datasetPath.string(),
-                  "has no " + split.name + " render images to take the image size from; pass --res WxH");
-    Image image = readImage(*first);
-    width = image.width, height = image.height;
-  }
+  // Each view renders at its own size and intrinsics, or every one resized to --res.
+  std::optional<Vec2i> resolution;
+  if (!o.resolution.empty()) resolution = parseResolution(o.resolution, "--res");
+  if (!resolution && split.width <= 0)
+    throw Error(datasetPath.string(),
+                "has no " + split.name + " render images to take the image size from; pass --res WxH");
+  auto viewCamera = [&](size_t v) {
+    const Camera& camera = split.camera(v);
+    return resolution ? camera.resized(resolution->x, resolution->y) : camera;
+  };
+  const Camera first = viewCamera(0);
   if (o.debugPixel.empty()) checkOutputFolder(o.output, o.force, pathKind ? "path" : "render");
 
-  // The cameras to render: the split's views, or the frames of the camera path.
-  std::vector<Mat4> cameras;
-  for (const DatasetView& view : split.views) cameras.push_back(view.cameraToWorld);
+  // The frames of the camera path, through the split's cameras with the first one's intrinsics.
+  std::vector<Mat4> path;
   if (pathKind) {
-    int frames = o.frames > 0 ? o.frames : (*pathKind == CameraPathKind::DatasetTest ? int(cameras.size()) : 120);
-    cameras = makeCameraPath(*pathKind, cameras, frames);
+    for (const DatasetView& view : split.views) path.push_back(view.camera.cameraToWorld);
+    int frames = o.frames > 0 ? o.frames : (*pathKind == CameraPathKind::DatasetTest ? int(path.size()) : 120);
+    path = makeCameraPath(*pathKind, path, frames);
   }
+  const size_t imageCount = pathKind ? path.size() : split.views.size();
 
   auto start = std::chrono::steady_clock::now();
-  Camera probeCamera{cameras[0], split.cameraAngleX, width, height};
-  double workRays = double(cameras.size()) * width * height * o.spp * (1 + rendering.path.bounces);
+  double workRays = 0;
+  for (size_t v = 0; v < split.views.size(); ++v) {
+    const Camera camera = viewCamera(v);
+    workRays += double(camera.width) * camera.height * o.spp * (1 + rendering.path.bounces);
+  }
+  if (pathKind) workRays *= double(path.size()) / double(split.views.size());
   std::unique_ptr<GaussianTracer> tracer =
-      o.edits.prepareTracer(scene, trace, rendering.tracer, probeCamera, workRays, "glint render");
+      o.edits.prepareTracer(scene, trace, rendering.tracer, first, workRays, "glint render");
   double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr,
                "glint render: %zu Gaussians, %s tracer ready in %.3f s (p = %g, alpha_min = %g, "
-               "min_transmittance = %g, %d bounces); %zu %s at %dx%d, %d spp%s\n",
+               "min_transmittance = %g, %d bounces); %zu %s at %dx%d%s, %d spp%s\n",
                scene.size(), tracer->name(), buildSeconds, trace.kernelPower, trace.alphaMin, trace.minTransmittance,
-               rendering.path.bounces,
-               cameras.size(), (pathKind ? o.path + " frames" : split.name + " views").c_str(), width, height, o.spp,
+               rendering.path.bounces, imageCount, (pathKind ? o.path + " frames" : split.name + " views").c_str(),
+               first.width, first.height, resolution || pathKind ? "" : " (the first view's size)", o.spp,
                o.progressive ? " (progressive)" : "");
 
   RenderSettings settings;
@@ -199,25 +204,25 @@ void runRender(const RenderOptions& o) {
   settings.path = rendering.path;
   if (!o.debugPixel.empty()) {
     Vec2i p = parsePixel(o.debugPixel, "--debug-pixel");
-    if (p.x < 0 || p.y < 0 || p.x >= width || p.y >= height)
-      throw Error("--debug-pixel", o.debugPixel + " lies outside the " + std::to_string(width) + "x" +
-                                       std::to_string(height) + " image");
     if (o.debugView < 0 || size_t(o.debugView) >= split.views.size())
       throw Error("--view", std::to_string(o.debugView) + " is not a view of the " + o.split + " split (it has " +
                                 std::to_string(split.views.size()) + ")");
-    Camera camera{split.views[o.debugView].cameraToWorld, split.cameraAngleX, width, height};
+    const Camera camera = viewCamera(size_t(o.debugView));
+    if (p.x < 0 || p.y < 0 || p.x >= camera.width || p.y >= camera.height)
+      throw Error("--debug-pixel", o.debugPixel + " lies outside the " + std::to_string(camera.width) + "x" +
+                                       std::to_string(camera.height) + " image");
     printPixelPaths(tracePixelPaths(*tracer, camera, settings, uint64_t(o.debugView), p.x, p.y), p.x, p.y,
                     size_t(o.debugView));
     return;
   }
   if (pathKind) {
-    renderCameraPath(o, *tracer, settings, cameras, split.cameraAngleX, width, height);
+    renderCameraPath(o, *tracer, settings, path, first);
     return;
   }
   ProgressBar progress("render", int64_t(split.views.size()), "views");
   for (size_t v = 0; v < split.views.size(); ++v) {
     ActivityScope activity("rendering view " + split.views[v].filePath);
-    Camera camera{split.views[v].cameraToWorld, split.cameraAngleX, width, height};
+    const Camera camera = viewCamera(v);
     auto write = [&](const ViewBuffers& buffers, int /*samples*/) {
       writeRenderedBuffers(o.output, split.views[v].filePath, buffers,
                            o.format == "png" ? ImageFormat::Png : ImageFormat::Exr);

@@ -226,7 +226,8 @@ void runReport(const ReportOptions& o) {
                  metricsFile.string().c_str(), o.run.c_str());
 
   const fs::path datasetPath = datasetFolder(o, configFile, config);
-  Dataset dataset = Dataset::open(datasetPath);
+  Dataset dataset =
+      Dataset::open(datasetPath, /*requireBuffers=*/true, config ? config->holdout : Dataset::kDefaultHoldout);
   const DatasetSplit& split = dataset.split(metrics.split);
   if (std::string mismatch = viewsMismatch(metrics, split, datasetPath); !mismatch.empty())
     throw Error(metricsFile.string(), mismatch + "; was it evaluated on another dataset?");

@@ -57,6 +57,7 @@ TrainConfig newRunConfig(const TrainOptions& o, const CLI::App& cmd) {
   TrainConfig config = o.configFile.empty() ? TrainConfig() : readTrainConfig(o.configFile);
   auto given = [&](const char* flag) { return cmd.get_option(flag)->count() > 0; };
   if (given("--iters")) config.iters = o.config.iters;
+  if (given("--holdout")) config.holdout = o.config.holdout;
   if (given("--seed")) config.seed = o.config.seed;
   if (given("--threads")) config.threads = o.config.threads;
   if (given("--bounces")) config.bounces = o.config.bounces;
@@ -109,9 +110,16 @@ class TrainPrinter : public TrainingObserver {
     }
     std::signal(SIGINT, onInterrupt);
     std::signal(SIGTERM, onInterrupt);
-    std::fprintf(stderr, "glint train: %zu Gaussians, %zu training views of %dx%d, %d rays per step, %d threads\n",
-                 trainer.scene().size(), views.viewCount(), views.width(), views.height(), config_.batchRays,
-                 maxThreads());
+    std::fprintf(stderr, "glint train: %zu Gaussians, %zu training views (the first %dx%d), %d rays per step, "
+                 "%d threads\n", trainer.scene().size(), views.viewCount(), views.camera(0).width,
+                 views.camera(0).height, config_.batchRays, maxThreads());
+    const SupervisedBuffers& s = views.supervised();
+    if (s.finalColour)
+      std::fprintf(stderr, "glint train: colours fitted to the final (render) images%s\n",
+                   config_.bounces > 0 ? " as diffuse plus the paths' specular" : "");
+    if (!s.list(false).empty())
+      std::fprintf(stderr, "glint train: the dataset has no %s buffers: training without their losses\n",
+                   s.list(false).c_str());
     progress_ = std::make_unique<ProgressBar>("train", config_.iters, "steps");
     progress_->advance(trainer.stepCount());
   }
@@ -212,6 +220,11 @@ void addTrainCommand(CLI::App& app) {
                                                 "settings of a resumed run are always its config.json's)")
       ->check(CLI::Range(kItersRange.min, kItersRange.max))
       ->default_val(defaults.iters);
+  cmd->add_option("--holdout", o->config.holdout,
+                  "For a capture without a train/test split (COLMAP or nerfstudio): every N-th image, from the "
+                  "first, is a test view (LLFF's convention); render, eval and report use the run's")
+      ->check(CLI::Range(kHoldoutRange.min, kHoldoutRange.max))
+      ->default_val(defaults.holdout);
   cmd->add_option("--config", o->configFile, "JSON file of hyper-parameters (the layout of RUN/config.json); flags "
                                              "given explicitly override it")->check(CLI::ExistingFile);
   cmd->add_option("--seed", o->config.seed, "Seed of the ray batches")->default_val(defaults.seed);

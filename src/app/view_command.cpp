@@ -28,7 +28,7 @@ void runView(const ViewOptions& o) {
   SceneSource source = loadSceneSource(o.scene);
   fs::path datasetPath = o.dataset.empty() ? fs::path(source.settings.dataset) : fs::path(o.dataset);
   std::optional<Dataset> dataset;
-  if (!datasetPath.empty()) dataset = Dataset::open(datasetPath, /*requireBuffers=*/false);
+  if (!datasetPath.empty()) dataset = Dataset::open(datasetPath, /*requireBuffers=*/false, source.settings.holdout);
   // Saved edits and exports go into a viewer/ folder beside what was opened (the run folder, or
   // the .ply's folder): never over a file of the run (viewer_outputs.h).
   fs::path opened = fs::is_directory(o.scene) ? fs::path(o.scene) : fs::absolute(o.scene).parent_path();

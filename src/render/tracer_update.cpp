@@ -17,8 +17,7 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 std::vector<TraceRay> probeRays(const Camera& camera) {
-  Camera probe = camera;
-  probe.width = probe.height = kProbeSize;
+  const Camera probe = camera.resized(kProbeSize, kProbeSize);
   std::vector<TraceRay> rays;
   rays.reserve(size_t(kProbeSize) * kProbeSize);
   for (int y = 0; y < kProbeSize; ++y)

@@ -1,5 +1,5 @@
-// Pinhole cameras in the NeRF/Blender convention: OpenGL camera axes, principal point at
-// the image centre, square pixels, horizontal field of view.
+// Pinhole cameras: OpenGL camera axes (x right, y up, looking down -z), focal lengths fx, fy
+// and principal point cx, cy in pixels (docs/data-format.md, "Cameras").
 #pragma once
 
 #include "math/mat4.h"
@@ -14,15 +14,24 @@ struct Ray {
 
 struct Camera {
   Mat4 cameraToWorld = Mat4::identity();  // x right, y up, camera looks down -z
-  double fovX = 0.8;                      // horizontal field of view, radians
   int width = 0;
   int height = 0;
+  double fx = 0, fy = 0;  // focal lengths in pixels (fx = fy: square pixels)
+  double cx = 0, cy = 0;  // principal point in pixels from the image's top-left corner
 
-  // Focal length in pixels.
-  double focal() const;
+  // The NeRF/Blender camera: horizontal field of view fovX (radians), square pixels, the
+  // principal point at the image centre.
+  static Camera fromFieldOfView(const Mat4& cameraToWorld, double fovX, int width, int height);
+  // Horizontal field of view of a camera whose principal point is at the image centre.
+  double fieldOfViewX() const;
+  // The same camera rendering newWidth x newHeight pixels: the focal lengths scale with the
+  // width (so the horizontal field of view and the pixels' aspect stay), the principal point
+  // keeps its relative position. A resize that keeps the aspect ratio is exact.
+  Camera resized(int newWidth, int newHeight) const;
+
   // Ray through the continuous pixel position (px, py), px in [0, width) from the left,
   // py in [0, height) from the top: the pixel (i, j) has its centre at (i + 0.5, j + 0.5).
-  // In camera space the direction is ((px - W/2)/f, -(py - H/2)/f, -1), normalised.
+  // In camera space the direction is ((px - cx)/fx, -(py - cy)/fy, -1), normalised.
   Ray generateRay(double px, double py) const;
   Vec3d position() const { return cameraToWorld.column(3); }
   // generateRay inverted: the continuous pixel position p projects to, given the inverse of

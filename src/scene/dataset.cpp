@@ -1,6 +1,7 @@
 // Opening a dataset folder, loading its buffers on demand, and writing cameras and buffers.
 #include "scene/dataset.h"
 
+#include <cmath>
 #include <system_error>
 
 #include "core/error.h"
@@ -26,41 +27,49 @@ DatasetSplit openSplit(const fs::path& root, const std::string& name, bool requi
 
   DatasetSplit split;
   split.name = name;
-  split.cameraAngleX = transforms.cameraAngleX;
   for (TransformsFrame& frame : transforms.frames) {
     if (requireBuffers && !isRenderFilePath(frame.filePath))
       throw Error(path.string(), "file_path \"" + frame.filePath +
                                      "\" does not name a render image (expected SPLIT/render/render_NAME)");
-    split.views.push_back({std::move(frame.filePath), frame.transformMatrix});
+    // 1x1 until the image size is known (Dataset::open sets it).
+    split.views.push_back(
+        {std::move(frame.filePath), Camera::fromFieldOfView(frame.transformMatrix, transforms.cameraAngleX, 1, 1)});
   }
   return split;
 }
 
-}  // namespace
-
-Camera DatasetSplit::camera(size_t index) const {
-  GLINT_CHECK(index < views.size(), "view index out of range");
-  Camera camera;
-  camera.cameraToWorld = views[index].cameraToWorld;
-  camera.fovX = cameraAngleX;
-  camera.width = width;
-  camera.height = height;
-  return camera;
+// Gives every view of the split the size of its images; the layout has one size per split.
+void setSplitSize(DatasetSplit* split, int width, int height) {
+  split->width = width;
+  split->height = height;
+  for (DatasetView& view : split->views) view.camera = view.camera.resized(width, height);
 }
 
-Dataset Dataset::open(const fs::path& root, bool requireBuffers) {
+}  // namespace
+
+const Camera& DatasetSplit::camera(size_t index) const {
+  GLINT_CHECK(index < views.size(), "view index out of range");
+  return views[index].camera;
+}
+
+Dataset Dataset::open(const fs::path& root, bool requireBuffers, int holdout) {
   Dataset dataset;
   dataset.root_ = root;
+  if (!fs::is_directory(root)) throw Error(root.string(), "is not a folder (a dataset is a folder)");
+  if (isCaptureFolder(root)) {
+    auto source = std::make_shared<CaptureSource>();
+    openCapture(root, holdout, &dataset.train_, &dataset.test_, source.get());
+    dataset.capture_ = std::move(source);
+    return dataset;
+  }
   dataset.train_ = openSplit(root, "train", requireBuffers);
   dataset.test_ = openSplit(root, "test", requireBuffers);
-  if (requireBuffers) {
-    // The first view's render image sets the split's size; loadBuffer holds every other
-    // buffer to it.
-    for (DatasetSplit* split : {&dataset.train_, &dataset.test_}) {
-      Image first = dataset.loadBuffer(*split, 0, Buffer::Render);
-      split->width = first.width;
-      split->height = first.height;
-    }
+  // The first view's render image sets the split's size; loadBuffer holds every other
+  // buffer to it. Without requireBuffers a split whose images are absent keeps no size.
+  for (DatasetSplit* split : {&dataset.train_, &dataset.test_}) {
+    if (!requireBuffers && !dataset.findBufferFile(split->views[0], Buffer::Render)) continue;
+    Image first = dataset.loadBuffer(*split, 0, Buffer::Render);
+    setSplitSize(split, first.width, first.height);
   }
   return dataset;
 }
@@ -72,12 +81,22 @@ const DatasetSplit& Dataset::split(const std::string& name) const {
 }
 
 std::optional<fs::path> Dataset::findBufferFile(const DatasetView& view, Buffer buffer) const {
+  if (capture_) {
+    const std::string& file = view.files[int(buffer)];
+    return file.empty() ? std::nullopt : std::optional<fs::path>(root_ / file);
+  }
   return findBufferFileAt(root_ / bufferFilePath(view.filePath, buffer));
 }
 
 Image Dataset::loadBuffer(const DatasetSplit& split, size_t index, Buffer buffer) const {
   GLINT_CHECK(index < split.views.size(), "view index out of range");
   const DatasetView& view = split.views[index];
+  if (capture_) {
+    if (view.files[int(buffer)].empty())
+      throw Error((root_ / "priors" / bufferName(buffer)).string(),
+                  "has no " + std::string(bufferName(buffer)) + " buffer for view " + view.filePath);
+    return loadCaptureBuffer(root_, *capture_, view, buffer);
+  }
   std::optional<fs::path> path = findBufferFile(view, buffer);
   if (!path) {
     fs::path base = root_ / bufferFilePath(view.filePath, buffer);
@@ -107,9 +126,17 @@ std::optional<fs::path> Dataset::pointCloudPath() const {
 
 void writeTransforms(const fs::path& root, const DatasetSplit& split) {
   GLINT_CHECK(!split.name.empty(), "a split needs a name to be written");
+  GLINT_CHECK(!split.views.empty(), "a split needs views to be written");
   TransformsFile transforms;
-  transforms.cameraAngleX = split.cameraAngleX;
-  for (const DatasetView& view : split.views) transforms.frames.push_back({view.filePath, view.cameraToWorld});
+  transforms.cameraAngleX = split.views[0].camera.fieldOfViewX();
+  for (const DatasetView& view : split.views) {
+    const Camera& c = view.camera;
+    GLINT_CHECK(std::abs(c.fx - c.fy) <= 1e-9 * c.fx && std::abs(c.cx - 0.5 * c.width) <= 1e-9 * c.width &&
+                    std::abs(c.cy - 0.5 * c.height) <= 1e-9 * c.height &&
+                    std::abs(c.fieldOfViewX() - transforms.cameraAngleX) <= 1e-12,
+                "transforms files store one centred field of view per split");
+    transforms.frames.push_back({view.filePath, c.cameraToWorld});
+  }
   writeTransformsJson(transformsPath(root, split.name), transforms);
 }
 

@@ -1,9 +1,11 @@
 // Reading, writing and validating scene datasets in the layout of docs/data-format.md:
 // transforms_{train,test}.json, {split}/{buffer}/{buffer}_####.{exr,tiff,png}, and the
-// optional point_cloud_dense.ply.
+// optional point_cloud_dense.ply; and real captures (docs/capture-format.md).
 #pragma once
 
+#include <array>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -12,33 +14,46 @@
 #include "math/mat4.h"
 #include "scene/buffers.h"
 #include "scene/camera.h"
+#include "scene/capture_dataset.h"
 
 namespace glint {
 
-// One frame of transforms_*.json.
+// One view: a frame of transforms_*.json.
 struct DatasetView {
   std::string filePath;  // render image path relative to the root, without extension
-  Mat4 cameraToWorld;    // OpenGL camera axes
+  // Pose (OpenGL camera axes), image size and intrinsics. A split opened without buffers
+  // whose images do not exist has no size: its cameras are 1x1 pixel with the right field
+  // of view, to be Camera::resized() to the size the caller renders at.
+  Camera camera;
+  // Captures only: each buffer's file relative to the root, "" when the view has none. The
+  // transforms layout finds its files by name from filePath instead.
+  std::array<std::string, kBufferCount> files;
 };
 
 // The cameras of one split.
 struct DatasetSplit {
-  std::string name;       // "train" or "test"
-  double cameraAngleX = 0;  // horizontal field of view, radians
-  int width = 0;          // image size, taken from the first view's render buffer
-  int height = 0;         // (0 when no buffers exist, e.g. camera-only splits)
+  std::string name;  // "train" or "test"
+  int width = 0;     // image size, taken from the first view's render buffer
+  int height = 0;    // (0 when no buffers exist, e.g. camera-only splits)
   std::vector<DatasetView> views;  // ordered by filePath
 
-  Camera camera(size_t index) const;  // camera of a view at the split's resolution
+  const Camera& camera(size_t index) const;  // camera of a view at its own resolution
 };
 
 // A dataset folder opened for reading. Opening reads both transforms files and the size
 // of the first render image; buffers are read on demand.
 class Dataset {
  public:
-  // Throws Error naming the file for a missing or malformed transforms file. When
-  // requireBuffers is false, the splits' images need not exist (width/height stay 0).
-  static Dataset open(const std::filesystem::path& root, bool requireBuffers = true);
+  // The every-N-th image of a capture that is a test view (LLFF's hold-out), when the
+  // dataset has no split of its own.
+  static constexpr int kDefaultHoldout = 8;
+
+  // Opens the transforms layout (transforms_train.json and transforms_test.json) or a
+  // capture (isCaptureFolder: a COLMAP model or a nerfstudio transforms.json, split by
+  // holdout). Throws Error naming the file for a missing or malformed camera file. When
+  // requireBuffers is false, the transforms layout's images need not exist (width/height
+  // stay 0).
+  static Dataset open(const std::filesystem::path& root, bool requireBuffers = true, int holdout = kDefaultHoldout);
 
   const std::filesystem::path& root() const { return root_; }
   const DatasetSplit& split(const std::string& name) const;  // throws Error for an unknown split
@@ -57,9 +72,12 @@ class Dataset {
 
   // point_cloud_dense.ply, if present.
   std::optional<std::filesystem::path> pointCloudPath() const;
+  // A capture's sparse points, decoding and depth fits; null for the transforms layout.
+  const CaptureSource* capture() const { return capture_.get(); }
 
  private:
   std::filesystem::path root_;
+  std::shared_ptr<const CaptureSource> capture_;
   DatasetSplit train_;
   DatasetSplit test_;
 };
@@ -77,7 +95,9 @@ struct DatasetProblem {
 std::vector<DatasetProblem> validateDataset(const std::filesystem::path& root);
 
 // Writers used by `glint synth` and tests.
-// Writes transforms_{split}.json atomically (frames in the given order).
+// Writes transforms_{split}.json atomically (frames in the given order). The layout stores one
+// horizontal field of view per split, so every view's camera must have square pixels, the
+// principal point at the centre and the first view's field of view (GLINT_CHECK).
 void writeTransforms(const std::filesystem::path& root, const DatasetSplit& split);
 // Writes the seven buffers of a view (linear values) in the given format: EXR and TIFF
 // store linear values; PNG stores radiance tonemapped, normals as n/2+0.5, roughness and

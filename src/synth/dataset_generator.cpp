@@ -119,15 +119,14 @@ void generateDataset(const MeshScene& scene, const SynthSettings& settings, cons
   for (const SplitPlan& plan : plans) {
     DatasetSplit split;
     split.name = plan.name;
-    split.cameraAngleX = rig.fovX;
     split.width = settings.width;
     split.height = settings.height;
     SynthSettings splitSettings = settings;
     splitSettings.spp = plan.spp;
     std::vector<Mat4> poses = orbitCameras(*plan.path, plan.count);
     for (int i = 0; i < plan.count; ++i) {
-      DatasetView view{frameName(plan.name, i), poses[i]};
-      Camera camera{poses[i], rig.fovX, settings.width, settings.height};
+      Camera camera = Camera::fromFieldOfView(poses[i], rig.fovX, settings.width, settings.height);
+      DatasetView view{frameName(plan.name, i), camera};
       ViewBuffers buffers = renderView(tracer, camera, splitSettings, (plan.key << 32) | uint64_t(i), &progress);
       writeViewBuffers(outDir, view, buffers, settings.format);
       split.views.push_back(view);

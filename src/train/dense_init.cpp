@@ -157,7 +157,11 @@ DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& 
   DenseInit result;
   result.stats.source = InitSource::DepthBuffers;
   result.stats.sceneExtent = sceneExtent(split);
-  const int64_t totalPixels = int64_t(split.width) * split.height * int64_t(split.views.size());
+  int64_t totalPixels = 0;
+  for (size_t v = 0; v < split.views.size(); ++v)
+    totalPixels += int64_t(split.camera(v).width) * int64_t(split.camera(v).height);
+  // Colours come from the diffuse buffers, or the photographs when a capture has none.
+  const Buffer colour = dataset.findBufferFile(split.views[0], Buffer::Diffuse) ? Buffer::Diffuse : Buffer::Render;
   const int stride =
       settings.pixelStride > 0 ? settings.pixelStride : automaticPixelStride(totalPixels, settings.maxPixelSamples);
   result.stats.pixelStride = stride;
@@ -167,7 +171,7 @@ DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& 
   std::vector<ColouredPoints> perView(split.views.size());
   parallelFor(int64_t(split.views.size()), 1, [&](int64_t i) {
     Image depth = dataset.loadBuffer(split, size_t(i), Buffer::Depth);
-    Image diffuse = dataset.loadBuffer(split, size_t(i), Buffer::Diffuse);
+    Image diffuse = dataset.loadBuffer(split, size_t(i), colour);
     perView[size_t(i)] = unprojectDepth(depth, diffuse, split.camera(size_t(i)), stride);
   });
   ColouredPoints samples;
@@ -195,6 +199,19 @@ DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& 
   return result;
 }
 
+// Gaussians at coloured points (a point cloud file, or a capture's sparse points).
+DenseInit initFromPoints(const Dataset& dataset, ColouredPoints points, const DenseInitSettings& settings) {
+  DenseInit result;
+  result.stats.source = InitSource::PointCloud;
+  result.stats.sceneExtent = sceneExtent(dataset.train());
+  result.stats.pointsUnprojected = int64_t(points.positions.size());
+  // The voxel size of the depth path: the scale of a point without neighbours and the
+  // reference for the smallest scale.
+  float soloScale = settings.voxelFraction * referenceLength(result.stats.sceneExtent, points.positions);
+  result.scene = gaussiansAtPoints(points, settings, soloScale);
+  return result;
+}
+
 DenseInit initFromPointCloud(const Dataset& dataset, const DenseInitSettings& settings) {
   checkSettings(settings);
   std::optional<std::filesystem::path> path = dataset.pointCloudPath();
@@ -213,20 +230,26 @@ DenseInit initFromPointCloud(const Dataset& dataset, const DenseInitSettings& se
     const Rgb& c = cloud.colors[i];
     points.colours.push_back({srgbToLinear(c.x), srgbToLinear(c.y), srgbToLinear(c.z)});
   }
+  return initFromPoints(dataset, std::move(points), settings);
+}
 
-  DenseInit result;
-  result.stats.source = InitSource::PointCloud;
-  result.stats.sceneExtent = sceneExtent(dataset.train());
-  result.stats.pointsUnprojected = int64_t(points.positions.size());
-  // The voxel size of the depth path: the scale of a point without neighbours and the
-  // reference for the smallest scale.
-  float soloScale = settings.voxelFraction * referenceLength(result.stats.sceneExtent, points.positions);
-  result.scene = gaussiansAtPoints(points, settings, soloScale);
-  return result;
+DenseInit initFromSparsePoints(const Dataset& dataset, const DenseInitSettings& settings) {
+  checkSettings(settings);
+  const CaptureSource* capture = dataset.capture();
+  if (!capture || capture->points.empty())
+    throw Error(dataset.root().string(), "has no depth buffers and no sparse points (points3D) to initialise from");
+  ColouredPoints points;
+  for (size_t i = 0; i < capture->points.size(); ++i) {
+    points.positions.push_back(Vec3f(capture->points[i]));
+    points.colours.push_back(capture->pointColours[i]);
+  }
+  return initFromPoints(dataset, std::move(points), settings);
 }
 
 DenseInit denseInitialisation(const Dataset& dataset, const DenseInitSettings& settings) {
   if (!settings.forceDepthBuffers && dataset.pointCloudPath()) return initFromPointCloud(dataset, settings);
+  const bool hasDepth = dataset.findBufferFile(dataset.train().views.at(0), Buffer::Depth).has_value();
+  if (!hasDepth && dataset.capture()) return initFromSparsePoints(dataset, settings);
   return initFromDepthBuffers(dataset, settings);
 }
 

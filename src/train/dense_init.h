@@ -62,12 +62,14 @@ struct ColouredPoints {
 };
 
 // Uses point_cloud_dense.ply when present (unless settings.forceDepthBuffers), else the
-// training depth buffers.
+// training depth buffers, else (a capture without depth) the sparse points.
 DenseInit denseInitialisation(const Dataset& dataset, const DenseInitSettings& settings = {});
 // The two sources on their own. Throw Error naming the file for unusable input (no
 // surface pixels at all, an empty or colourless or non-finite point cloud).
 DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& settings = {});
 DenseInit initFromPointCloud(const Dataset& dataset, const DenseInitSettings& settings = {});
+// A capture's sparse points (COLMAP's points3D), for captures without depth buffers.
+DenseInit initFromSparsePoints(const Dataset& dataset, const DenseInitSettings& settings = {});
 
 // Building blocks, exposed for tests and tools.
 // The stride that keeps at most maxSamples of totalPixels (a square sub-grid), at least 1.

@@ -86,7 +86,7 @@ size_t carveObservedFreeSpace(GaussianScene* farField, const TrainingViews& view
       const Camera& camera = views.camera(v);
       Vec2d pixel;
       if (!camera.project(worldToCamera[v], p, &pixel)) continue;
-      const PixelTarget& t = views.target(v, size_t(pixel.y) * size_t(camera.width) + size_t(pixel.x));
+      const PixelTarget t = views.target(v, size_t(pixel.y) * size_t(camera.width) + size_t(pixel.x));
       if (!t.surface) continue;
       gap = std::min(gap, length(p - camera.position()) - double(t.depth));
     }

@@ -19,6 +19,11 @@ struct PixelTarget {
   float roughness = 0;
   Rgb f0;
   bool surface = false;  // hasSurface(depth): the G-buffer terms apply
+  // Which terms the dataset supervises (a predictor may give only some buffers).
+  bool hasSpecular = true, hasDepth = true, hasNormal = true, hasRoughness = true, hasF0 = true;
+  // `diffuse` holds the final image (the render buffer): the first segment's diffuse plus
+  // the path's specular is fitted to it.
+  bool finalColour = false;
 };
 
 // Each term is the mean absolute error over the batch (and the term's channels); the
@@ -45,8 +50,10 @@ struct LossTerms {
   }
 };
 
-// One ray's contribution to each term.
-LossTerms rayLoss(const RayResult& r, const PixelTarget& target, const LossNormalisation& n);
+// One ray's contribution to each term. pathSpecular is the path's specular sum (0 before
+// reflections are trained): with target.finalColour the colour term fits diffuse + specular.
+LossTerms rayLoss(const RayResult& r, const PixelTarget& target, const LossNormalisation& n,
+                  const Rgb& pathSpecular = Rgb(0.0f));
 
 // The reflection term L_r = mean |specular - target| over the batch's rays and channels,
 // and its gradient with respect to the path's specular sum (weights.specular included).
@@ -54,8 +61,10 @@ double specularLoss(const Rgb& specular, const PixelTarget& target, const LossNo
 Rgb specularLoss_vjp(const Rgb& specular, const PixelTarget& target, const LossNormalisation& n,
                      const LossWeights& weights);
 
-// dL/d result for L = rayLoss(...).weighted(weights); d|x|/dx = sign(x), 0 at 0.
+// dL/d result for L = rayLoss(...).weighted(weights); d|x|/dx = sign(x), 0 at 0. With
+// target.finalColour the colour term's gradient with respect to the path's specular sum
+// equals v_diffuse (the caller adds it to the specular adjoint).
 RayResultAdjoint rayLoss_vjp(const RayResult& r, const PixelTarget& target, const LossNormalisation& n,
-                             const LossWeights& weights);
+                             const LossWeights& weights, const Rgb& pathSpecular = Rgb(0.0f));
 
 }  // namespace glint

@@ -15,12 +15,12 @@ SceneSphere sceneSphere(const DatasetSplit& split) {
   if (split.views.empty())
     throw Error("transforms_" + split.name + ".json", "has no views: the scene extent needs at least one camera");
   Vec3d sum(0.0);
-  for (const DatasetView& view : split.views) sum += view.cameraToWorld.column(3);
+  for (const DatasetView& view : split.views) sum += view.camera.position();
   SceneSphere sphere;
   sphere.centre = sum / double(split.views.size());
   double farthest = 0.0;
   for (const DatasetView& view : split.views)
-    farthest = std::max(farthest, length(view.cameraToWorld.column(3) - sphere.centre));
+    farthest = std::max(farthest, length(view.camera.position() - sphere.centre));
   sphere.radius = float(kExtentMargin * farthest);
   return sphere;
 }

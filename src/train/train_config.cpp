@@ -54,6 +54,7 @@ constexpr bool kIsVector<std::vector<T>> = true;
 template <typename Config, typename F>
 void forEachField(Config& c, F&& f) {
   f("", "dataset", c.dataset);
+  f("", "holdout", c.holdout);
   f("", "iters", c.iters);
   f("", "seed", c.seed);
   f("", "threads", c.threads);
@@ -235,6 +236,7 @@ void TrainConfig::validate(const std::string& source) const {
             std::string(name) + " must be in [" + std::to_string(range.min) + ", " + std::to_string(range.max) + "]");
   };
   inRange(iters, kItersRange, "iters");
+  inRange(holdout, kHoldoutRange, "holdout");
   inRange(batchRays, kBatchRaysRange, "batch_rays");
   inRange(batchViews, kBatchViewsRange, "batch_views");
   inRange(evalEvery, kEveryStepsRange, "eval_every");

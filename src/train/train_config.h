@@ -57,6 +57,7 @@ struct IntRange {
 };
 inline constexpr IntRange kItersRange{1, 100'000'000};
 inline constexpr IntRange kThreadsRange{0, 1024};
+inline constexpr IntRange kHoldoutRange{2, 1000};
 inline constexpr IntRange kBouncesRange{0, 8};
 // `glint render` and `glint eval --bounces` may follow longer paths than training does.
 inline constexpr IntRange kRenderBouncesRange{0, 64};
@@ -70,6 +71,8 @@ inline constexpr float kMaxLearningRate = 10.0f;
 
 struct TrainConfig {
   std::string dataset;  // absolute path of the dataset
+  // A capture without a split of its own: every holdout-th image is a test view (LLFF's 8).
+  int holdout = 8;
   int iters = 8000;
   uint64_t seed = 0;
   int threads = 0;   // 0 = all cores

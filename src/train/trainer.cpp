@@ -121,20 +121,24 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
       auto sink = [&](uint32_t id, const HitGradient<float>& g) { slot.gradient.add(id, g); };
       for (int64_t r = count * s / slotCount; r < count * (s + 1) / slotCount; ++r) {
         const BatchRay& b = batch[size_t(first + r)];
-        const PixelTarget& target = views_.target(b.view, b.pixel);
+        const PixelTarget target = views_.target(b.view, b.pixel);
         std::span<const PathSegment> path = pathBatch_.path(size_t(r));
         const RayResult& result = path[0].result;
-        slot.terms += rayLoss(result, target, norm);
+        const Rgb specular = reflections ? paths_[size_t(r)].specular : Rgb(0.0f);
+        slot.terms += rayLoss(result, target, norm, specular);
         slot.hitCount += int64_t(path[0].hits.hits.size());
         Rgb v_specular(0.0f);
         if (reflections) {
-          const Rgb& specular = paths_[size_t(r)].specular;
-          slot.terms.specular += specularLoss(specular, target, norm);
           slot.reflected += int64_t(path.size()) - 1;
-          v_specular = specularLoss_vjp(specular, target, norm, config_.loss);
+          if (target.hasSpecular) {
+            slot.terms.specular += specularLoss(specular, target, norm);
+            v_specular = specularLoss_vjp(specular, target, norm, config_.loss);
+          }
         }
         if (!backward) continue;
-        RayResultAdjoint v_first = rayLoss_vjp(result, target, norm, config_.loss);
+        RayResultAdjoint v_first = rayLoss_vjp(result, target, norm, config_.loss, specular);
+        // Fitting diffuse + specular to the final image sends the colour's gradient down the path too.
+        if (reflections && target.finalColour) v_specular += v_first.v_diffuse;
         slot.overflowed += tracePath_vjp<float>(scene_, config_.trace, path, v_first, v_specular, /*weighted=*/true,
                                                 slot.scratch, sink);
       }
@@ -219,7 +223,7 @@ size_t Trainer::housekeeping() {
     return 0;
   }
   // Weight per full training image, averaged over the interval's steps (appendix A.4).
-  const double perImage = double(views_.pixelsPerView()) / double(config_.batchRays);
+  const double perImage = views_.meanPixelsPerView() / double(config_.batchRays);
   const double scale = perImage / double(p.every);
   std::vector<bool> keep = outsideCameraSpheres(scene_, spheres_, cullRegion(config_.prune));
   for (size_t i = 0; i < scene_.size(); ++i)

@@ -133,7 +133,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
   ActivityScope activity("preparing the training run " + run.root().string());
   ThreadLimit threads(config.threads);
   activity.describe("loading the dataset " + config.dataset);
-  Dataset dataset = Dataset::open(config.dataset);
+  Dataset dataset = Dataset::open(config.dataset, /*requireBuffers=*/true, config.holdout);
   TrainingViews views = TrainingViews::load(dataset, dataset.train(),
                                             config.baseline == Baseline::Rgb ? ColourTarget::Render
                                                                              : ColourTarget::Diffuse);

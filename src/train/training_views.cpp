@@ -12,65 +12,127 @@
 
 namespace glint {
 
+namespace fs = std::filesystem;
+
 namespace {
 constexpr uint64_t kBatchStream = 0x62617463682d7279;  // "batch-ry": keys batch draws apart from other streams
+}
+
+std::string SupervisedBuffers::list(bool present) const {
+  std::string out;
+  for (auto [has, name] : {std::pair{specular, "specular"}, {depth, "depth"}, {normal, "normal"},
+                           {roughness, "roughness"}, {f0, "f0"}})
+    if (has == present) out += (out.empty() ? "" : ", ") + std::string(name);
+  return out;
 }
 
 TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& split, ColourTarget colour) {
   if (split.views.empty()) throw Error(dataset.root().string(), "has no " + split.name + " views to train on");
   TrainingViews tv;
-  tv.width_ = split.width;
-  tv.height_ = split.height;
-  if (tv.width_ <= 0 || tv.height_ <= 0)
-    throw Error(dataset.root().string(), "has no " + split.name + " images (the image size is unknown)");
-  const size_t pixels = tv.pixelsPerView();
+  // The first view decides which buffer kinds are trained; every other view must have them.
+  const DatasetView& first = split.views[0];
+  auto present = [&](Buffer b) { return dataset.findBufferFile(first, b).has_value(); };
+  SupervisedBuffers& s = tv.supervised_;
+  s.finalColour = colour == ColourTarget::Render || !present(Buffer::Diffuse);
+  const Buffer colourBuffer = s.finalColour ? Buffer::Render : Buffer::Diffuse;
+  if (!present(colourBuffer)) {
+    fs::path base = dataset.root() / bufferFilePath(first.filePath, colourBuffer);
+    throw Error(base.string(),
+                "not found: training needs the " + std::string(bufferName(colourBuffer)) + " image of every view");
+  }
+  s.specular = !s.finalColour && present(Buffer::Specular);
+  s.depth = present(Buffer::Depth);
+  s.normal = present(Buffer::Normal);
+  s.roughness = present(Buffer::Roughness);
+  s.f0 = present(Buffer::F0);
+
+  // Sizes come from each view's camera; a view's buffers must match it.
   tv.cameras_.resize(split.views.size());
-  tv.targets_.resize(split.views.size() * pixels);
-  bool haveSpecular = dataset.findBufferFile(split.views[0], Buffer::Specular).has_value();
+  tv.firstPixel_.assign(split.views.size() + 1, 0);
+  for (size_t v = 0; v < split.views.size(); ++v) {
+    tv.cameras_[v] = split.camera(v);
+    const Camera& c = tv.cameras_[v];
+    if (c.width <= 0 || c.height <= 0)
+      throw Error(dataset.root().string(), "has no " + split.name + " images (the image size is unknown)");
+    tv.firstPixel_[v + 1] = tv.firstPixel_[v] + size_t(c.width) * size_t(c.height);
+  }
+  tv.targets_.resize(tv.firstPixel_.back());
+
   ProgressBar progress("load " + split.name + " views", int64_t(split.views.size()), "views");
-  // Views load in parallel: decoding EXR dominates and is independent per file.
+  // Views load in parallel: decoding dominates and is independent per file.
   parallelFor(int64_t(split.views.size()), 1, [&](int64_t v) {
-    tv.cameras_[v] = split.camera(size_t(v));
-    Image diffuse =
-        dataset.loadBuffer(split, size_t(v), colour == ColourTarget::Render ? Buffer::Render : Buffer::Diffuse);
-    Image depth = dataset.loadBuffer(split, size_t(v), Buffer::Depth);
-    Image normal = dataset.loadBuffer(split, size_t(v), Buffer::Normal);
-    Image roughness = dataset.loadBuffer(split, size_t(v), Buffer::Roughness);
-    Image f0 = dataset.loadBuffer(split, size_t(v), Buffer::F0);
-    Image specular = haveSpecular ? dataset.loadBuffer(split, size_t(v), Buffer::Specular) : Image();
-    // Training reads neither the render buffer (beside the RGB baseline) nor unit normals
-    // alone, but it refuses every view `glint info` refuses: a broken file is a broken
-    // dataset, and a run trained on one would be scored against it.
-    if (colour != ColourTarget::Render) dataset.loadBuffer(split, size_t(v), Buffer::Render);
-    if (std::optional<std::string> problem = findNonUnitNormal(normal, depth)) {
-      std::optional<std::filesystem::path> file = dataset.findBufferFile(split.views[v], Buffer::Normal);
-      throw Error(file ? file->string() : split.views[v].filePath, *problem);
+    const Camera& camera = tv.cameras_[size_t(v)];
+    auto load = [&](bool wanted, Buffer b) { return wanted ? dataset.loadBuffer(split, size_t(v), b) : Image(); };
+    Image colourImage = load(true, colourBuffer);
+    Image specular = load(s.specular, Buffer::Specular), depth = load(s.depth, Buffer::Depth);
+    Image normal = load(s.normal, Buffer::Normal), roughness = load(s.roughness, Buffer::Roughness);
+    Image f0 = load(s.f0, Buffer::F0);
+    // Training does not read the render buffer beside the diffuse one, but it refuses every
+    // view `glint info` refuses: a broken file is a broken dataset, and a run trained on one
+    // would be scored against it.
+    if (colourBuffer != Buffer::Render && present(Buffer::Render)) load(true, Buffer::Render);
+    const std::string& name = split.views[size_t(v)].filePath;
+    for (const Image* image : {&colourImage, &specular, &depth, &normal, &roughness, &f0})
+      if (!image->empty() && (image->width != camera.width || image->height != camera.height))
+        throw Error(dataset.root().string(), "view " + name + " has buffers of size " + std::to_string(image->width) +
+                                                 "x" + std::to_string(image->height) + ", expected " +
+                                                 std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    if (s.normal) {
+      // Without depth every pixel counts as a surface (photographs rarely show the void).
+      const Image surfaces = s.depth ? Image() : Image(camera.width, camera.height, 1, 1.0f);
+      if (std::optional<std::string> problem = findNonUnitNormal(normal, s.depth ? depth : surfaces)) {
+        std::optional<fs::path> file = dataset.findBufferFile(split.views[size_t(v)], Buffer::Normal);
+        throw Error(file ? file->string() : name, *problem);
+      }
     }
-    for (const Image* image : {&diffuse, &depth, &normal, &roughness, &f0})
-      if (image->width != tv.width_ || image->height != tv.height_)
-        throw Error(dataset.root().string(), "view " + split.views[v].filePath + " has buffers of size " +
-                                                 std::to_string(image->width) + "x" + std::to_string(image->height) +
-                                                 ", expected " + std::to_string(tv.width_) + "x" +
-                                                 std::to_string(tv.height_));
-    PixelTarget* out = tv.targets_.data() + size_t(v) * pixels;
-    for (size_t p = 0; p < pixels; ++p) {
-      int x = int(p % size_t(tv.width_)), y = int(p / size_t(tv.width_));
-      PixelTarget& t = out[p];
-      t.diffuse = diffuse.rgb(x, y);
-      if (haveSpecular) t.specular = specular.rgb(x, y);
-      t.depth = depth.at(x, y);
-      t.normal = normal.rgb(x, y);
-      t.roughness = roughness.at(x, y);
-      t.f0 = f0.rgb(x, y);
-      t.surface = hasSurface(t.depth);
-    }
+    PackedTarget* out = tv.targets_.data() + tv.firstPixel_[size_t(v)];
+    for (int y = 0; y < camera.height; ++y)
+      for (int x = 0; x < camera.width; ++x) {
+        PackedTarget& t = *out++;
+        t.diffuse = packSharedExponent(colourImage.rgb(x, y));
+        if (s.specular) t.specular = packSharedExponent(specular.rgb(x, y));
+        const bool surface = !s.depth || hasSurface(depth.at(x, y));
+        t.depth = s.depth ? packDepth(depth.at(x, y), surface) : packDepth(1.0f, true);
+        if (s.normal) t.normal = packOctahedral(normal.rgb(x, y));
+        if (s.roughness) t.roughness = packUnorm8(roughness.at(x, y));
+        if (s.f0) {
+          const Rgb c = f0.rgb(x, y);
+          t.f0[0] = packUnorm8(c.x), t.f0[1] = packUnorm8(c.y), t.f0[2] = packUnorm8(c.z);
+        }
+      }
     progress.advance();
   });
   return tv;
 }
 
+PixelTarget TrainingViews::target(size_t view, size_t pixel) const {
+  const PackedTarget& p = targets_[firstPixel_[view] + pixel];
+  PixelTarget t;
+  t.diffuse = unpackSharedExponent(p.diffuse);
+  t.specular = unpackSharedExponent(p.specular);
+  t.depth = unpackDepth(p.depth);
+  t.surface = p.depth != 0;
+  t.normal = unpackOctahedral(p.normal);
+  t.roughness = unpackUnorm8(p.roughness);
+  t.f0 = Rgb(unpackUnorm8(p.f0[0]), unpackUnorm8(p.f0[1]), unpackUnorm8(p.f0[2]));
+  t.hasSpecular = supervised_.specular;
+  t.hasDepth = supervised_.depth;
+  t.hasNormal = supervised_.normal;
+  t.hasRoughness = supervised_.roughness;
+  t.hasF0 = supervised_.f0;
+  t.finalColour = supervised_.finalColour;
+  return t;
+}
+
+size_t TrainingViews::memoryBytes() const {
+  return targets_.capacity() * sizeof(PackedTarget) + cameras_.capacity() * sizeof(Camera) +
+         firstPixel_.capacity() * sizeof(size_t);
+}
+
 TraceRay TrainingViews::pixelRay(size_t view, size_t pixel) const {
-  Ray r = cameras_[view].generateRay(double(pixel % size_t(width_)) + 0.5, double(pixel / size_t(width_)) + 0.5);
+  const Camera& camera = cameras_[view];
+  const size_t width = size_t(camera.width);
+  Ray r = camera.generateRay(double(pixel % width) + 0.5, double(pixel / width) + 0.5);
   TraceRay t;
   t.origin = Vec3f(r.origin);
   t.direction = Vec3f(r.direction);
@@ -88,8 +150,8 @@ void TrainingViews::drawBatch(uint64_t seed, int64_t step, int rays, int views, 
   for (size_t i = 0; i < chosen; ++i) std::swap(order[i], order[i + rng.uniformInt(uint32_t(viewTotal - i))]);
   batch->clear();
   batch->reserve(size_t(rays));
-  const uint32_t pixels = uint32_t(pixelsPerView());
   for (size_t k = 0; k < chosen; ++k) {
+    const uint32_t pixels = uint32_t(pixelCount(order[k]));
     size_t share = size_t(rays) / chosen + (k < size_t(rays) % chosen ? 1 : 0);
     size_t first = batch->size();
     for (size_t r = 0; r < share; ++r) batch->push_back({TraceRay{}, order[k], rng.uniformInt(pixels)});

@@ -2,12 +2,15 @@
 // batch of rays from it.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "raytrace/gaussian_tracer.h"
 #include "scene/camera.h"
 #include "scene/dataset.h"
+#include "train/packed_target.h"
 #include "train/ray_loss.h"
 
 namespace glint {
@@ -20,24 +23,40 @@ struct BatchRay {
 };
 
 // What the first segment's colour is fitted to: the diffuse buffer (the method), or the
-// render buffer (the RGB-only baseline, which bakes reflections into the colours).
+// render buffer (the RGB-only baseline, which bakes reflections into the colours, and
+// datasets without a diffuse/specular split, whose paths' first diffuse plus specular is
+// fitted to the final image).
 enum class ColourTarget { Diffuse, Render };
+
+// Which supervision a set of training views carries beside the colour.
+struct SupervisedBuffers {
+  bool specular = false, depth = false, normal = false, roughness = false, f0 = false;
+  bool finalColour = false;  // the colour target is the render buffer (ColourTarget::Render or no diffuse)
+  // The names ("specular, depth, ...") of the buffer kinds present, or of those missing.
+  std::string list(bool present) const;
+};
 
 class TrainingViews {
  public:
-  // Loads the diffuse, specular (when present), depth, normal, roughness and F0 buffers
-  // of every view of the split, with a progress bar. Throws Error naming the file for
-  // missing buffers, wrong sizes or non-finite values (Dataset::loadBuffer's checks).
-  // With ColourTarget::Render, PixelTarget::diffuse holds the render buffer.
+  // Loads the colour (diffuse, or render), specular, depth, normal, roughness and F0
+  // buffers of every view of the split in parallel, with a progress bar, into 18 bytes per
+  // pixel (train/packed_target.h). A buffer kind the first view lacks is left out of
+  // training (supervised() says which); a dataset without diffuse buffers trains on its
+  // render images as final colours. Views may differ in size. Throws Error naming the file
+  // for missing buffers of a kind the first view has, sizes that differ from the view's
+  // camera, or non-finite values (Dataset::loadBuffer's checks).
   static TrainingViews load(const Dataset& dataset, const DatasetSplit& split,
                             ColourTarget colour = ColourTarget::Diffuse);
 
   size_t viewCount() const { return cameras_.size(); }
-  int width() const { return width_; }
-  int height() const { return height_; }
-  size_t pixelsPerView() const { return size_t(width_) * size_t(height_); }
   const Camera& camera(size_t view) const { return cameras_[view]; }
-  const PixelTarget& target(size_t view, size_t pixel) const { return targets_[view * pixelsPerView() + pixel]; }
+  size_t pixelCount(size_t view) const { return firstPixel_[view + 1] - firstPixel_[view]; }
+  double meanPixelsPerView() const { return double(targets_.size()) / double(std::max<size_t>(1, viewCount())); }
+  // A pixel's targets, decoded (pixel is row-major within the view).
+  PixelTarget target(size_t view, size_t pixel) const;
+  const SupervisedBuffers& supervised() const { return supervised_; }
+  // Bytes held for the targets and cameras.
+  size_t memoryBytes() const;
 
   // The ray through a pixel's centre (the G-buffers' convention, docs/data-format.md).
   TraceRay pixelRay(size_t view, size_t pixel) const;
@@ -49,9 +68,10 @@ class TrainingViews {
   void drawBatch(uint64_t seed, int64_t step, int rays, int views, std::vector<BatchRay>* batch) const;
 
  private:
-  int width_ = 0, height_ = 0;
   std::vector<Camera> cameras_;
-  std::vector<PixelTarget> targets_;  // view-major, then row-major pixels
+  std::vector<size_t> firstPixel_;     // view v's targets are [firstPixel_[v], firstPixel_[v + 1])
+  std::vector<PackedTarget> targets_;  // view-major, then row-major pixels
+  SupervisedBuffers supervised_;
 };
 
 }  // namespace glint

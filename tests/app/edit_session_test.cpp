@@ -20,7 +20,8 @@ TEST(EditSession, RefitsInPlaceOnlyWhenTheCountStaysAndTheSceneIsFree) {
   EditSession session(pristine, TraceSettings{}, kDefaultMaxGaussians);
   int released = 0;
   TracerUpdateContext context;
-  context.probeCamera = Camera{Mat4::lookAt(Vec3d(0, 0, 4), Vec3d(0, 0, 0), Vec3d(0, 1, 0)), 0.9, 32, 24};
+  context.probeCamera =
+      Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0, 0, 4), Vec3d(0, 0, 0), Vec3d(0, 1, 0)), 0.9, 32, 24);
   context.workRays = 1;  // almost nothing to trace: the cheaper update wins, the refit
   context.releaseShown = [&] { ++released; };
 

@@ -70,7 +70,8 @@ TEST(FrameAccumulator, BounceModesSumToTheSpecularMode) {
   GaussianScene scene = test::facingMirrors();
   std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer("fast");
   tracer->build(scene, TraceSettings());
-  Camera camera{Mat4::lookAt(Vec3d(0.3, -0.4, 1.5), Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, 16, 12};
+  Camera camera =
+      Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0.3, -0.4, 1.5), Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, 16, 12);
   RenderSettings render;
   render.path.bounces = 3;
   FrameAccumulator acc;

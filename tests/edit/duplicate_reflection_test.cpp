@@ -44,9 +44,9 @@ GaussianScene mirrorAndSquare() {
 Camera lookingDownAtTheMirror() {
   Camera camera;
   camera.cameraToWorld = Mat4::lookAt(Vec3d(0, -1, 1.2), Vec3d(0, 0.2, 0), Vec3d(0, 0, 1));
-  camera.fovX = 0.8;
   camera.width = 128;  // the copy's mirror image is then about 20 x 9 pixels
   camera.height = 96;
+  camera = Camera::fromFieldOfView(camera.cameraToWorld, 0.8, camera.width, camera.height);
   return camera;
 }
 
@@ -64,8 +64,7 @@ ViewBuffers render(const GaussianScene& scene, const Camera& camera) {
 
 Vec2d project(const Camera& camera, const Vec3d& p) {
   Vec3d local = camera.cameraToWorld.inverse().transformPoint(p);
-  double f = camera.focal();
-  return {0.5 * camera.width + f * local.x / -local.z, 0.5 * camera.height - f * local.y / -local.z};
+  return {camera.cx + camera.fx * local.x / -local.z, camera.cy - camera.fy * local.y / -local.z};
 }
 
 double cross2(const Vec2d& a, const Vec2d& b, const Vec2d& p) {

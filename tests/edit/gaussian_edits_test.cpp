@@ -298,9 +298,9 @@ ViewBuffers renderScene(const GaussianScene& scene) {
   tracer->build(scene, TraceSettings{});
   Camera camera;
   camera.cameraToWorld = Mat4::lookAt(Vec3d(0, -2.0, 1.5), Vec3d(0, 0, 0.2), Vec3d(0, 0, 1));
-  camera.fovX = 0.9;
   camera.width = 48;
   camera.height = 36;
+  camera = Camera::fromFieldOfView(camera.cameraToWorld, 0.9, camera.width, camera.height);
   RenderSettings settings;
   settings.spp = 4;
   settings.seed = 5;

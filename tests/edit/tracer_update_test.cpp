@@ -28,9 +28,9 @@ GaussianScene randomCloud(int count, uint64_t seed) {
 Camera probeCamera() {
   Camera c;
   c.cameraToWorld = Mat4::lookAt(Vec3d(0.3, -4, 0.5), Vec3d(0, 0, 0), Vec3d(0, 0, 1));
-  c.fovX = 0.7;
   c.width = 64;
   c.height = 64;
+  c = Camera::fromFieldOfView(c.cameraToWorld, 0.7, c.width, c.height);
   return c;
 }
 

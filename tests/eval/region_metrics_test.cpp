@@ -16,7 +16,7 @@ struct WallView {
   WallView() : depth(40, 30, 1) {
     camera.width = 40;
     camera.height = 30;
-    camera.fovX = 1.0;
+    camera = Camera::fromFieldOfView(camera.cameraToWorld, 1.0, camera.width, camera.height);
     for (int y = 0; y < 30; ++y)
       for (int x = 0; x < 40; ++x) {
         Ray r = camera.generateRay(x + 0.5, y + 0.5);

@@ -169,9 +169,9 @@ struct GlossyFloor {
     addLayer(&scene, 0.3f, 1.2f, 1.45f, 10, 10, 0.05f, {Rgb(4.0f), Vec3f(0, 0, -1)});
     tracer->build(scene, TraceSettings{});
     camera.cameraToWorld = Mat4::lookAt(Vec3d(0, -0.8, 1.0), Vec3d(0, 0.4, 0), Vec3d(0, 0, 1));
-    camera.fovX = 0.9;
     camera.width = 64;
     camera.height = 48;
+    camera = Camera::fromFieldOfView(camera.cameraToWorld, 0.9, camera.width, camera.height);
   }
 
   ViewBuffers render(int spp, uint64_t seed) const {

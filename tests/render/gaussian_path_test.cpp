@@ -117,10 +117,8 @@ TEST(GaussianPath, BounceLightsAreTheTermsOfTheSpecularSum) {
 // Any pixel re-run alone (glint render --debug-pixel) reproduces the full render's value.
 TEST(GaussianPath, PixelReRunAloneMatchesTheRender) {
   MirrorScene m(0.3f, Vec3f(0, 0, 1));
-  Camera camera;
-  camera.cameraToWorld = Mat4::lookAt(Vec3d(0.5, -0.5, 1.5), Vec3d(0, 0, 0), Vec3d(0, 0, 1));
-  camera.width = 12;
-  camera.height = 9;
+  Camera camera = Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0.5, -0.5, 1.5), Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.8,
+                                          12, 9);
   RenderSettings settings;
   settings.spp = 3;
   settings.seed = 5;

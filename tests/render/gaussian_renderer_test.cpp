@@ -30,9 +30,9 @@ GaussianScene randomScene(int n, uint64_t seed) {
 Camera testCamera() {
   Camera camera;
   camera.cameraToWorld = Mat4::lookAt({0.2, 0.3, 4}, {0, 0, 0}, {0, 1, 0});
-  camera.fovX = 0.9;
   camera.width = 12;
   camera.height = 9;
+  camera = Camera::fromFieldOfView(camera.cameraToWorld, 0.9, camera.width, camera.height);
   return camera;
 }
 
@@ -118,7 +118,7 @@ TEST(GaussianRenderer, WavefrontMatchesPerPixelPaths) {
   std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer("fast");
   tracer->build(scene, TraceSettings{});
   Camera camera = testCamera();
-  camera.width = 64, camera.height = 48;
+  camera = camera.resized(64, 48);
   RenderSettings settings;
   settings.spp = 3;
   settings.firstSample = 2;

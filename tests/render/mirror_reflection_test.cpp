@@ -45,8 +45,7 @@ Vec3d reflectedHit(const Camera& camera, double px, double py, double height) {
 // Pixel position of a world point under the pinhole model of scene/camera.h.
 Vec2d project(const Camera& camera, const Vec3d& p) {
   Vec3d local = camera.cameraToWorld.inverse().transformPoint(p);
-  double f = camera.focal();
-  return {0.5 * camera.width + f * local.x / -local.z, 0.5 * camera.height - f * local.y / -local.z};
+  return {camera.cx + camera.fx * local.x / -local.z, camera.cy - camera.fy * local.y / -local.z};
 }
 
 // Signed distance-like margin of a point of the pattern plane to square s: positive inside,
@@ -97,9 +96,9 @@ struct MirrorSetup {
     trace.minTransmittance = 1e-4f;
     tracer->build(scene, trace);
     camera.cameraToWorld = Mat4::lookAt(Vec3d(0, -1, 1.2), Vec3d(0, 0.2, 0), Vec3d(0, 0, 1));
-    camera.fovX = 0.8;
     camera.width = 64;
     camera.height = 48;
+    camera = Camera::fromFieldOfView(camera.cameraToWorld, 0.8, camera.width, camera.height);
   }
 };
 

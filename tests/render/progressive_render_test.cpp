@@ -31,9 +31,9 @@ TEST(ProgressiveRender, RunningMeansEndAtTheOnePassRender) {
   tracer.build(scene, TraceSettings{});
   Camera camera;
   camera.cameraToWorld = Mat4::lookAt({0.3, 0.2, 4}, {0, 0, 0}, {0, 1, 0});
-  camera.fovX = 0.9;
   camera.width = 10;
   camera.height = 8;
+  camera = Camera::fromFieldOfView(camera.cameraToWorld, 0.9, camera.width, camera.height);
   RenderSettings settings;
   settings.spp = 6;
   settings.seed = 3;

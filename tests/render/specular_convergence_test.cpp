@@ -66,9 +66,9 @@ GaussianScene gaussianScene() {
 Camera floorCamera() {
   Camera camera;
   camera.cameraToWorld = Mat4::lookAt(Vec3d(0, -0.8, 1.0), Vec3d(0, 0.2, 0), Vec3d(0, 0, 1));
-  camera.fovX = 0.8;
   camera.width = 32;
   camera.height = 24;
+  camera = Camera::fromFieldOfView(camera.cameraToWorld, 0.8, camera.width, camera.height);
   return camera;
 }
 

@@ -45,11 +45,12 @@ TEST(Dataset, OpenReadsCamerasSizesAndSortsViews) {
   EXPECT_EQ(train.name, "train");
   EXPECT_EQ(train.width, test::kSyntheticWidth);
   EXPECT_EQ(train.height, test::kSyntheticHeight);
-  EXPECT_DOUBLE_EQ(train.cameraAngleX, 0.7);
+  EXPECT_NEAR(train.camera(0).fieldOfViewX(), 0.7, 1e-12);
   ASSERT_EQ(train.views.size(), 3u);
   for (size_t i = 0; i < 3; ++i) {
     EXPECT_EQ(train.views[i].filePath, written.train.views[i].filePath);
-    EXPECT_EQ(train.views[i].cameraToWorld.m, written.train.views[i].cameraToWorld.m);
+    EXPECT_EQ(train.views[i].camera.cameraToWorld.m, written.train.views[i].camera.cameraToWorld.m);
+    EXPECT_EQ(train.views[i].camera.width, test::kSyntheticWidth);
   }
   EXPECT_EQ(dataset.test().views.size(), 1u);
   EXPECT_EQ(&dataset.split("train"), &dataset.train());
@@ -189,15 +190,15 @@ TEST(Dataset, WriteTransformsStoresTheSplitExactly) {
   TempFolder folder;
   DatasetSplit split;
   split.name = "test";
-  split.cameraAngleX = 0.6911112070083618;
-  split.views.push_back({"test/render/render_0000", Mat4::lookAt(Vec3d(0.1, -4.0, 1.0 / 3.0), Vec3d(0, 0, 0),
-                                                                 Vec3d(0, 0, 1))});
+  const double fovX = 0.6911112070083618;
+  const Mat4 pose = Mat4::lookAt(Vec3d(0.1, -4.0, 1.0 / 3.0), Vec3d(0, 0, 0), Vec3d(0, 0, 1));
+  split.views.push_back({"test/render/render_0000", Camera::fromFieldOfView(pose, fovX, 800, 800)});
   writeTransforms(folder.path(), split);
   TransformsFile read = readTransformsJson(folder / "transforms_test.json");
-  EXPECT_EQ(read.cameraAngleX, split.cameraAngleX);
+  EXPECT_NEAR(read.cameraAngleX, fovX, 1e-15);
   ASSERT_EQ(read.frames.size(), 1u);
   EXPECT_EQ(read.frames[0].filePath, "test/render/render_0000");
-  EXPECT_EQ(read.frames[0].transformMatrix.m, split.views[0].cameraToWorld.m);
+  EXPECT_EQ(read.frames[0].transformMatrix.m, split.views[0].camera.cameraToWorld.m);
 }
 
 }  // namespace

@@ -40,7 +40,6 @@ namespace {
 DatasetSplit syntheticSplit(const std::string& name, int views, int seedOffset) {
   DatasetSplit split;
   split.name = name;
-  split.cameraAngleX = 0.7;
   split.width = kSyntheticWidth;
   split.height = kSyntheticHeight;
   for (int i = 0; i < views; ++i) {
@@ -48,7 +47,8 @@ DatasetSplit syntheticSplit(const std::string& name, int views, int seedOffset) 
     std::snprintf(file, sizeof file, "%s/render/render_%04d", name.c_str(), i);
     double angle = 0.9 * (i + seedOffset);
     Vec3d eye(4.0 * std::cos(angle), 4.0 * std::sin(angle), 1.5 + 0.1 * i);
-    split.views.push_back({file, Mat4::lookAt(eye, Vec3d(0, 0, 0.5), Vec3d(0, 0, 1))});
+    split.views.push_back({file, Camera::fromFieldOfView(Mat4::lookAt(eye, Vec3d(0, 0, 0.5), Vec3d(0, 0, 1)), 0.7,
+                                                         kSyntheticWidth, kSyntheticHeight)});
   }
   return split;
 }

@@ -48,7 +48,7 @@ TEST(DatasetGenerator, BuiltinSpheresDatasetValidatesClean) {
   // Test cameras lie on another path: none coincides with a training camera.
   for (const DatasetView& test : dataset.test().views)
     for (const DatasetView& train : dataset.train().views)
-      EXPECT_GT(length(test.cameraToWorld.column(3) - train.cameraToWorld.column(3)), 0.05);
+      EXPECT_GT(length(test.camera.position() - train.camera.position()), 0.05);
   // PNG output: radiance tonemapped, depth still float.
   TempFolder pngFolder;
   settings.format = ImageFormat::Png;
@@ -84,9 +84,7 @@ TEST(DatasetGenerator, PointCloudLiesOnTheDepthSurfaces) {
       buffers[Buffer::Depth].at(x, y) = (x == 0) ? 0.0f : 2.0f;  // first column: no surface
       buffers[Buffer::Diffuse].setRgb(x, y, Rgb(1.0f, 0.5f, 0.0f));
     }
-  Camera camera;
-  camera.width = 4;
-  camera.height = 3;
+  Camera camera = Camera::fromFieldOfView(Mat4::identity(), 0.8, 4, 3);
   std::vector<DepthView> views;
   views.push_back({buffers[Buffer::Depth], buffers[Buffer::Diffuse], camera});
   PointCloud cloud = pointCloudFromDepth(views, 1000);

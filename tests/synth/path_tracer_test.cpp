@@ -27,9 +27,9 @@ MeshScene furnaceScene(const Material& material) {
 Camera lookingAtOrigin(int width, int height, double distance = 4.0) {
   Camera camera;
   camera.cameraToWorld = Mat4::lookAt({0.3, 0.2, distance}, {0, 0, 0}, {0, 1, 0});
-  camera.fovX = 0.6;
   camera.width = width;
   camera.height = height;
+  camera = Camera::fromFieldOfView(camera.cameraToWorld, 0.6, camera.width, camera.height);
   return camera;
 }
 

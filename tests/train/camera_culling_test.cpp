@@ -14,7 +14,7 @@ namespace glint {
 namespace {
 
 TEST(CameraSphere, RadiusIsTheFactorTimesTheNearestSurfaceDepth) {
-  Camera camera{Mat4::translation(Vec3d(1, 2, 3)), 0.8, 4, 3};
+  Camera camera = Camera::fromFieldOfView(Mat4::translation(Vec3d(1, 2, 3)), 0.8, 4, 3);
   Image depth(4, 3, 1, 5.0f);
   depth.at(0, 0) = 0.0f;      // no surface: ignored although smallest
   depth.at(1, 0) = 1.0e10f;   // no surface
@@ -50,7 +50,7 @@ TEST(CameraSpheres, OnePerViewWithASurface) {
 
 TEST(CullRegion, InViewLimitsTheSphereToWhatTheCameraSees) {
   // A 40x30 camera at the origin looking down -z (identity pose), sphere radius 2.
-  CameraSphere sphere{Camera{Mat4::identity(), 1.2, 40, 30}, 2.0};
+  CameraSphere sphere{Camera::fromFieldOfView(Mat4::identity(), 1.2, 40, 30), 2.0};
   const Vec3d ahead(0.1, -0.2, -1.0), behind(0, 0, 1.0), aside(1.5, 0, -0.2), farAhead(0, 0, -3.0);
   for (CullRegion region : {CullRegion::SphereInView, CullRegion::WholeSphere}) {
     EXPECT_TRUE(insideCullRegion(sphere, ahead, region));
@@ -65,7 +65,7 @@ TEST(CullRegion, InViewLimitsTheSphereToWhatTheCameraSees) {
 TEST(CullRegion, InViewMatchesTheRaysOfTheCamerasPixels) {
   // Points along the rays through pixel positions just inside and just outside the image
   // are in view exactly when the position is inside.
-  Camera camera{Mat4::lookAt(Vec3d(1, 2, 3), Vec3d(0, 0.5, 0), Vec3d(0, 1, 0)), 0.9, 16, 12};
+  Camera camera = Camera::fromFieldOfView(Mat4::lookAt(Vec3d(1, 2, 3), Vec3d(0, 0.5, 0), Vec3d(0, 1, 0)), 0.9, 16, 12);
   CameraSphere sphere{camera, 10.0};
   const double e = 1e-3;
   const double positions[][2] = {{e, e}, {16 - e, 12 - e}, {8, 6}, {-e, 6}, {16 + e, 6}, {8, -e}, {8, 12 + e}};
@@ -93,7 +93,8 @@ CullingCase randomCase(int gaussians, int sphereCount) {
   for (int s = 0; s < sphereCount; ++s) {
     Vec3d eye(6.0 * rng.uniformDouble() - 3.0, 6.0 * rng.uniformDouble() - 3.0, 4.0 * rng.uniformDouble());
     Vec3d target(rng.uniformDouble(), rng.uniformDouble(), rng.uniformDouble());
-    Camera camera{Mat4::lookAt(eye, target, Vec3d(0, 0, 1)), 0.6 + rng.uniformDouble(), 32, 24};
+    Camera camera =
+        Camera::fromFieldOfView(Mat4::lookAt(eye, target, Vec3d(0, 0, 1)), 0.6 + rng.uniformDouble(), 32, 24);
     c.spheres.push_back({camera, 0.2 + 0.8 * rng.uniformDouble()});
   }
   return c;
@@ -109,7 +110,7 @@ std::vector<bool> expectedKeep(const CullingCase& c, CullRegion region) {
       Vec3d d = p - s.camera.position();
       if (!(dot(d, d) < s.radius * s.radius)) continue;
       Vec3d local = s.camera.cameraToWorld.inverse().transformPoint(p);
-      double f = s.camera.focal(), px = 16 + f * local.x / -local.z, py = 12 - f * local.y / -local.z;
+      double px = s.camera.cx + s.camera.fx * local.x / -local.z, py = s.camera.cy - s.camera.fy * local.y / -local.z;
       bool inView = local.z < 0 && px >= 0 && px < 32 && py >= 0 && py < 24;
       if (region == CullRegion::WholeSphere || inView) keep[i] = false;
     }

@@ -28,8 +28,8 @@ double srgbDecodeDouble(int k) {
 }
 
 Camera planeCamera() {
-  return Camera{Mat4::lookAt(Vec3d(0.7, -0.4, 3.0), Vec3d(0.2, 0.1, 0.0), Vec3d(0, 1, 0)), 0.9, kPlaneWidth,
-                kPlaneHeight};
+  return Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0.7, -0.4, 3.0), Vec3d(0.2, 0.1, 0.0), Vec3d(0, 1, 0)), 0.9,
+                                 kPlaneWidth, kPlaneHeight);
 }
 
 TEST(UnprojectDepth, PointsOfAKnownPlaneLandOnIt) {

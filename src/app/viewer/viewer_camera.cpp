@@ -8,7 +8,7 @@
 namespace glint {
 
 Camera ViewerCamera::camera(int width, int height) const {
-  return Camera{Mat4::lookAt(eye, eye + forward, up), fovX, width, height};
+  return Camera::fromFieldOfView(Mat4::lookAt(eye, eye + forward, up), fovX, width, height);
 }
 
 ViewerCamera ViewerCamera::fromCameraToWorld(const Mat4& cameraToWorld, double fovX) {

@@ -1,0 +1,298 @@
+// Opening real captures (COLMAP or nerfstudio cameras, photographs, predicted buffers) and
+// decoding their buffers to Glint's definitions.
+#include "scene/capture_dataset.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "io/colmap_model.h"
+#include "io/json_file.h"
+#include "io/nerfstudio_transforms.h"
+#include "scene/buffer_codec.h"
+#include "scene/camera_conventions.h"
+#include "scene/dataset.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// The COLMAP model folder of a capture: sparse/0 (COLMAP's mapper output) or sparse/.
+std::optional<fs::path> colmapModelFolder(const fs::path& root) {
+  for (const fs::path& folder : {root / "sparse" / "0", root / "sparse"})
+    for (const char* file : {"cameras.bin", "cameras.txt"})
+      if (fs::is_regular_file(folder / file)) return folder;
+  return std::nullopt;
+}
+
+std::string lowerExtension(const fs::path& path) {
+  std::string e = path.extension().string();
+  std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+  return e;
+}
+
+// Display-referred files: integer codes scaled to [0, 1] by readImage.
+bool isDisplayReferred(const fs::path& path) {
+  const std::string e = lowerExtension(path);
+  return e == ".png" || e == ".jpg" || e == ".jpeg";
+}
+
+// priors/<name>/<name>_<stem> with any extension Glint reads, or "".
+std::string findPrior(const fs::path& root, const std::string& name, const std::string& stem) {
+  for (const char* ext : {".png", ".exr", ".tiff", ".tif", ".jpg", ".jpeg"}) {
+    fs::path relative = fs::path("priors") / name / (name + "_" + stem + ext);
+    if (fs::is_regular_file(root / relative)) return relative.generic_string();
+  }
+  return "";
+}
+
+Camera toCamera(const CaptureCamera& c) {
+  Camera camera;
+  camera.cameraToWorld = c.cameraToWorld;
+  camera.width = c.width, camera.height = c.height;
+  camera.fx = c.fx, camera.fy = c.fy, camera.cx = c.cx, camera.cy = c.cy;
+  return camera;
+}
+
+// A view's files: the photograph, and whichever priors exist.
+DatasetView captureView(const fs::path& root, const CaptureCamera& c, const fs::path& image) {
+  if (!fs::is_regular_file(root / image))
+    throw Error((root / image).string(), "not found: the camera model names this image");
+  const std::string stem = fs::path(c.imageName).stem().string();
+  DatasetView view;
+  view.filePath = "train/render/render_" + stem;  // splitViews sets the split
+  view.camera = toCamera(c);
+  auto& files = view.files;
+  const std::string priorRender = findPrior(root, "render", stem);
+  files[int(Buffer::Render)] = priorRender.empty() ? image.generic_string() : priorRender;
+  for (Buffer b : {Buffer::Diffuse, Buffer::Specular, Buffer::Depth, Buffer::Normal, Buffer::Roughness, Buffer::F0})
+    files[int(b)] = findPrior(root, bufferName(b), stem);
+  if (files[int(Buffer::F0)].empty()) files[int(Buffer::F0)] = findPrior(root, "metalness", stem);
+  return view;
+}
+
+void splitViews(std::vector<DatasetView> views, int holdout, DatasetSplit* train, DatasetSplit* test) {
+  train->name = "train", test->name = "test";
+  for (size_t i = 0; i < views.size(); ++i) {
+    DatasetView& view = views[i];
+    const bool isTest = i % size_t(holdout) == 0;
+    // The render folder names the split the view landed in.
+    view.filePath = (isTest ? "test" : "train") + view.filePath.substr(view.filePath.find('/'));
+    (isTest ? test : train)->views.push_back(std::move(view));
+  }
+  for (DatasetSplit* split : {train, test})
+    if (!split->views.empty()) {
+      // A split's size is its first view's; views may differ (each camera has its own).
+      split->width = split->views[0].camera.width;
+      split->height = split->views[0].camera.height;
+    }
+}
+
+template <typename Enum>
+Enum readChoice(const nlohmann::json& j, const char* key, std::initializer_list<std::pair<const char*, Enum>> choices,
+                Enum fallback, const fs::path& file) {
+  if (!j.contains(key)) return fallback;
+  std::string names;
+  if (j[key].is_string())
+    for (const auto& [name, value] : choices)
+      if (j[key].get<std::string>() == name) return value;
+  for (const auto& [name, value] : choices) names += (names.empty() ? "\"" : ", \"") + std::string(name) + "\"";
+  throw Error(file.string(), std::string("\"") + key + "\" must be one of " + names + ", found " + j[key].dump());
+}
+
+// The predicted depth of a view aligned to its sparse points: z = a d + b (or 1/z) fitted
+// robustly to the z-depths of the points that land in the view, nearest per pixel.
+Image alignedZDepth(const Image& predicted, const CaptureSource& source, const DatasetView& view,
+                    const fs::path& file) {
+  const Camera& camera = view.camera;
+  const Mat4 worldToCamera = camera.cameraToWorld.inverse();
+  std::vector<Vec3d> cameraPoints;
+  cameraPoints.reserve(source.points.size());
+  for (const Vec3d& p : source.points) cameraPoints.push_back(worldToCamera.transformPoint(p));
+  const RayIntrinsics k{camera.fx, camera.fy, camera.cx, camera.cy};
+  std::vector<DepthPair> pairs = depthPairsFromPoints(predicted, cameraPoints, k);
+  DepthFitOptions options;
+  options.space = source.decoding.depth == CaptureDecoding::Depth::RelativeDisparity ? DepthFitSpace::Disparity
+                                                                                     : DepthFitSpace::Depth;
+  DepthFit fit = fitDepthAffine(pairs, options);
+  source.recordDepthFit(view.filePath, fit);
+  if (!fit.ok)
+    throw Error(file.string(), "relative depth cannot be aligned to the sparse points of this view: " + fit.problem +
+                                   " (set \"depth\" in capture.json if the depth is metric)");
+  Image z = alignDepth(predicted, fit);
+  // A predicted 0 is "unknown" (the background of a synthetic capture, a predictor's mask).
+  for (size_t i = 0; i < z.pixels.size(); ++i)
+    if (predicted.pixels[i] == 0.0f) z.pixels[i] = 0.0f;
+  return z;
+}
+
+Image decodeRadiance(Image image, Transfer transfer, float clampMax) {
+  image = toLinear(transfer, std::move(image));
+  if (clampMax > 0.0f)
+    for (float& v : image.pixels) v = std::min(v, clampMax);
+  return image;
+}
+
+}  // namespace
+
+void CaptureSource::recordDepthFit(const std::string& view, const DepthFit& fit) const {
+  std::lock_guard<std::mutex> lock(fitsMutex_);
+  fits_[view] = fit;
+}
+
+std::map<std::string, DepthFit> CaptureSource::depthFits() const {
+  std::lock_guard<std::mutex> lock(fitsMutex_);
+  return fits_;
+}
+
+CaptureDecoding readCaptureDecoding(const fs::path& file) {
+  CaptureDecoding d;
+  if (!fs::exists(file)) return d;
+  nlohmann::json j = readJsonFile(file);
+  if (!j.is_object()) throw Error(file.string(), "must hold a JSON object");
+  static const char* known[] = {"photo_transfer", "prior_transfer", "clamp_max", "normal_space",
+                                "normal_axes",    "depth",          "roughness"};
+  for (const auto& [key, value] : j.items())
+    if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
+      throw Error(file.string(), "unknown key \"" + key + "\" (docs/capture-format.md lists the keys)");
+  const std::initializer_list<std::pair<const char*, Transfer>> transfers = {
+      {"srgb", Transfer::Srgb}, {"filmic", Transfer::Filmic}, {"linear", Transfer::Linear}};
+  d.photoTransfer = readChoice(j, "photo_transfer", transfers, d.photoTransfer, file);
+  d.priorTransfer = readChoice(j, "prior_transfer", transfers, d.priorTransfer, file);
+  if (j.contains("clamp_max")) {
+    if (!j["clamp_max"].is_number() || !(j["clamp_max"].get<double>() >= 0.0))
+      throw Error(file.string(), "\"clamp_max\" must be a number >= 0 (0: no clamp), found " + j["clamp_max"].dump());
+    d.clampMax = j["clamp_max"].get<float>();
+  }
+  d.worldNormals = readChoice(j, "normal_space", {{"camera", false}, {"world", true}}, d.worldNormals, file);
+  d.normalAxes =
+      readChoice(j, "normal_axes",
+                 {{"opengl", CameraAxes::OpenGl}, {"opencv", CameraAxes::OpenCv}, {"paper", CameraAxes::PaperPrior}},
+                 d.normalAxes, file);
+  d.depth = readChoice(j, "depth",
+                       {{"distance", CaptureDecoding::Depth::Distance},
+                        {"z", CaptureDecoding::Depth::ZDepth},
+                        {"relative", CaptureDecoding::Depth::Relative},
+                        {"relative_disparity", CaptureDecoding::Depth::RelativeDisparity}},
+                       d.depth, file);
+  d.roughness = readChoice(j, "roughness", {{"perceptual", RoughnessKind::Perceptual}, {"alpha", RoughnessKind::Alpha}},
+                           d.roughness, file);
+  return d;
+}
+
+bool isCaptureFolder(const fs::path& root) {
+  if (fs::exists(root / "transforms_train.json")) return false;
+  return colmapModelFolder(root).has_value() || fs::is_regular_file(root / "transforms.json");
+}
+
+void openCapture(const fs::path& root, int holdout, DatasetSplit* train, DatasetSplit* test, CaptureSource* source) {
+  if (holdout < 2)
+    throw Error("--holdout", "must be 2 or more (every N-th image is a test view), found " + std::to_string(holdout));
+  source->decoding = readCaptureDecoding(root / "capture.json");
+  std::vector<DatasetView> views;
+  if (std::optional<fs::path> model = colmapModelFolder(root)) {
+    ColmapModel colmap = readColmapModel(*model);
+    CaptureScene scene = captureFromColmap(colmap);
+    if (scene.cameras.empty()) throw Error(model->string(), "the model has no images");
+    for (const CaptureCamera& c : scene.cameras)
+      views.push_back(captureView(root, c, fs::path("images") / c.imageName));
+    for (size_t i = 0; i < scene.points.positions.size(); ++i) {
+      source->points.push_back(Vec3d(scene.points.positions[i]));
+      const Rgb c = i < scene.points.colors.size() ? scene.points.colors[i] : Rgb(0.5f);
+      source->pointColours.push_back(
+          {toLinear(Transfer::Srgb, c.x), toLinear(Transfer::Srgb, c.y), toLinear(Transfer::Srgb, c.z)});
+    }
+    source->description = "COLMAP " + std::string(colmap.format == ColmapFormat::Binary ? "binary" : "text") +
+                          " model " + fs::relative(*model, root).generic_string() + ", " +
+                          std::to_string(views.size()) + " images, " + std::to_string(source->points.size()) +
+                          " points";
+  } else {
+    const fs::path file = root / "transforms.json";
+    NerfstudioTransforms transforms = readNerfstudioTransforms(file);
+    std::vector<CaptureCamera> cameras = captureFromNerfstudio(transforms);
+    if (cameras.empty()) throw Error(file.string(), "frames is empty: a capture needs at least one view");
+    for (const CaptureCamera& c : cameras) views.push_back(captureView(root, c, fs::path(c.imageName)));
+    source->description = "nerfstudio transforms.json, " + std::to_string(views.size()) + " images";
+  }
+  splitViews(std::move(views), holdout, train, test);
+  if (train->views.empty())
+    throw Error(root.string(), "has too few images for a training split with --holdout " + std::to_string(holdout));
+}
+
+Image loadCaptureBuffer(const fs::path& root, const CaptureSource& source, const DatasetView& view, Buffer buffer) {
+  const std::string& relative = view.files[int(buffer)];
+  GLINT_CHECK(!relative.empty(), "loadCaptureBuffer needs a view that has the buffer");
+  const fs::path path = root / relative;
+  const CaptureDecoding& d = source.decoding;
+  Image image = readImage(path);
+  const Camera& camera = view.camera;
+  if (image.width != camera.width || image.height != camera.height)
+    throw Error(path.string(), "image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                   " pixels, but its camera's image is " + std::to_string(camera.width) + "x" +
+                                   std::to_string(camera.height));
+  const bool metalness = buffer == Buffer::F0 && fs::path(relative).filename().string().rfind("metalness_", 0) == 0;
+  const int channels = metalness ? 1 : bufferChannels(buffer);
+  if (image.channels == 4 && channels == 3) {  // alpha is coverage; predictors write RGBA PNGs
+    Image rgb(image.width, image.height, 3);
+    for (size_t p = 0; p < size_t(image.width) * size_t(image.height); ++p)
+      for (int c = 0; c < 3; ++c) rgb.pixels[p * 3 + size_t(c)] = image.pixels[p * 4 + size_t(c)];
+    image = std::move(rgb);
+  }
+  if (image.channels != channels)
+    throw Error(path.string(), "a " + std::string(metalness ? "metalness" : bufferName(buffer)) + " buffer needs " +
+                                   std::to_string(channels) + (channels == 1 ? " channel" : " channels") + ", found " +
+                                   std::to_string(image.channels));
+  const bool display = isDisplayReferred(path);
+  const RayIntrinsics k{camera.fx, camera.fy, camera.cx, camera.cy};
+  switch (buffer) {
+    case Buffer::Render:
+    case Buffer::Diffuse:
+    case Buffer::Specular:
+      if (display) {
+        const bool photo = relative.rfind("priors/", 0) != 0;
+        image = decodeRadiance(std::move(image), photo ? d.photoTransfer : d.priorTransfer, d.clampMax);
+      }
+      break;
+    case Buffer::Normal: {
+      image = display ? decodeNormalMap(image) : renormalizeNormals(image);
+      if (!d.worldNormals) {
+        Mat3d rotation;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) rotation.m[r][c] = camera.cameraToWorld.m[r][c];
+        image = cameraNormalsToWorld(image, d.normalAxes, rotation);
+      }
+      break;
+    }
+    case Buffer::Depth:
+      switch (d.depth) {
+        case CaptureDecoding::Depth::Distance:
+          break;
+        case CaptureDecoding::Depth::ZDepth:
+          image = zDepthToDistance(image, k);
+          break;
+        case CaptureDecoding::Depth::Relative:
+        case CaptureDecoding::Depth::RelativeDisparity:
+          if (source.points.empty())
+            throw Error(path.string(),
+                        "relative depth needs sparse points to be aligned to, and the capture has none "
+                        "(set \"depth\" in capture.json if the depth is metric)");
+          image = zDepthToDistance(alignedZDepth(image, source, view, path), k);
+          break;
+      }
+      break;
+    case Buffer::Roughness:
+      image = toPerceptualRoughness(image, d.roughness);
+      break;
+    case Buffer::F0:
+      if (metalness) image = f0FromMetalness(Image(), image);
+      break;
+  }
+  if (std::optional<std::string> problem = findInvalidValue(image, buffer)) throw Error(path.string(), *problem);
+  return image;
+}
+
+}  // namespace glint

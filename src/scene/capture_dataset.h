@@ -1,0 +1,76 @@
+// Real captures as datasets (docs/capture-format.md): photographs with COLMAP or nerfstudio
+// cameras, and any subset of a predictor's buffers in the paper's priors/ layout, decoded
+// to the definitions of docs/data-format.md.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "io/image.h"
+#include "io/transfer.h"
+#include "scene/buffers.h"
+#include "scene/depth_alignment.h"
+#include "scene/predicted_buffers.h"
+
+namespace glint {
+
+struct DatasetSplit;
+struct DatasetView;
+
+// How a capture's stored buffers become Glint's: capture.json at the dataset's root (every
+// key optional), defaults as the paper's released layout stores its predictions.
+struct CaptureDecoding {
+  Transfer photoTransfer = Transfer::Srgb;         // images/*: 8/16-bit photographs ("photo_transfer")
+  Transfer priorTransfer = Transfer::Filmic;       // priors/{render,diffuse,specular} when 8/16-bit ("prior_transfer")
+  float clampMax = 0.0f;                           // cap on decoded radiance, 0 for none ("clamp_max")
+  bool worldNormals = false;                       // "normal_space": "world" or "camera"
+  CameraAxes normalAxes = CameraAxes::PaperPrior;  // "normal_axes": "opengl", "opencv" or "paper"
+  enum class Depth { Distance, ZDepth, Relative, RelativeDisparity };
+  Depth depth = Depth::Relative;                        // "depth": "distance", "z", "relative" or "relative_disparity"
+  RoughnessKind roughness = RoughnessKind::Perceptual;  // "roughness": "perceptual" or "alpha"
+};
+// capture.json's keys; throws Error naming the file and the key for an unknown key or value.
+CaptureDecoding readCaptureDecoding(const std::filesystem::path& file);
+
+// What a capture holds beside its views: the decoding, the sparse points (for the depth
+// fit and the initialisation) and a description for `glint info`.
+struct CaptureSource {
+  CaptureDecoding decoding;
+  std::vector<Vec3d> points;      // world space (the cameras' world)
+  std::vector<Rgb> pointColours;  // linear, one per point
+  std::string description;        // "COLMAP binary model sparse/0, 120 images, 8000 points"
+
+  // The per-view depth fits made while loading, for reports (thread-safe).
+  void recordDepthFit(const std::string& view, const DepthFit& fit) const;
+  std::map<std::string, DepthFit> depthFits() const;
+
+ private:
+  mutable std::mutex fitsMutex_;
+  mutable std::map<std::string, DepthFit> fits_;
+};
+
+// True when root holds a capture: a COLMAP model (sparse/0/ or sparse/) or a nerfstudio
+// transforms.json, and no transforms_train.json.
+bool isCaptureFolder(const std::filesystem::path& root);
+
+// Reads a capture's cameras and finds its files. Views are the images sorted by name; every
+// holdout-th (the first, then holdout on: LLFF's convention) is a test view. Each view's
+// filePath is "SPLIT/render/render_STEM" (where renders are written), and its files point
+// at images/NAME (render, unless priors/render/render_STEM exists) and
+// priors/<buffer>/<buffer>_STEM.{png,exr,tiff,tif,jpg} for the others (F0 from
+// priors/metalness when there is no priors/f0). Throws Error naming the file for a missing
+// or broken model, a missing image, a camera that is not a pinhole.
+void openCapture(const std::filesystem::path& root, int holdout, DatasetSplit* train, DatasetSplit* test,
+                 CaptureSource* source);
+
+// Reads one buffer of a capture view and decodes it (transfer and clamp of radiance;
+// normals decoded and turned to world space; depth aligned to the sparse points and turned
+// into distance along the ray; roughness made perceptual; F0 from metalness). Checks that
+// its size is the view camera's. Throws Error naming the file.
+Image loadCaptureBuffer(const std::filesystem::path& root, const CaptureSource& source, const DatasetView& view,
+                        Buffer buffer);
+
+}  // namespace glint

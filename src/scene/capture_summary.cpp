@@ -1,0 +1,179 @@
+// What `glint info` prints for a real capture: its cameras, which buffers its views have,
+// the depth fits, a check of the declared normal space against the data, and the problems
+// found by loading every buffer.
+#include "scene/capture_summary.h"
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <mutex>
+#include <sstream>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "scene/normal_space_guess.h"
+
+namespace glint {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string fixed(double v, int digits) {
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "%.*f", digits, v);
+  return buf;
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::nth_element(v.begin(), v.begin() + long(v.size() / 2), v.end());
+  return v[v.size() / 2];
+}
+
+const char* depthName(CaptureDecoding::Depth d) {
+  switch (d) {
+    case CaptureDecoding::Depth::Distance:
+      return "distance";
+    case CaptureDecoding::Depth::ZDepth:
+      return "z";
+    case CaptureDecoding::Depth::Relative:
+      return "relative";
+    case CaptureDecoding::Depth::RelativeDisparity:
+      return "relative_disparity";
+  }
+  return "?";
+}
+
+std::string cameraLine(const DatasetSplit& split) {
+  if (split.views.empty()) return "  " + split.name + ": no views\n";
+  int minW = 1 << 30, maxW = 0, minH = 1 << 30, maxH = 0;
+  double minF = 1e300, maxF = 0;
+  for (const DatasetView& v : split.views) {
+    minW = std::min(minW, v.camera.width), maxW = std::max(maxW, v.camera.width);
+    minH = std::min(minH, v.camera.height), maxH = std::max(maxH, v.camera.height);
+    minF = std::min({minF, v.camera.fx, v.camera.fy}), maxF = std::max({maxF, v.camera.fx, v.camera.fy});
+  }
+  std::string size = std::to_string(minW) + "x" + std::to_string(minH);
+  if (minW != maxW || minH != maxH) size += " to " + std::to_string(maxW) + "x" + std::to_string(maxH);
+  return "  " + split.name + ": " + std::to_string(split.views.size()) + " views, " + size + ", focal lengths " +
+         fixed(minF, 1) + (maxF > minF ? " to " + fixed(maxF, 1) : "") + " px\n";
+}
+
+// The declared normal space against the data of up to 8 training views.
+std::string normalSpaceLine(const Dataset& dataset) {
+  const DatasetSplit& split = dataset.train();
+  std::vector<Image> normals;
+  std::vector<NormalSpaceView> views;
+  normals.reserve(8);
+  for (size_t i = 0; i < split.views.size() && normals.size() < 8; i += std::max<size_t>(1, split.views.size() / 8)) {
+    const DatasetView& view = split.views[i];
+    if (view.files[int(Buffer::Normal)].empty()) continue;
+    try {
+      const fs::path file = dataset.root() / view.files[int(Buffer::Normal)];
+      Image raw = readImage(file);
+      const std::string ext = file.extension().string();
+      normals.push_back(ext == ".png" || ext == ".jpg" || ext == ".jpeg" ? decodeNormalMap(raw)
+                                                                         : renormalizeNormals(raw));
+    } catch (const Error&) {
+      continue;  // the problem list reports it
+    }
+    NormalSpaceView v;
+    v.normals = &normals.back();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) v.cameraToWorld.m[r][c] = view.camera.cameraToWorld.m[r][c];
+    v.intrinsics = {view.camera.fx, view.camera.fy, view.camera.cx, view.camera.cy};
+    views.push_back(v);
+  }
+  if (views.empty()) return "";
+  NormalSpaceGuess guess = guessNormalSpace(views);
+  const CaptureDecoding& d = dataset.capture()->decoding;
+  const bool declaredWorld = d.worldNormals;
+  std::string line = "normal maps look like: " + guess.summary() + "\n";
+  if (guess.confidence > 0.5 && (guess.space == NormalSpace::World) != declaredWorld)
+    line += "warning: capture.json declares \"normal_space\": \"" + std::string(declaredWorld ? "world" : "camera") +
+            "\", but the normal maps read better as " + (guess.space == NormalSpace::World ? "world" : "camera") +
+            " space\n";
+  return line;
+}
+
+}  // namespace
+
+std::string describeCapture(const fs::path& root, int holdout, bool* clean) {
+  std::ostringstream out;
+  out << "capture " << root.string() << "\n\n";
+  std::optional<Dataset> opened;
+  try {
+    opened = Dataset::open(root, true, holdout);
+  } catch (const Error& e) {
+    if (clean) *clean = false;
+    out << "problems: 1\n  " << e.what() << "\n";
+    return out.str();
+  }
+  const Dataset& dataset = *opened;
+  const CaptureSource& source = *dataset.capture();
+  const CaptureDecoding& d = source.decoding;
+  out << source.description << "\n";
+  out << "cameras (every " << holdout << "th image from the first is a test view)\n"
+      << cameraLine(dataset.train()) << cameraLine(dataset.test());
+  out << "decoding (capture.json): photo_transfer " << transferName(d.photoTransfer) << ", prior_transfer "
+      << transferName(d.priorTransfer) << ", clamp_max " << d.clampMax << ", normals "
+      << (d.worldNormals ? "world" : std::string("camera (") + cameraAxesName(d.normalAxes) + " axes)") << ", depth "
+      << depthName(d.depth) << ", roughness " << (d.roughness == RoughnessKind::Alpha ? "alpha" : "perceptual")
+      << "\n\n";
+
+  // Which buffers the views have.
+  out << "buffers (views that have each, train / test)\n";
+  for (Buffer b : kAllBuffers) {
+    size_t counts[2] = {0, 0};
+    for (int s = 0; s < 2; ++s)
+      for (const DatasetView& v : (s == 0 ? dataset.train() : dataset.test()).views)
+        counts[s] += v.files[int(b)].empty() ? 0 : 1;
+    out << "  " << bufferName(b) << ": " << counts[0] << " / " << counts[1] << "\n";
+  }
+
+  // Load every buffer of every view: what training and evaluation will read.
+  std::vector<DatasetProblem> problems;
+  std::mutex problemsMutex;
+  for (const DatasetSplit* split : {&dataset.train(), &dataset.test()})
+    parallelFor(int64_t(split->views.size()), 1, [&](int64_t i) {
+      for (Buffer b : kAllBuffers) {
+        if (split->views[size_t(i)].files[int(b)].empty()) continue;
+        try {
+          dataset.loadBuffer(*split, size_t(i), b);
+        } catch (const Error& e) {
+          std::lock_guard<std::mutex> lock(problemsMutex);
+          problems.push_back({split->views[size_t(i)].files[int(b)], e.what()});
+        }
+      }
+    });
+
+  std::map<std::string, DepthFit> fits = source.depthFits();
+  if (!fits.empty()) {
+    std::vector<double> inliers, before, after;
+    for (const auto& [view, fit] : fits) {
+      if (!fit.ok) continue;
+      inliers.push_back(double(fit.inliers) / double(std::max(1, fit.pairsUsed)));
+      before.push_back(fit.medianAbsResidualBefore);
+      after.push_back(fit.medianAbsResidualAfter);
+    }
+    out << "\ndepth aligned to the sparse points in " << inliers.size() << " of " << fits.size()
+        << " views: median inlier fraction " << fixed(median(inliers), 2) << ", median residual "
+        << fixed(median(before), 4) << " before the fit, " << fixed(median(after), 4) << " after\n";
+  }
+  out << "\n" << normalSpaceLine(dataset);
+
+  std::sort(problems.begin(), problems.end(),
+            [](const DatasetProblem& a, const DatasetProblem& b) { return a.file < b.file; });
+  if (clean) *clean = problems.empty();
+  out << "\n";
+  if (problems.empty()) {
+    out << "problems: none\n";
+  } else {
+    out << "problems: " << problems.size() << "\n";
+    for (const DatasetProblem& p : problems) out << "  " << p.message << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace glint

@@ -1,0 +1,17 @@
+// `glint info` for a real capture: cameras, buffers present, depth fits, the normal space the
+// data shows, and every problem found by loading each buffer of each view.
+#pragma once
+
+#include <filesystem>
+#include <string>
+
+#include "scene/dataset.h"
+
+namespace glint {
+
+// The human-readable report; never throws for bad data (problems are listed). *clean (if
+// given) is set to true when every buffer of every view loaded.
+std::string describeCapture(const std::filesystem::path& root, int holdout = Dataset::kDefaultHoldout,
+                            bool* clean = nullptr);
+
+}  // namespace glint
