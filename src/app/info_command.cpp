@@ -22,8 +22,9 @@ void addInfoCommand(CLI::App& app) {
       ->default_val(Dataset::kDefaultHoldout);
   cmd->callback([root, holdout]() {
     bool clean = false;
-    std::string report =
-        isCaptureFolder(*root) ? describeCapture(*root, *holdout, &clean) : describeDataset(*root, &clean);
+    std::string report = isCaptureFolder(*root) || isPriorTransformsFolder(*root)
+                             ? describeCapture(*root, *holdout, &clean)
+                             : describeDataset(*root, &clean);
     std::fputs(report.c_str(), stdout);
     if (!clean) std::exit(2);
   });

@@ -41,13 +41,30 @@ bool isDisplayReferred(const fs::path& path) {
   return e == ".png" || e == ".jpg" || e == ".jpeg";
 }
 
-// priors/<name>/<name>_<stem> with any extension Glint reads, or "".
-std::string findPrior(const fs::path& root, const std::string& name, const std::string& stem) {
+// folder/<name>/<name>_<stem> with any extension Glint reads, or "".
+std::string findPrior(const fs::path& root, const std::string& name, const std::string& stem,
+                      const fs::path& folder = "priors") {
   for (const char* ext : {".png", ".exr", ".tiff", ".tif", ".jpg", ".jpeg"}) {
-    fs::path relative = fs::path("priors") / name / (name + "_" + stem + ext);
+    fs::path relative = folder / name / (name + "_" + stem + ext);
     if (fs::is_regular_file(root / relative)) return relative.generic_string();
   }
   return "";
+}
+
+// The sparse points of a COLMAP model, with linear colours, and its cameras.
+void readSparsePoints(const fs::path& folder, CaptureSource* source, CaptureScene* scene) {
+  ColmapModel colmap = readColmapModel(folder);
+  *scene = captureFromColmap(colmap);
+  for (size_t i = 0; i < scene->points.positions.size(); ++i) {
+    source->points.push_back(Vec3d(scene->points.positions[i]));
+    const Rgb c = i < scene->points.colors.size() ? scene->points.colors[i] : Rgb(0.5f);
+    source->pointColours.push_back(
+        {toLinear(Transfer::Srgb, c.x), toLinear(Transfer::Srgb, c.y), toLinear(Transfer::Srgb, c.z)});
+  }
+  source->description = "COLMAP " + std::string(colmap.format == ColmapFormat::Binary ? "binary" : "text") + " model " +
+                        (folder.filename() == "0" ? "sparse/0" : "sparse") + ", " +
+                        std::to_string(scene->cameras.size()) + " images, " + std::to_string(source->points.size()) +
+                        " points";
 }
 
 Camera toCamera(const CaptureCamera& c) {
@@ -184,6 +201,31 @@ CaptureDecoding readCaptureDecoding(const fs::path& file) {
   return d;
 }
 
+bool isPriorTransformsFolder(const fs::path& root) {
+  return fs::exists(root / "transforms_train.json") && colmapModelFolder(root).has_value();
+}
+
+void attachPriorTransforms(const fs::path& root, DatasetSplit* train, DatasetSplit* test, CaptureSource* source) {
+  source->decoding = readCaptureDecoding(root / "capture.json");
+  source->priorTransforms = true;
+  CaptureScene scene;
+  readSparsePoints(*colmapModelFolder(root), source, &scene);
+  source->description = "transforms files with predicted buffers; " + source->description;
+  for (DatasetSplit* split : {train, test})
+    for (DatasetView& view : split->views) {
+      // "train/render/render_0007": the split folder, and the ID after the last '_'.
+      const fs::path renderPath(view.filePath);
+      const fs::path splitFolder = renderPath.parent_path().parent_path();
+      const std::string stem = renderPath.filename().string();
+      const std::string id = stem.substr(stem.rfind('_') + 1);
+      for (Buffer b : kAllBuffers) view.files[int(b)] = findPrior(root, bufferName(b), id, splitFolder);
+      if (view.files[int(Buffer::F0)].empty())
+        view.files[int(Buffer::F0)] = findPrior(root, "metalness", id, splitFolder);
+      if (view.files[int(Buffer::Render)].empty())
+        throw Error((root / view.filePath).string() + ".png", "not found: every view needs its render image");
+    }
+}
+
 bool isCaptureFolder(const fs::path& root) {
   if (fs::exists(root / "transforms_train.json")) return false;
   return colmapModelFolder(root).has_value() || fs::is_regular_file(root / "transforms.json");
@@ -195,21 +237,11 @@ void openCapture(const fs::path& root, int holdout, DatasetSplit* train, Dataset
   source->decoding = readCaptureDecoding(root / "capture.json");
   std::vector<DatasetView> views;
   if (std::optional<fs::path> model = colmapModelFolder(root)) {
-    ColmapModel colmap = readColmapModel(*model);
-    CaptureScene scene = captureFromColmap(colmap);
+    CaptureScene scene;
+    readSparsePoints(*model, source, &scene);
     if (scene.cameras.empty()) throw Error(model->string(), "the model has no images");
     for (const CaptureCamera& c : scene.cameras)
       views.push_back(captureView(root, c, fs::path("images") / c.imageName));
-    for (size_t i = 0; i < scene.points.positions.size(); ++i) {
-      source->points.push_back(Vec3d(scene.points.positions[i]));
-      const Rgb c = i < scene.points.colors.size() ? scene.points.colors[i] : Rgb(0.5f);
-      source->pointColours.push_back(
-          {toLinear(Transfer::Srgb, c.x), toLinear(Transfer::Srgb, c.y), toLinear(Transfer::Srgb, c.z)});
-    }
-    source->description = "COLMAP " + std::string(colmap.format == ColmapFormat::Binary ? "binary" : "text") +
-                          " model " + fs::relative(*model, root).generic_string() + ", " +
-                          std::to_string(views.size()) + " images, " + std::to_string(source->points.size()) +
-                          " points";
   } else {
     const fs::path file = root / "transforms.json";
     NerfstudioTransforms transforms = readNerfstudioTransforms(file);
@@ -253,7 +285,7 @@ Image loadCaptureBuffer(const fs::path& root, const CaptureSource& source, const
     case Buffer::Diffuse:
     case Buffer::Specular:
       if (display) {
-        const bool photo = relative.rfind("priors/", 0) != 0;
+        const bool photo = !source.priorTransforms && relative.rfind("priors/", 0) != 0;
         image = decodeRadiance(std::move(image), photo ? d.photoTransfer : d.priorTransfer, d.clampMax);
       }
       break;

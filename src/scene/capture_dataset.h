@@ -42,6 +42,9 @@ struct CaptureSource {
   std::vector<Vec3d> points;      // world space (the cameras' world)
   std::vector<Rgb> pointColours;  // linear, one per point
   std::string description;        // "COLMAP binary model sparse/0, 120 images, 8000 points"
+  // The paper's layout for synthetic scenes with predicted buffers (transforms files and
+  // SPLIT/<buffer>/<buffer>_ID.png beside a COLMAP model): its render images are priors too.
+  bool priorTransforms = false;
 
   // The per-view depth fits made while loading, for reports (thread-safe).
   void recordDepthFit(const std::string& view, const DepthFit& fit) const;
@@ -55,6 +58,15 @@ struct CaptureSource {
 // True when root holds a capture: a COLMAP model (sparse/0/ or sparse/) or a nerfstudio
 // transforms.json, and no transforms_train.json.
 bool isCaptureFolder(const std::filesystem::path& root);
+// True when root holds transforms_train.json and a COLMAP model: the paper's layout for
+// synthetic scenes with predicted buffers (docs/capture-format.md), whose buffers are
+// decoded like a capture's priors.
+bool isPriorTransformsFolder(const std::filesystem::path& root);
+// For such a folder, whose splits were read from the transforms files: points each view's
+// files at SPLIT/<buffer>/<buffer>_ID.{png,exr,tiff,tif,jpg} (F0 from metalness when
+// there is no f0), and reads the decoding and the COLMAP model's points.
+void attachPriorTransforms(const std::filesystem::path& root, DatasetSplit* train, DatasetSplit* test,
+                           CaptureSource* source);
 
 // Reads a capture's cameras and finds its files. Views are the images sorted by name; every
 // holdout-th (the first, then holdout on: LLFF's convention) is a test view. Each view's

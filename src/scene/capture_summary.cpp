@@ -114,7 +114,10 @@ std::string describeCapture(const fs::path& root, int holdout, bool* clean) {
   const CaptureSource& source = *dataset.capture();
   const CaptureDecoding& d = source.decoding;
   out << source.description << "\n";
-  out << "cameras (every " << holdout << "th image from the first is a test view)\n"
+  out << "cameras"
+      << (source.priorTransforms ? std::string(" (transforms_train.json, transforms_test.json)")
+                                 : " (every " + std::to_string(holdout) + "th image from the first is a test view)")
+      << "\n"
       << cameraLine(dataset.train()) << cameraLine(dataset.test());
   out << "decoding (capture.json): photo_transfer " << transferName(d.photoTransfer) << ", prior_transfer "
       << transferName(d.priorTransfer) << ", clamp_max " << d.clampMax << ", normals "

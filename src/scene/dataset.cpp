@@ -64,6 +64,18 @@ Dataset Dataset::open(const fs::path& root, bool requireBuffers, int holdout) {
   }
   dataset.train_ = openSplit(root, "train", requireBuffers);
   dataset.test_ = openSplit(root, "test", requireBuffers);
+  if (isPriorTransformsFolder(root)) {
+    // The paper's synthetic scenes with predicted buffers: sizes from the render images,
+    // buffers decoded like a capture's priors.
+    auto source = std::make_shared<CaptureSource>();
+    attachPriorTransforms(root, &dataset.train_, &dataset.test_, source.get());
+    for (DatasetSplit* split : {&dataset.train_, &dataset.test_}) {
+      Image first = readImage(root / split->views[0].files[int(Buffer::Render)]);
+      setSplitSize(split, first.width, first.height);
+    }
+    dataset.capture_ = std::move(source);
+    return dataset;
+  }
   // The first view's render image sets the split's size; loadBuffer holds every other
   // buffer to it. Without requireBuffers a split whose images are absent keeps no size.
   for (DatasetSplit* split : {&dataset.train_, &dataset.test_}) {

@@ -253,5 +253,66 @@ TEST(CaptureDataset, BrokenCapturesNameTheFile) {
   }
 }
 
+// The paper's layout for synthetic scenes with predicted buffers: transforms files, buffers
+// in SPLIT/<buffer>/<buffer>_ID.png in the priors' encodings (metalness instead of F0), and
+// a COLMAP model beside them for the depth fit. Made here by moving a capture's files.
+TEST(CaptureDataset, PaperSyntheticPriorLayoutLoadsUnchanged) {
+  test::TempFolder folder;
+  std::vector<CaptureWriteView> views;
+  for (int i = 0; i < 3; ++i) {
+    CaptureWriteView v;
+    v.imageName = "view_000" + std::to_string(i) + ".png";
+    const Camera c = floorCamera(i, 48, 36);
+    v.camera = Camera::fromFieldOfView(c.cameraToWorld, 0.9, 48, 36);
+    v.buffers = floorBuffers(v.camera);
+    views.push_back(std::move(v));
+  }
+  std::vector<Vec3d> points;
+  Rng rng(5);
+  for (int i = 0; i < 300; ++i) points.push_back({rng.uniformDouble() * 3 - 1.5, rng.uniformDouble() * 3 - 1.5, 0});
+  writeCapture(folder.path(), views, points, std::vector<Rgb>(points.size(), Rgb(0.5f)));
+  // Views 0 and 1 train, view 2 tests.
+  for (int i = 0; i < 3; ++i) {
+    const std::string split = i < 2 ? "train" : "test", id = "000" + std::to_string(i);
+    const std::string from = "view_" + id + ".png";
+    auto move = [&](const fs::path& source, const std::string& buffer) {
+      fs::create_directories(folder / split / buffer);
+      fs::rename(source, folder / split / buffer / (buffer + "_" + id + ".png"));
+    };
+    move(folder / "images" / from, "render");
+    for (const char* b : {"diffuse", "specular", "normal", "depth", "roughness"})
+      move(folder / "priors" / b / (std::string(b) + "_" + from), b);
+    Image metalness(48, 36, 1, 0.0f);
+    fs::create_directories(folder / split / "metalness");
+    writeImage(folder / split / "metalness" / ("metalness_" + id + ".png"), metalness, {16});
+  }
+  fs::remove_all(folder / "priors");
+  fs::remove_all(folder / "images");
+  for (const std::string split : {"train", "test"}) {
+    DatasetSplit s;
+    s.name = split;
+    for (int i = split == "train" ? 0 : 2; i < (split == "train" ? 2 : 3); ++i)
+      s.views.push_back({split + "/render/render_000" + std::to_string(i), views[size_t(i)].camera});
+    writeTransforms(folder.path(), s);
+  }
+  ASSERT_TRUE(isPriorTransformsFolder(folder.path()));
+  ASSERT_FALSE(isCaptureFolder(folder.path()));
+  Dataset dataset = Dataset::open(folder.path());
+  ASSERT_NE(dataset.capture(), nullptr);
+  ASSERT_EQ(dataset.train().views.size(), 2u);
+  EXPECT_EQ(dataset.train().views[1].files[int(Buffer::F0)], "train/metalness/metalness_0001.png");
+  ViewBuffers loaded = dataset.loadView(dataset.train(), 1);
+  const ViewBuffers& truth = views[1].buffers;
+  for (int y = 0; y < 36; y += 5)
+    for (int x = 0; x < 48; x += 5) {
+      EXPECT_NEAR(loaded[Buffer::Depth].at(x, y) / truth[Buffer::Depth].at(x, y), 1.0, 0.015);
+      EXPECT_NEAR(loaded[Buffer::Normal].at(x, y, 2), 1.0, 0.01);
+      EXPECT_NEAR(loaded[Buffer::F0].at(x, y, 0), 0.04, 1e-6);  // metalness 0: the dielectric 0.04
+      // The render image is a prior here: the filmic curve, not sRGB.
+      EXPECT_NEAR(loaded[Buffer::Render].at(x, y, 1), truth[Buffer::Render].at(x, y, 1),
+                  0.03 * truth[Buffer::Render].at(x, y, 1));
+    }
+}
+
 }  // namespace
 }  // namespace glint
