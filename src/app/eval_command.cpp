@@ -151,7 +151,10 @@ void runEval(const EvalOptions& o) {
       ActivityScope activity("rendering view " + split.views[v].filePath);
       ViewBuffers rendered = renderScoredView(*tracer, split.camera(v), settings, uint64_t(v));
       denoisePasses(o.denoise, rendered);
-      ViewBuffers truth = dataset.loadView(split, v);
+      // A capture's view may lack some buffers: their metrics are left empty ("-").
+      ViewBuffers truth;
+      for (Buffer b : kAllBuffers)
+        if (dataset.findBufferFile(split.views[v], b)) truth[b] = dataset.loadBuffer(split, v, b);
       views[v] = evaluateView(rendered, truth);
       if (region)
         regions[v] = evaluateRegion(rendered, truth, regionMask(split.camera(v), truth[Buffer::Depth], *region));

@@ -47,7 +47,9 @@ Image visualizeBuffer(const Image& buffer, Buffer kind, float maxDepth) {
 }
 
 Image makeContactSheet(const Dataset& dataset, const DatasetSplit& split, const std::vector<size_t>& views) {
-  const int w = split.width, h = split.height;
+  // Cells fit the largest of the views (a capture's views may differ in size).
+  int w = 0, h = 0;
+  for (size_t v : views) w = std::max(w, split.camera(v).width), h = std::max(h, split.camera(v).height);
   // Labels are drawn at scale 2 (7 px font -> 14 px); small images get scale 1.
   const int scale = w >= 96 ? 2 : 1;
   const int columns = kBufferCount;
@@ -60,7 +62,10 @@ Image makeContactSheet(const Dataset& dataset, const DatasetSplit& split, const 
     drawText(sheet, x, 5, name, Rgb(0.92f), scale);
   }
   for (size_t r = 0; r < views.size(); ++r) {
-    ViewBuffers buffers = dataset.loadView(split, views[r]);
+    // A capture's view may lack buffers: their cells say so.
+    ViewBuffers buffers;
+    for (Buffer b : kAllBuffers)
+      if (dataset.findBufferFile(split.views[views[r]], b)) buffers[b] = dataset.loadBuffer(split, views[r], b);
     float maxDepth = 0;
     for (float d : buffers[Buffer::Depth].pixels)
       if (hasSurface(d)) maxDepth = std::max(maxDepth, d);
@@ -70,10 +75,15 @@ Image makeContactSheet(const Dataset& dataset, const DatasetSplit& split, const 
     std::snprintf(label, sizeof label, "view %zu", views[r]);
     drawText(sheet, kMargin, top + h / 2 - 4 * scale, label, Rgb(0.92f), scale);
     for (int c = 0; c < columns; ++c) {
-      Image shown = visualizeBuffer(buffers[kAllBuffers[c]], kAllBuffers[c], maxDepth);
-      int left = rowLabelWidth + c * (w + kMargin);
-      for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x) sheet.setRgb(left + x, top + y, shown.rgb(x, y));
+      const int left = rowLabelWidth + c * (w + kMargin);
+      const Image& buffer = buffers[kAllBuffers[c]];
+      if (buffer.empty()) {
+        drawText(sheet, left + kMargin, top + h / 2 - 4 * scale, "none", Rgb(0.5f), scale);
+        continue;
+      }
+      Image shown = visualizeBuffer(buffer, kAllBuffers[c], maxDepth);
+      for (int y = 0; y < shown.height; ++y)
+        for (int x = 0; x < shown.width; ++x) sheet.setRgb(left + x, top + y, shown.rgb(x, y));
     }
   }
   return sheet;

@@ -77,12 +77,24 @@ PassMetrics evaluatePass(const Image& predicted, const Image& truth) {
 }
 
 ViewMetrics evaluateView(const ViewBuffers& rendered, const ViewBuffers& truth) {
+  // A capture's view may lack ground truth for some buffers: their metrics have no value.
+  constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
+  auto pass = [&](Buffer b) {
+    return truth[b].empty() ? PassMetrics{kNone, kNone, kNone, kNone} : evaluatePass(rendered[b], truth[b]);
+  };
   ViewMetrics m;
-  m.diffuse = evaluatePass(rendered[Buffer::Diffuse], truth[Buffer::Diffuse]);
-  m.specular = evaluatePass(rendered[Buffer::Specular], truth[Buffer::Specular]);
-  m.final = evaluatePass(rendered[Buffer::Render], truth[Buffer::Render]);
-  m.depthRmse = depthRmse(rendered[Buffer::Depth], truth[Buffer::Depth]);
-  m.normalAngleDegrees = normalAngleDegrees(rendered[Buffer::Normal], truth[Buffer::Normal], truth[Buffer::Depth]);
+  m.diffuse = pass(Buffer::Diffuse);
+  m.specular = pass(Buffer::Specular);
+  m.final = pass(Buffer::Render);
+  const Image& depth = truth[Buffer::Depth];
+  m.depthRmse = depth.empty() ? kNone : depthRmse(rendered[Buffer::Depth], depth);
+  // Without true depth every pixel counts as a surface for the normal error.
+  const Image everySurface =
+      depth.empty() ? Image(rendered[Buffer::Normal].width, rendered[Buffer::Normal].height, 1, 1.0f) : Image();
+  m.normalAngleDegrees =
+      truth[Buffer::Normal].empty()
+          ? kNone
+          : normalAngleDegrees(rendered[Buffer::Normal], truth[Buffer::Normal], depth.empty() ? everySurface : depth);
   return m;
 }
 

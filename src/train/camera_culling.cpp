@@ -25,6 +25,8 @@ std::vector<CameraSphere> cameraSpheres(const Dataset& dataset, const DatasetSpl
   if (!(factor > 0.0f)) throw Error("camera culling settings", "the sphere radius factor must be positive");
   std::vector<std::optional<CameraSphere>> perView(split.views.size());
   parallelFor(int64_t(split.views.size()), 1, [&](int64_t i) {
+    // A capture's view without depth gets no sphere: nothing says how near its surfaces are.
+    if (!dataset.findBufferFile(split.views[size_t(i)], Buffer::Depth)) return;
     Image depth = dataset.loadBuffer(split, size_t(i), Buffer::Depth);
     perView[size_t(i)] = cameraSphere(depth, split.camera(size_t(i)), factor);
   });

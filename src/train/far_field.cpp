@@ -73,6 +73,8 @@ GaussianScene farFieldGaussians(const FarFieldSettings& s, const Vec3f& centre, 
 }
 
 size_t carveObservedFreeSpace(GaussianScene* farField, const TrainingViews& views, const TraceSettings& trace) {
+  // Without depth buffers no view records where its free space ends.
+  if (!views.supervised().depth) return 0;
   GaussianScene& g = *farField;
   std::vector<Mat4> worldToCamera;
   for (size_t v = 0; v < views.viewCount(); ++v) worldToCamera.push_back(views.camera(v).cameraToWorld.inverse());

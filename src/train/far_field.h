@@ -55,7 +55,8 @@ class TrainingViews;
 // every surface a view records in their direction. Far-field Gaussians stand for what no
 // camera sees directly; on builtin:spheres, without this, the ones floating inside the
 // room raised the depth error 27-fold when they were added and hid the warm-up's work.
-// Pixels without a surface (the sky) carve nothing. Returns how many were removed.
+// Pixels without a surface (the sky) carve nothing, nor do views without depth buffers.
+// Returns how many were removed.
 size_t carveObservedFreeSpace(GaussianScene* farField, const TrainingViews& views, const TraceSettings& trace);
 
 }  // namespace glint

@@ -32,12 +32,16 @@ TestViews TestViews::load(const Dataset& dataset, const DatasetSplit& split, int
   TestViews t;
   if (split.views.empty() || split.width <= 0 || maxViews <= 0) return t;
   size_t count = std::min(split.views.size(), size_t(maxViews));
+  t.finalColour_ = !dataset.findBufferFile(split.views[0], Buffer::Diffuse);
   for (size_t k = 0; k < count; ++k) {
     size_t v = k * split.views.size() / count;
+    auto load = [&](Buffer b) {
+      return dataset.findBufferFile(split.views[v], b) ? dataset.loadBuffer(split, v, b) : Image();
+    };
     t.cameras_.push_back(split.camera(v));
-    t.diffuse_.push_back(dataset.loadBuffer(split, v, Buffer::Diffuse));
-    t.depth_.push_back(dataset.loadBuffer(split, v, Buffer::Depth));
-    t.normal_.push_back(dataset.loadBuffer(split, v, Buffer::Normal));
+    t.diffuse_.push_back(dataset.loadBuffer(split, v, t.finalColour_ ? Buffer::Render : Buffer::Diffuse));
+    t.depth_.push_back(load(Buffer::Depth));
+    t.normal_.push_back(load(Buffer::Normal));
   }
   return t;
 }
@@ -48,12 +52,14 @@ ViewBuffers TestViews::render(const GaussianTracer& tracer, size_t k, int spp, c
 
 TestScore TestViews::score(const GaussianTracer& tracer, int spp, const PathSettings& path) const {
   PathSettings firstSegment = path;
-  firstSegment.bounces = 0;
+  if (!finalColour_) firstSegment.bounces = 0;
   TestScore s;
   for (size_t v = 0; v < cameras_.size(); ++v) {
     ViewBuffers rendered = render(tracer, v, spp, firstSegment);
-    s.diffusePsnr += psnrTonemapped8Bit(rendered[Buffer::Diffuse], diffuse_[v]);
-    double angle = normalAngleDegrees(rendered[Buffer::Normal], normal_[v], depth_[v]);
+    s.diffusePsnr += psnrTonemapped8Bit(rendered[finalColour_ ? Buffer::Render : Buffer::Diffuse], diffuse_[v]);
+    if (normal_[v].empty()) continue;
+    const Image& n = rendered[Buffer::Normal];
+    double angle = normalAngleDegrees(n, normal_[v], depth_[v].empty() ? Image(n.width, n.height, 1, 1.0f) : depth_[v]);
     s.normalDegrees += std::isfinite(angle) ? angle : 0.0;
   }
   if (!cameras_.empty()) {

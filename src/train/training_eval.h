@@ -32,7 +32,8 @@ struct TestScore {
 class TestViews {
  public:
   // Loads the diffuse, depth and normal buffers of up to maxViews views of the split,
-  // evenly spaced. Empty when the split has no buffers.
+  // evenly spaced. Empty when the split has no buffers. A capture without diffuse buffers
+  // is scored on its final images (the photographs); without normals, on colour alone.
   static TestViews load(const Dataset& dataset, const DatasetSplit& split, int maxViews);
   bool empty() const { return cameras_.empty(); }
   size_t size() const { return cameras_.size(); }
@@ -41,12 +42,14 @@ class TestViews {
   // scoringSettings(spp, path)); `path` is the run's (TrainConfig::path()).
   ViewBuffers render(const GaussianTracer& tracer, size_t k, int spp, const PathSettings& path) const;
   // Diffuse PSNR and normal error of render(). They come from the first segment alone, so
-  // the reflected segments of `path` are not traced: they would triple the cost for nothing.
+  // the reflected segments of `path` are not traced: they would triple the cost for nothing
+  // (unless the colour scored is the final image, which needs them).
   TestScore score(const GaussianTracer& tracer, int spp, const PathSettings& path = {}) const;
 
  private:
   std::vector<Camera> cameras_;
-  std::vector<Image> diffuse_, depth_, normal_;
+  std::vector<Image> diffuse_, depth_, normal_;  // depth_ and normal_ may be empty images
+  bool finalColour_ = false;                      // diffuse_ holds the render buffer
 };
 
 }  // namespace glint
