@@ -63,9 +63,9 @@ std::string cameraLine(const DatasetSplit& split) {
 // The declared normal space against the data of up to 8 training views.
 std::string normalSpaceLine(const Dataset& dataset) {
   const DatasetSplit& split = dataset.train();
-  std::vector<Image> normals;
+  std::vector<Image> normals, zDepths;
   std::vector<NormalSpaceView> views;
-  normals.reserve(8);
+  normals.reserve(8), zDepths.reserve(8);
   for (size_t i = 0; i < split.views.size() && normals.size() < 8; i += std::max<size_t>(1, split.views.size() / 8)) {
     const DatasetView& view = split.views[i];
     if (view.files[int(Buffer::Normal)].empty()) continue;
@@ -83,6 +83,14 @@ std::string normalSpaceLine(const Dataset& dataset) {
     for (int r = 0; r < 3; ++r)
       for (int c = 0; c < 3; ++c) v.cameraToWorld.m[r][c] = view.camera.cameraToWorld.m[r][c];
     v.intrinsics = {view.camera.fx, view.camera.fy, view.camera.cx, view.camera.cy};
+    // The depth's surface separates camera axes that differ by a mirror (OpenGL, the paper's).
+    if (!view.files[int(Buffer::Depth)].empty()) {
+      try {
+        zDepths.push_back(distanceToZDepth(dataset.loadBuffer(split, i, Buffer::Depth), v.intrinsics));
+        v.zDepth = &zDepths.back();
+      } catch (const Error&) {
+      }
+    }
     views.push_back(v);
   }
   if (views.empty()) return "";
@@ -90,6 +98,12 @@ std::string normalSpaceLine(const Dataset& dataset) {
   const CaptureDecoding& d = dataset.capture()->decoding;
   const bool declaredWorld = d.worldNormals;
   std::string line = "normal maps look like: " + guess.summary() + "\n";
+  if (!declaredWorld && guess.space == NormalSpace::Camera && guess.axesConfidence > 0.5 && guess.axes != d.normalAxes)
+    line += std::string("warning: capture.json declares \"normal_axes\": \"") +
+            (d.normalAxes == CameraAxes::OpenGl   ? "opengl"
+             : d.normalAxes == CameraAxes::OpenCv ? "opencv"
+                                                  : "paper") +
+            "\", but the normal maps agree better with the depth read in " + cameraAxesName(guess.axes) + " axes\n";
   if (guess.confidence > 0.5 && (guess.space == NormalSpace::World) != declaredWorld)
     line += "warning: capture.json declares \"normal_space\": \"" + std::string(declaredWorld ? "world" : "camera") +
             "\", but the normal maps read better as " + (guess.space == NormalSpace::World ? "world" : "camera") +
