@@ -61,8 +61,7 @@ ViewerOptions makeViewerOptions(const ViewerFlags& flags, const std::optional<Da
       for (size_t i = 0; i < split->views.size(); ++i)
         options.trainingCameras.push_back(
             {split->name + " " + std::to_string(i),
-             ViewerCamera::fromCameraToWorld(split->views[i].camera.cameraToWorld,
-                                             split->views[i].camera.fieldOfViewX())});
+             ViewerCamera::fromCamera(split->views[i].camera)});
     if (!options.trainingCameras.empty()) options.initialCamera = options.trainingCameras[0].camera;
   }
 
