@@ -60,8 +60,9 @@ std::string cameraLine(const DatasetSplit& split) {
          fixed(minF, 1) + (maxF > minF ? " to " + fixed(maxF, 1) : "") + " px\n";
 }
 
-// The declared normal space against the data of up to 8 training views.
-std::string normalSpaceLine(const Dataset& dataset) {
+}  // namespace
+
+std::string normalSpaceCheck(const Dataset& dataset) {
   const DatasetSplit& split = dataset.train();
   std::vector<Image> normals, zDepths;
   std::vector<NormalSpaceView> views;
@@ -110,8 +111,6 @@ std::string normalSpaceLine(const Dataset& dataset) {
             " space\n";
   return line;
 }
-
-}  // namespace
 
 std::string describeCapture(const fs::path& root, int holdout, bool* clean) {
   std::ostringstream out;
@@ -178,7 +177,7 @@ std::string describeCapture(const fs::path& root, int holdout, bool* clean) {
         << " views: median inlier fraction " << fixed(median(inliers), 2) << ", median residual "
         << fixed(median(before), 4) << " before the fit, " << fixed(median(after), 4) << " after\n";
   }
-  out << "\n" << normalSpaceLine(dataset);
+  out << "\n" << normalSpaceCheck(dataset);
 
   std::sort(problems.begin(), problems.end(),
             [](const DatasetProblem& a, const DatasetProblem& b) { return a.file < b.file; });

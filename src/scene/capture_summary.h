@@ -14,4 +14,9 @@ namespace glint {
 std::string describeCapture(const std::filesystem::path& root, int holdout = Dataset::kDefaultHoldout,
                             bool* clean = nullptr);
 
+// What the normal maps of up to 8 training views look like (world or camera space, which
+// camera axes) and, when that contradicts capture.json with confidence, lines starting with
+// "warning:". Empty for a dataset without normal maps.
+std::string normalSpaceCheck(const Dataset& dataset);
+
 }  // namespace glint

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "eval/training_log.h"
+#include "scene/capture_summary.h"
 #include "scene/gaussian_ply.h"
 #include "train/camera_culling.h"
 #include "train/checkpoint.h"
@@ -134,6 +135,12 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
   ThreadLimit threads(config.threads);
   activity.describe("loading the dataset " + config.dataset);
   Dataset dataset = Dataset::open(config.dataset, /*requireBuffers=*/true, config.holdout);
+  if (dataset.capture()) {
+    // A normal map in another space than declared would train every normal wrong.
+    std::istringstream check(normalSpaceCheck(dataset));
+    for (std::string line; std::getline(check, line);)
+      if (line.rfind("warning:", 0) == 0) std::fprintf(stderr, "glint train: %s\n", line.c_str());
+  }
   TrainingViews views = TrainingViews::load(dataset, dataset.train(),
                                             config.baseline == Baseline::Rgb ? ColourTarget::Render
                                                                              : ColourTarget::Diffuse);
