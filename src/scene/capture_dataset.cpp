@@ -11,6 +11,7 @@
 #include "io/colmap_model.h"
 #include "io/json_file.h"
 #include "io/nerfstudio_transforms.h"
+#include "io/point_cloud.h"
 #include "scene/buffer_codec.h"
 #include "scene/camera_conventions.h"
 #include "scene/dataset.h"
@@ -248,7 +249,19 @@ void openCapture(const fs::path& root, int holdout, DatasetSplit* train, Dataset
     std::vector<CaptureCamera> cameras = captureFromNerfstudio(transforms);
     if (cameras.empty()) throw Error(file.string(), "frames is empty: a capture needs at least one view");
     for (const CaptureCamera& c : cameras) views.push_back(captureView(root, c, fs::path(c.imageName)));
-    source->description = "nerfstudio transforms.json, " + std::to_string(views.size()) + " images";
+    // ply_file_path: the sparse points, already in the file's world (ns-process-data writes
+    // them with applied_transform applied).
+    if (!transforms.plyFilePath.empty()) {
+      PointCloud cloud = readPointCloud(root / transforms.plyFilePath);
+      for (size_t i = 0; i < cloud.positions.size(); ++i) {
+        source->points.push_back(Vec3d(cloud.positions[i]));
+        const Rgb c = i < cloud.colors.size() ? cloud.colors[i] : Rgb(0.5f);
+        source->pointColours.push_back(
+            {toLinear(Transfer::Srgb, c.x), toLinear(Transfer::Srgb, c.y), toLinear(Transfer::Srgb, c.z)});
+      }
+    }
+    source->description = "nerfstudio transforms.json, " + std::to_string(views.size()) + " images, " +
+                          std::to_string(source->points.size()) + " points";
   }
   splitViews(std::move(views), holdout, train, test);
   if (train->views.empty())

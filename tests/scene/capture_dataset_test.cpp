@@ -8,13 +8,15 @@
 
 #include <cmath>
 
+#include "common/floor_capture.h"
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "io/nerfstudio_transforms.h"
+#include "io/point_cloud.h"
 #include "io/temp_folder.h"
 #include "math/rng.h"
 #include "scene/capture_writer.h"
 #include "scene/dataset.h"
-#include "common/floor_capture.h"
 
 namespace glint {
 namespace {
@@ -22,8 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::floorBuffers;
 using test::floorCamera;
-using test::WrittenCapture;
 using test::writeFloorCapture;
+using test::WrittenCapture;
 
 const CaptureWriteView& writtenView(const WrittenCapture& w, const DatasetView& view) {
   for (const CaptureWriteView& v : w.views)
@@ -248,6 +250,46 @@ TEST(CaptureDataset, PaperSyntheticPriorLayoutLoadsUnchanged) {
       EXPECT_NEAR(loaded[Buffer::Render].at(x, y, 1), truth[Buffer::Render].at(x, y, 1),
                   0.03 * truth[Buffer::Render].at(x, y, 1));
     }
+}
+
+// nerfstudio's layout: transforms.json (per-frame intrinsics), images at their file_path,
+// priors by the image's stem, and the sparse points of ply_file_path for the depth fit.
+TEST(CaptureDataset, NerfstudioTransformsWithPriorsLoad) {
+  test::TempFolder folder;
+  WrittenCapture w = writeFloorCapture(folder.path());
+  NerfstudioTransforms transforms;
+  for (const CaptureWriteView& v : w.views) {
+    NerfstudioFrame frame;
+    frame.filePath = "images/" + v.imageName;
+    frame.width = v.camera.width, frame.height = v.camera.height;
+    frame.fx = v.camera.fx, frame.fy = v.camera.fy, frame.cx = v.camera.cx, frame.cy = v.camera.cy;
+    frame.transformMatrix = v.camera.cameraToWorld;
+    transforms.frames.push_back(frame);
+  }
+  // The COLMAP model's points as the ply nerfstudio writes.
+  Dataset colmap = Dataset::open(folder.path());
+  PointCloud cloud;
+  for (size_t i = 0; i < colmap.capture()->points.size(); ++i) {
+    cloud.positions.push_back(Vec3f(colmap.capture()->points[i]));
+    cloud.colors.push_back(Rgb(0.5f));
+  }
+  writePointCloud(folder / "sparse_pc.ply", cloud);
+  transforms.plyFilePath = "sparse_pc.ply";
+  fs::remove_all(folder / "sparse");
+  writeNerfstudioTransforms(folder / "transforms.json", transforms);
+
+  ASSERT_TRUE(isCaptureFolder(folder.path()));
+  Dataset dataset = Dataset::open(folder.path(), true, 4);
+  EXPECT_EQ(dataset.capture()->points.size(), 400u);
+  ASSERT_EQ(dataset.train().views.size(), 7u);
+  const DatasetView& view = dataset.train().views[0];
+  EXPECT_EQ(view.files[int(Buffer::Render)], "images/view_0001.png");
+  EXPECT_EQ(view.files[int(Buffer::Depth)], "priors/depth/depth_view_0001.png");
+  EXPECT_NEAR(view.camera.cx, w.views[1].camera.cx, 1e-9);
+  Image depth = dataset.loadBuffer(dataset.train(), 0, Buffer::Depth);
+  const Image& truth = w.views[1].buffers[Buffer::Depth];
+  for (int y = 0; y < truth.height; y += 7)
+    for (int x = 0; x < truth.width; x += 7) EXPECT_NEAR(depth.at(x, y) / truth.at(x, y), 1.0, 0.015);
 }
 
 }  // namespace
