@@ -160,8 +160,8 @@ int addTexturedMaterial(MeshScene& scene, const std::string& name, int textureSi
 MeshScene makeGallery() {
   MeshScene scene;
   RoomMaterials room;
-  // 1024 texels over 8 m: 8 mm texels, disc radii from 8 cm (4 pixels at 160x120 from 3 m:
-  // finer detail only aliases into noise that SIFT takes for features) to 1 m.
+  // 1024 texels over 8 m: 8 mm texels, disc radii from 12.5 cm (about 10 pixels at 320x240
+  // from 3 m; finer detail only aliases into noise that SIFT takes for features) to 1 m.
   room.floor = addTexturedMaterial(scene, "floor_leaves", 1024, 0.6f);
   room.ceiling = addTexturedMaterial(scene, "ceiling_leaves", 512, 0.9f);
   room.left = addTexturedMaterial(scene, "wall_left_leaves", 1024, 0.85f);
