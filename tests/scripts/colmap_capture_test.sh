@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# CTest colmap_capture: synthesizes a tiny capture of builtin:gallery, reconstructs its
+# CTest colmap_capture: synthesizes a small capture of builtin:gallery, reconstructs its
 # cameras with Debian's colmap through scripts/colmap-capture.sh, and opens the result with
 # `glint info` (Dataset::open and every buffer). Exits 77 (skipped) when colmap is absent.
 # Usage: colmap_capture_test.sh GLINT_BINARY WORK_FOLDER
