@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Glint builds and tests with; does nothing when all are present.
-# With --fuzz, also the clang toolchain and libFuzzer that `make fuzz` builds with.
+# With --fuzz, also the clang toolchain and libFuzzer that `make fuzz` builds with; with
+# --colmap, Debian's colmap, which scripts/colmap-capture.sh and the colmap_capture test use
+# (the test is skipped without it, so `make test` does not need it).
 set -euo pipefail
 
 packages=(
@@ -11,9 +13,13 @@ packages=(
   chromium  # the viewer's end-to-end test drives it headless (tests/web)
   ffmpeg    # glint render --path encodes its frames into an MP4
 )
-if [ "${1:-}" = "--fuzz" ]; then
-  packages+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev)  # make fuzz (docs/fuzzing.md)
-fi
+for option in "$@"; do
+  case "$option" in
+    --fuzz) packages+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev) ;;  # make fuzz (docs/fuzzing.md)
+    --colmap) packages+=(colmap) ;;  # structure from motion for real-capture-like tests
+    *) echo "install-deps: unknown option $option (expected --fuzz or --colmap)" >&2; exit 2 ;;
+  esac
+done
 
 missing=()
 for p in "${packages[@]}"; do

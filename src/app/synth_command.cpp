@@ -14,6 +14,7 @@
 #include "io/image.h"
 #include "synth/builtin_scenes.h"
 #include "synth/camera_paths.h"
+#include "synth/capture_generator.h"
 #include "synth/dataset_generator.h"
 #include "synth/gltf_import.h"
 #include "synth_edit/mesh_edits.h"
@@ -41,6 +42,10 @@ struct SynthOptions {
   std::string edits;
   int threads = 0;
   bool force = false;
+  std::string layout = "transforms";
+  int holdout = 8;
+  std::string degrade = "none";
+  int points = 4000;
 };
 
 std::string lowercaseExtension(const fs::path& path) {
@@ -102,15 +107,20 @@ void applyEditFile(MeshScene& scene, const std::string& path) {
 }
 
 // Refuses to write into a folder with unrelated content, so nothing a user made is lost.
-void checkOutputFolder(const fs::path& out, bool force) {
+// A folder holding the other layout is refused even with --force: mixing them would leave
+// a folder that opens as neither cleanly.
+void checkOutputFolder(const fs::path& out, bool force, bool capture) {
   if (!fs::exists(out)) return;
   if (!fs::is_directory(out)) throw Error(out.string(), "exists and is not a folder");
   bool empty = fs::is_empty(out);
-  bool isDataset = fs::exists(out / "transforms_train.json");
-  if (!empty && !isDataset)
+  bool isTransforms = fs::exists(out / "transforms_train.json");
+  bool isCapture = fs::exists(out / "capture.json") && fs::exists(out / "sparse" / "0");
+  if (!empty && !isTransforms && !isCapture)
     throw Error(out.string(), "folder is not empty and is not a Glint dataset; choose another -o folder");
-  if (isDataset && !force)
-    throw Error(out.string(), "already holds a dataset; pass --force to overwrite it");
+  if ((isTransforms && capture) || (isCapture && !capture))
+    throw Error(out.string(), std::string("already holds a dataset of the ") + (capture ? "transforms" : "capture") +
+                                  " layout; choose another -o folder");
+  if (!empty && !force) throw Error(out.string(), "already holds a dataset; pass --force to overwrite it");
 }
 
 void runSynth(const SynthOptions& o) {
@@ -131,16 +141,34 @@ void runSynth(const SynthOptions& o) {
   // The lights are chosen before edits, so a deleted emitter never swaps in a default environment.
   applyEnvironment(scene, o);
   if (!o.edits.empty()) applyEditFile(scene, o.edits);
-  checkOutputFolder(o.output, o.force);
+  const bool capture = o.layout == "capture";
+  if (!capture && o.degrade != "none")
+    throw Error("--degrade", "degraded priors are written in the capture layout only (add --layout capture)");
+  checkOutputFolder(o.output, o.force, capture);
 
   ThreadLimit limit(o.threads);
-  std::fprintf(stderr,
-               "glint synth: %s -> %s: %d train views at %d spp + %d test views at %d spp, %dx%d, %d bounces, %d "
-               "threads\n",
-               o.scene.c_str(), o.output.c_str(), o.train, o.spp, o.test, settings.testSamplesPerPixel(), res.x, res.y,
-               o.bounces, maxThreads());
   auto start = std::chrono::steady_clock::now();
-  generateDataset(scene, settings, o.output);
+  if (capture) {
+    CaptureSynthSettings captureSettings;
+    captureSettings.holdout = o.holdout;
+    captureSettings.networkLikePriors = o.degrade == "network";
+    captureSettings.sparsePoints = o.points;
+    const int testViews = o.holdout > 1 ? (o.train + o.holdout - 1) / o.holdout : 0;
+    std::fprintf(stderr,
+                 "glint synth: %s -> %s (capture): %d views, %d held out (every %d-th) at %d spp, the rest at %d "
+                 "spp, %dx%d, %d bounces, %s priors, %d threads\n",
+                 o.scene.c_str(), o.output.c_str(), o.train, testViews, o.holdout, settings.testSamplesPerPixel(),
+                 o.spp, res.x, res.y, o.bounces, captureSettings.networkLikePriors ? "network-like" : "exact",
+                 maxThreads());
+    generateCapture(scene, settings, captureSettings, o.output);
+  } else {
+    std::fprintf(stderr,
+                 "glint synth: %s -> %s: %d train views at %d spp + %d test views at %d spp, %dx%d, %d bounces, %d "
+                 "threads\n",
+                 o.scene.c_str(), o.output.c_str(), o.train, o.spp, o.test, settings.testSamplesPerPixel(), res.x,
+                 res.y, o.bounces, maxThreads());
+    generateDataset(scene, settings, o.output);
+  }
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr, "glint synth: wrote %s in %s\n", o.output.c_str(), formatDuration(seconds).c_str());
 }
@@ -153,8 +181,11 @@ void addSynthCommand(CLI::App& app) {
       "synth",
       "Render a scene with the reference path tracer into a dataset with exact buffers: render, diffuse, specular, "
       "depth, normal, roughness, F0 for every view, cameras in transforms_{train,test}.json, and "
-      "point_cloud_dense.ply from the training depth buffers.");
-  cmd->add_option("scene", options->scene, "builtin:spheres, builtin:room, or a .gltf/.glb file")->required();
+      "point_cloud_dense.ply from the training depth buffers. With --layout capture: a real-capture-like folder "
+      "(docs/capture-format.md) of tonemapped JPEG photographs, priors and a COLMAP model of the true cameras.");
+  cmd->add_option("scene", options->scene, "builtin:spheres, builtin:room, builtin:gallery (textured for COLMAP), or a "
+                                           ".gltf/.glb file")
+      ->required();
   cmd->add_option("-o,--output", options->output, "Output dataset folder (created if needed)")->required();
   cmd->add_option("--train", options->train, "Number of training views (on the training camera path)")
       ->check(CLI::Range(1, 100000))
@@ -200,6 +231,28 @@ void addSynthCommand(CLI::App& app) {
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   cmd->add_flag("--force", options->force, "Overwrite an existing dataset in the output folder");
+  cmd->add_option("--layout", options->layout,
+                  "transforms: the synthetic layout (docs/data-format.md). capture: a capture folder "
+                  "(docs/capture-format.md) of the --train views along the training path: images/view_####.jpg "
+                  "(8-bit, filmic tonemapped), priors/ in the paper's encodings, sparse/0 (COLMAP text model of the "
+                  "true cameras, --points points from the training depth) and capture.json; --test is not used")
+      ->check(CLI::IsMember({"transforms", "capture"}))
+      ->capture_default_str();
+  cmd->add_option("--holdout", options->holdout,
+                  "Capture layout: every N-th view from the first is a test view of `glint train --holdout N` (LLFF "
+                  "convention) and is rendered at --test-spp; 1 = no test views")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--degrade", options->degrade,
+                  "Capture layout: none writes the exact buffers as priors; network degrades them like a predictor's "
+                  "(blur 1 px, per-view depth scale 0.95-1.05 and offset +-0.1 m, depth noise 0.01 m, 4 degree "
+                  "normal tilt, roughness 0.8 (r + noise 0.03) + 0.1; per 320 px of width, see README). The "
+                  "photographs stay exact")
+      ->check(CLI::IsMember({"none", "network"}))
+      ->capture_default_str();
+  cmd->add_option("--points", options->points, "Capture layout: sparse points in points3D.txt")
+      ->check(CLI::Range(1, 10000000))
+      ->capture_default_str();
   cmd->callback([options]() { runSynth(*options); });
 }
 

@@ -1,4 +1,4 @@
-// The built-in scenes. Both are closed rooms lit by a ceiling area light, Y up, metres.
+// The built-in scenes. All are closed rooms lit by a ceiling area light, Y up, metres.
 #include "synth/builtin_scenes.h"
 
 #include <cmath>
@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "math/sampling.h"
 #include "synth/mesh_builder.h"
+#include "synth/procedural_textures.h"
 
 namespace glint {
 
@@ -141,13 +142,70 @@ MeshScene makeRoom() {
   return scene;
 }
 
+
+// Adds a material whose base colour is a dead-leaves texture of its own (seeded by the
+// texture's index, so every surface differs and nothing repeats across the room).
+int addTexturedMaterial(MeshScene& scene, const std::string& name, int textureSize, float roughness) {
+  scene.textures.push_back(makeDeadLeavesTexture(name, textureSize, uint64_t(scene.textures.size()) + 1, 0.08f,
+                                                 0.75f, 16.0f));
+  int id = addMaterial(scene, name, Rgb(1.0f), 0.0f, roughness);
+  scene.materials[id].baseColorTexture = int(scene.textures.size()) - 1;
+  return id;
+}
+
+// A room for structure from motion: walls, floor and pedestals carry dead-leaves textures
+// (detail at every scale, never repeating, so SIFT finds thousands of distinct features
+// and matches them unambiguously), around the reflective objects the method is about: a
+// chrome sphere, a rough metal cylinder, a glossy dielectric sphere and a flat mirror.
+MeshScene makeGallery() {
+  MeshScene scene;
+  RoomMaterials room;
+  // 1024 texels over 8 m: 8 mm texels, disc radii from 12.5 cm (about 10 pixels at 320x240
+  // from 3 m; finer detail only aliases into noise that SIFT takes for features) to 1 m.
+  room.floor = addTexturedMaterial(scene, "floor_leaves", 1024, 0.6f);
+  room.ceiling = addTexturedMaterial(scene, "ceiling_leaves", 512, 0.9f);
+  room.left = addTexturedMaterial(scene, "wall_left_leaves", 1024, 0.85f);
+  room.right = addTexturedMaterial(scene, "wall_right_leaves", 1024, 0.85f);
+  room.back = addTexturedMaterial(scene, "wall_back_leaves", 1024, 0.85f);
+  room.front = addTexturedMaterial(scene, "wall_front_leaves", 1024, 0.85f);
+  addRoom(scene, {-4, 0, -4}, {4, 3.5f, 4}, room, 1.0f);
+  addCeilingLight(scene, {-1.4f, 3.49f, 0.0f}, 1.6f, Rgb(12.0f, 11.2f, 9.8f));
+  addCeilingLight(scene, {1.4f, 3.49f, 0.0f}, 1.6f, Rgb(12.0f, 11.2f, 9.8f));
+
+  // The flat mirror hangs on the back wall in a dark frame.
+  int mirror = addMaterial(scene, "mirror", Rgb(0.95f), 1.0f, 0.0f);
+  scene.meshes.push_back(makeQuad("mirror", {-1.0f, 0.7f, -3.98f}, {2.0f, 0, 0}, {0, 1.6f, 0}, mirror));
+  int frame = addMaterial(scene, "mirror_frame", Rgb(0.08f, 0.06f, 0.05f), 0.0f, 0.5f);
+  scene.meshes.push_back(makeBox("mirror_frame", {-1.1f, 0.6f, -4.0f}, {1.1f, 2.4f, -3.99f}, frame));
+
+  int chrome = addMaterial(scene, "chrome", Rgb(0.95f, 0.95f, 0.95f), 1.0f, 0.02f);
+  scene.spheres.push_back({{-1.1f, 0.55f, -0.5f}, 0.55f, chrome});
+  int roughMetal = addMaterial(scene, "brushed_aluminium", Rgb(0.91f, 0.92f, 0.92f), 1.0f, 0.3f);
+  scene.meshes.push_back(makeCylinder("rough_metal_cylinder", {1.1f, 0.0f, -0.6f}, 0.35f, 1.0f, 64, roughMetal));
+  int glossy = addMaterial(scene, "glossy_red_plastic", Rgb(0.7f, 0.08f, 0.06f), 0.0f, 0.08f);
+  scene.spheres.push_back({{0.2f, 0.85f, 0.9f}, 0.4f, glossy});
+  // The glossy sphere sits on a textured pedestal, which also gives the matcher features
+  // in the middle of the room.
+  int pedestal = addTexturedMaterial(scene, "pedestal_leaves", 256, 0.7f);
+  scene.meshes.push_back(makeBox("pedestal", {-0.15f, 0.0f, 0.55f}, {0.55f, 0.45f, 1.25f}, pedestal));
+
+  scene.hasCameraRig = true;
+  scene.cameras.fovX = 60.0f * kPi / 180.0f;
+  // Training cameras circle inside the room looking at its middle, rising and falling three
+  // times: neighbouring views overlap strongly even at 12 views (30 degrees apart).
+  scene.cameras.train = {{0, 0, 0}, {0, 0.8f, 0}, 2.7f, 1.1f, 2.0f, 0.0f, 1.0f, 3.0f};
+  scene.cameras.test = {{0, 0, 0}, {0, 0.8f, 0}, 2.3f, 1.4f, 1.7f, 0.3f, 1.0f, 1.0f};
+  return scene;
+}
+
 }  // namespace
 
-std::vector<std::string> builtinSceneNames() { return {"spheres", "room"}; }
+std::vector<std::string> builtinSceneNames() { return {"spheres", "room", "gallery"}; }
 
 MeshScene makeBuiltinScene(const std::string& name) {
   if (name == "spheres") return makeSpheres();
   if (name == "room") return makeRoom();
+  if (name == "gallery") return makeGallery();
   std::string list;
   for (const std::string& n : builtinSceneNames()) list += (list.empty() ? "builtin:" : ", builtin:") + n;
   throw Error("builtin:" + name, "unknown built-in scene (available: " + list + ")");

@@ -1,4 +1,4 @@
-// Scenes defined in code, needing no files: `builtin:spheres` and `builtin:room`.
+// Scenes defined in code, needing no files: `builtin:spheres`, `builtin:room` and `builtin:gallery`.
 #pragma once
 
 #include <string>

@@ -1,0 +1,28 @@
+// `glint synth --layout capture`: renders a scene's training path as if it were a real
+// capture (docs/capture-format.md): tonemapped JPEG photographs, priors in the paper's
+// encodings (exact or network-like), and a COLMAP model of the true cameras.
+#pragma once
+
+#include <filesystem>
+
+#include "synth/dataset_generator.h"
+#include "synth/mesh_scene.h"
+
+namespace glint {
+
+struct CaptureSynthSettings {
+  // Every holdout-th view, from the first, is a test view of `glint train --holdout`
+  // (LLFF's convention): those are rendered at SynthSettings::testSpp.
+  int holdout = 8;
+  bool networkLikePriors = false;  // priors through networkLikePriors (network_degradation.h)
+  int sparsePoints = 4000;         // points3D: sampled from the training views' exact depth
+};
+
+// Renders SynthSettings::trainViews views along the scene's training camera path (the test
+// path is not used: a capture's test views are held out of the same path) and writes the
+// capture folder with writeCapture: images/view_####.jpg, priors/, sparse/0 (text, true
+// PINHOLE cameras, points from depth) and capture.json.
+void generateCapture(const MeshScene& scene, const SynthSettings& settings, const CaptureSynthSettings& capture,
+                     const std::filesystem::path& outDir);
+
+}  // namespace glint

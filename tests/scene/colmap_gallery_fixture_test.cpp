@@ -1,0 +1,111 @@
+// COLMAP's reconstruction of a synthesized capture (tests/data/colmap_gallery) agrees with
+// the true cameras of that capture, up to the similarity that structure from motion
+// cannot know (world origin, orientation and scale).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+
+#include "io/colmap_model.h"
+#include "math/mat3.h"
+#include "scene/camera_conventions.h"
+
+namespace glint {
+namespace {
+
+const std::filesystem::path kFixture = std::filesystem::path(GLINT_TEST_DATA) / "colmap_gallery";
+
+Mat3d rotationOf(const Mat4& m) {
+  Mat3d r;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) r.m[i][j] = m.m[i][j];
+  return r;
+}
+
+// The nearest rotation to a near-rotation matrix, by Gram-Schmidt on its rows (enough
+// for an average of rotations that differ by a fraction of a degree).
+Mat3d orthonormalised(Mat3d r) {
+  r.m[0] = normalize(r.m[0]);
+  r.m[1] = normalize(r.m[1] - r.m[0] * dot(r.m[0], r.m[1]));
+  r.m[2] = cross(r.m[0], r.m[1]);
+  return r;
+}
+
+double rotationAngleDegrees(const Mat3d& r) {
+  double c = std::clamp((r.m[0].x + r.m[1].y + r.m[2].z - 1) / 2, -1.0, 1.0);
+  return std::acos(c) * 180 / 3.14159265358979;
+}
+
+// x_true = s R x_colmap + t, estimated from the cameras: R as the mean of the per-camera
+// rotations R_true R_colmap^T, s as the ratio of the centres' spreads, t from their means.
+struct Similarity {
+  Mat3d rotation;
+  double scale = 1;
+  Vec3d translation;
+  Vec3d apply(const Vec3d& x) const { return rotation * x * scale + translation; }
+};
+
+Similarity alignCameras(const std::vector<CaptureCamera>& truth, const std::vector<CaptureCamera>& colmap) {
+  Mat3d sum;
+  for (int i = 0; i < 3; ++i) sum.m[i] = Vec3d(0.0);
+  Vec3d meanTrue(0.0), meanColmap(0.0);
+  for (size_t k = 0; k < truth.size(); ++k) {
+    Mat3d r = rotationOf(truth[k].cameraToWorld) * rotationOf(colmap[k].cameraToWorld).transposed();
+    for (int i = 0; i < 3; ++i) sum.m[i] = sum.m[i] + r.m[i];
+    meanTrue = meanTrue + truth[k].cameraToWorld.column(3);
+    meanColmap = meanColmap + colmap[k].cameraToWorld.column(3);
+  }
+  meanTrue = meanTrue / double(truth.size());
+  meanColmap = meanColmap / double(truth.size());
+  Similarity s;
+  s.rotation = orthonormalised(sum);
+  double spreadTrue = 0, spreadColmap = 0;
+  for (size_t k = 0; k < truth.size(); ++k) {
+    spreadTrue += dot(truth[k].cameraToWorld.column(3) - meanTrue, truth[k].cameraToWorld.column(3) - meanTrue);
+    Vec3d c = colmap[k].cameraToWorld.column(3) - meanColmap;
+    spreadColmap += dot(c, c);
+  }
+  s.scale = std::sqrt(spreadTrue / spreadColmap);
+  s.translation = meanTrue - s.rotation * meanColmap * s.scale;
+  return s;
+}
+
+TEST(ColmapGalleryFixture, EveryImageRegisteredWithCamerasCloseToTheTruth) {
+  CaptureScene truth = captureFromColmap(readColmapModel(kFixture / "true"));
+  CaptureScene colmap = captureFromColmap(readColmapModel(kFixture / "colmap"));
+  ASSERT_GE(truth.cameras.size(), 24u);
+  ASSERT_EQ(colmap.cameras.size(), truth.cameras.size()) << "COLMAP left images out";
+  for (size_t k = 0; k < truth.cameras.size(); ++k)
+    ASSERT_EQ(colmap.cameras[k].imageName, truth.cameras[k].imageName);  // both sorted by name
+
+  // Intrinsics: one shared camera whose focal length COLMAP refined from the true one.
+  for (const CaptureCamera& c : colmap.cameras) {
+    EXPECT_NEAR(c.fx / truth.cameras[0].fx, 1.0, 0.02);
+    EXPECT_NEAR(c.fy / truth.cameras[0].fy, 1.0, 0.02);
+  }
+
+  Similarity s = alignCameras(truth.cameras, colmap.cameras);
+  const double roomSize = 8.0;  // builtin:gallery is 8 m wide
+  double sumError = 0, maxError = 0, maxAngle = 0;
+  for (size_t k = 0; k < truth.cameras.size(); ++k) {
+    Vec3d aligned = s.apply(colmap.cameras[k].cameraToWorld.column(3));
+    double error = length(aligned - truth.cameras[k].cameraToWorld.column(3));
+    sumError += error, maxError = std::max(maxError, error);
+    Mat3d difference = rotationOf(truth.cameras[k].cameraToWorld).transposed() * s.rotation *
+                       rotationOf(colmap.cameras[k].cameraToWorld);
+    maxAngle = std::max(maxAngle, rotationAngleDegrees(difference));
+  }
+  EXPECT_LT(sumError / truth.cameras.size(), 0.01 * roomSize);
+  EXPECT_LT(maxError, 0.03 * roomSize);
+  EXPECT_LT(maxAngle, 2.0);
+  // The sparse points land in the room after the same alignment (a few stray ones may not).
+  int inside = 0;
+  for (const Vec3f& p : colmap.points.positions) {
+    Vec3d q = s.apply(Vec3d(p));
+    inside += std::abs(q.x) < 4.3 && std::abs(q.z) < 4.3 && q.y > -0.3 && q.y < 3.8;
+  }
+  EXPECT_GT(inside, int(0.9 * colmap.points.positions.size()));
+}
+
+}  // namespace
+}  // namespace glint

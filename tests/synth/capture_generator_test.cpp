@@ -1,0 +1,99 @@
+// A synthesized capture opens as a dataset with LLFF holdout, its cameras are the true
+// ones, its depth fits recover metres, and network-like priors differ from exact ones.
+#include "synth/capture_generator.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+
+#include "io/temp_folder.h"
+#include "scene/dataset.h"
+#include "synth/builtin_scenes.h"
+#include "synth/camera_paths.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+SynthSettings tinySettings() {
+  SynthSettings s;
+  s.trainViews = 10;
+  s.width = 40;
+  s.height = 30;
+  s.spp = 2;
+  s.testSpp = 4;
+  s.bounces = 2;
+  return s;
+}
+
+TEST(CaptureGenerator, GalleryCaptureOpensWithHoldoutAndTrueCameras) {
+  test::TempFolder temp;
+  const fs::path root = temp / "capture";
+  MeshScene scene = makeBuiltinScene("gallery");
+  CaptureSynthSettings capture;
+  capture.sparsePoints = 300;
+  generateCapture(scene, tinySettings(), capture, root);
+  EXPECT_TRUE(fs::exists(root / "images" / "view_0000.jpg"));
+  EXPECT_TRUE(fs::exists(root / "priors" / "depth" / "depth_view_0009.png"));
+  EXPECT_TRUE(fs::exists(root / "sparse" / "0" / "points3D.txt"));
+  EXPECT_TRUE(fs::exists(root / "capture.json"));
+
+  Dataset dataset = Dataset::open(root, true, 8);
+  ASSERT_EQ(dataset.test().views.size(), 2u);  // views 0 and 8
+  ASSERT_EQ(dataset.train().views.size(), 8u);
+  ASSERT_NE(dataset.capture(), nullptr);
+  EXPECT_GE(dataset.capture()->points.size(), 250u);
+  EXPECT_LE(dataset.capture()->points.size(), 300u);
+
+  const std::vector<Mat4> poses = orbitCameras(scene.cameras.train, 10);
+  const Camera& test8 = dataset.test().camera(1);
+  EXPECT_NEAR(length(test8.position() - poses[8].column(3)), 0.0, 1e-6);
+  EXPECT_NEAR(test8.fx, 40 / (2 * std::tan(scene.cameras.fovX / 2)), 1e-6);
+  // Every view's relative depth is fitted to the (exact) points: metres come back.
+  ViewBuffers view = dataset.loadView(dataset.train(), 2);
+  int surfaces = 0;
+  for (float d : view[Buffer::Depth].pixels) surfaces += hasSurface(d);
+  EXPECT_EQ(surfaces, 40 * 30);  // a closed room
+  auto fits = dataset.capture()->depthFits();
+  ASSERT_FALSE(fits.empty());
+  for (const auto& [name, fit] : fits) {
+    EXPECT_TRUE(fit.ok) << name << ": " << fit.problem;
+    EXPECT_LT(fit.medianAbsResidualAfter, 0.05) << name;
+  }
+}
+
+TEST(CaptureGenerator, NetworkLikePriorsDifferFromExactOnesButPhotosDoNot) {
+  test::TempFolder temp;
+  MeshScene scene = makeBuiltinScene("gallery");
+  SynthSettings settings = tinySettings();
+  settings.trainViews = 3;
+  CaptureSynthSettings capture;
+  capture.sparsePoints = 300;
+  generateCapture(scene, settings, capture, temp / "exact");
+  capture.networkLikePriors = true;
+  generateCapture(scene, settings, capture, temp / "network");
+  Dataset exact = Dataset::open(temp / "exact", true, 8), network = Dataset::open(temp / "network", true, 8);
+  ASSERT_EQ(exact.train().views.size(), 2u);
+  ViewBuffers a = exact.loadView(exact.train(), 0), b = network.loadView(network.train(), 0);
+  EXPECT_EQ(a[Buffer::Render].pixels, b[Buffer::Render].pixels);
+  double angleSum = 0;
+  for (int y = 0; y < 30; ++y)
+    for (int x = 0; x < 40; ++x) {
+      Vec3d na(a[Buffer::Normal].rgb(x, y)), nb(b[Buffer::Normal].rgb(x, y));
+      angleSum += std::acos(std::clamp(dot(normalize(na), normalize(nb)), -1.0, 1.0));
+    }
+  // 4 degrees of tilt, plus the blur at edges and 8-bit quantisation of both maps.
+  double meanAngle = angleSum / (40 * 30) * 180 / std::numbers::pi;
+  EXPECT_GT(meanAngle, 2.5);
+  EXPECT_LT(meanAngle, 9.0);
+  double roughnessShift = 0;
+  for (size_t p = 0; p < a[Buffer::Roughness].pixels.size(); ++p)
+    roughnessShift += b[Buffer::Roughness].pixels[p] - (0.8 * a[Buffer::Roughness].pixels[p] + 0.1);
+  EXPECT_NEAR(roughnessShift / (40 * 30), 0.0, 0.02);
+}
+
+}  // namespace
+}  // namespace glint
