@@ -59,10 +59,10 @@ make_variant degraded_colmap degraded
 for kind in $ablations; do make_variant "degraded_colmap_no_$kind" degraded "$kind"; done
 
 # 3. Train and evaluate. Scores are against the exact buffers of the same cameras.
-train_and_eval() {  # train_and_eval RUN DATASET TRUTH
+train_and_eval() {  # train_and_eval RUN DATASET TRUTH [TRAIN FLAGS...]
   local run="$out/runs/$1"
   if [ ! -f "$run/eval/metrics.json" ]; then
-    "$glint" train "$2" -o "$run" "${iters[@]}" --force
+    "$glint" train "$2" -o "$run" "${iters[@]}" "${@:4}" --force
     "$glint" eval "$run" --dataset "$3" --spp "$eval_spp"
   fi
 }
@@ -70,6 +70,9 @@ mkdir -p "$out/runs"
 train_and_eval a_exact_true "$out/exact" "$out/exact"
 train_and_eval b_exact_colmap "$out/exact_colmap" "$out/exact_colmap"
 train_and_eval c_degraded_colmap "$out/degraded_colmap" "$out/exact_colmap"
+# (c) with the paper's setting for predicted buffers (no depth loss, specular weight 0.01).
+train_and_eval c_degraded_colmap_preset "$out/degraded_colmap" "$out/exact_colmap" \
+  --config "$here/real-capture-train.json"
 for kind in $ablations; do
   train_and_eval "d_no_$kind" "$out/degraded_colmap_no_$kind" "$out/exact_colmap"
 done
