@@ -2,6 +2,7 @@
 // and principal point cx, cy in pixels (docs/data-format.md, "Cameras").
 #pragma once
 
+#include "math/mat3.h"
 #include "math/mat4.h"
 #include "math/vec.h"
 
@@ -34,6 +35,12 @@ struct Camera {
   // In camera space the direction is ((px - cx)/fx, -(py - cy)/fy, -1), normalised.
   Ray generateRay(double px, double py) const;
   Vec3d position() const { return cameraToWorld.column(3); }
+  // The camera-to-world rotation (OpenGL camera axes).
+  Mat3d rotation() const {
+    Mat3d r;
+    for (int i = 0; i < 3; ++i) r.m[i] = {cameraToWorld.m[i][0], cameraToWorld.m[i][1], cameraToWorld.m[i][2]};
+    return r;
+  }
   // generateRay inverted: the continuous pixel position p projects to, given the inverse of
   // cameraToWorld; false when p is not in front of the camera or projects outside the image
   // (every caller wants a pixel of the image).

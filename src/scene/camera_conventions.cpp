@@ -44,6 +44,23 @@ Vec3d cameraRayDirection(const CaptureCamera& camera, double px, double py) {
   return {(px - camera.cx) / camera.fx, -(py - camera.cy) / camera.fy, -1.0};
 }
 
+Camera toCamera(const CaptureCamera& c) {
+  Camera camera;
+  camera.cameraToWorld = c.cameraToWorld;
+  camera.width = c.width, camera.height = c.height;
+  camera.fx = c.fx, camera.fy = c.fy, camera.cx = c.cx, camera.cy = c.cy;
+  return camera;
+}
+
+CaptureCamera toCaptureCamera(const std::string& imageName, const Camera& c) {
+  CaptureCamera out;
+  out.imageName = imageName;
+  out.width = c.width, out.height = c.height;
+  out.fx = c.fx, out.fy = c.fy, out.cx = c.cx, out.cy = c.cy;
+  out.cameraToWorld = c.cameraToWorld;
+  return out;
+}
+
 CaptureCamera fromColmap(const ColmapCamera& camera, const ColmapImage& image) {
   GLINT_CHECK(image.cameraId == camera.id, "fromColmap needs the image's own camera");
   PinholeIntrinsics k = colmapPinholeIntrinsics(camera, "COLMAP model", "");

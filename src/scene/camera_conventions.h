@@ -11,6 +11,7 @@
 #include "io/point_cloud.h"
 #include "math/mat4.h"
 #include "math/vec.h"
+#include "scene/camera.h"
 
 namespace glint {
 
@@ -29,6 +30,10 @@ struct CaptureCamera {
 
 // The unnormalised camera-space direction of the ray through pixel position (px, py).
 Vec3d cameraRayDirection(const CaptureCamera& camera, double px, double py);
+
+// A capture camera as Glint's Camera, and back (imageName is the only field a Camera lacks).
+Camera toCamera(const CaptureCamera& camera);
+CaptureCamera toCaptureCamera(const std::string& imageName, const Camera& camera);
 
 // COLMAP stores world-to-camera (x_cam = R x_world + t) with OpenCV camera axes (x right,
 // y down, z forward). cameraToWorld = [R^T diag(1, -1, -1) | -R^T t]; the world itself is

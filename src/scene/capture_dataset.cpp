@@ -36,12 +36,6 @@ std::string lowerExtension(const fs::path& path) {
   return e;
 }
 
-// Display-referred files: integer codes scaled to [0, 1] by readImage.
-bool isDisplayReferred(const fs::path& path) {
-  const std::string e = lowerExtension(path);
-  return e == ".png" || e == ".jpg" || e == ".jpeg";
-}
-
 // folder/<name>/<name>_<stem> with any extension Glint reads, or "".
 std::string findPrior(const fs::path& root, const std::string& name, const std::string& stem,
                       const fs::path& folder = "priors") {
@@ -52,28 +46,25 @@ std::string findPrior(const fs::path& root, const std::string& name, const std::
   return "";
 }
 
+// Sparse points with their sRGB colours made linear (a point without colour is grey).
+void appendSparsePoints(const PointCloud& cloud, CaptureSource* source) {
+  for (size_t i = 0; i < cloud.positions.size(); ++i) {
+    source->points.push_back(Vec3d(cloud.positions[i]));
+    const Rgb c = i < cloud.colors.size() ? cloud.colors[i] : Rgb(0.5f);
+    source->pointColours.push_back(
+        {toLinear(Transfer::Srgb, c.x), toLinear(Transfer::Srgb, c.y), toLinear(Transfer::Srgb, c.z)});
+  }
+}
+
 // The sparse points of a COLMAP model, with linear colours, and its cameras.
 void readSparsePoints(const fs::path& folder, CaptureSource* source, CaptureScene* scene) {
   ColmapModel colmap = readColmapModel(folder);
   *scene = captureFromColmap(colmap);
-  for (size_t i = 0; i < scene->points.positions.size(); ++i) {
-    source->points.push_back(Vec3d(scene->points.positions[i]));
-    const Rgb c = i < scene->points.colors.size() ? scene->points.colors[i] : Rgb(0.5f);
-    source->pointColours.push_back(
-        {toLinear(Transfer::Srgb, c.x), toLinear(Transfer::Srgb, c.y), toLinear(Transfer::Srgb, c.z)});
-  }
+  appendSparsePoints(scene->points, source);
   source->description = "COLMAP " + std::string(colmap.format == ColmapFormat::Binary ? "binary" : "text") + " model " +
                         (folder.filename() == "0" ? "sparse/0" : "sparse") + ", " +
                         std::to_string(scene->cameras.size()) + " images, " + std::to_string(source->points.size()) +
                         " points";
-}
-
-Camera toCamera(const CaptureCamera& c) {
-  Camera camera;
-  camera.cameraToWorld = c.cameraToWorld;
-  camera.width = c.width, camera.height = c.height;
-  camera.fx = c.fx, camera.fy = c.fy, camera.cx = c.cx, camera.cy = c.cy;
-  return camera;
 }
 
 // A view's files: the photograph, and whichever priors exist.
@@ -156,6 +147,11 @@ Image decodeRadiance(Image image, Transfer transfer, float clampMax) {
 }
 
 }  // namespace
+
+bool isDisplayReferred(const fs::path& path) {
+  const std::string e = lowerExtension(path);
+  return e == ".png" || e == ".jpg" || e == ".jpeg";
+}
 
 void CaptureSource::recordDepthFit(const std::string& view, const DepthFit& fit) const {
   std::lock_guard<std::mutex> lock(fitsMutex_);
@@ -252,13 +248,7 @@ void openCapture(const fs::path& root, int holdout, DatasetSplit* train, Dataset
     // ply_file_path: the sparse points, already in the file's world (ns-process-data writes
     // them with applied_transform applied).
     if (!transforms.plyFilePath.empty()) {
-      PointCloud cloud = readPointCloud(root / transforms.plyFilePath);
-      for (size_t i = 0; i < cloud.positions.size(); ++i) {
-        source->points.push_back(Vec3d(cloud.positions[i]));
-        const Rgb c = i < cloud.colors.size() ? cloud.colors[i] : Rgb(0.5f);
-        source->pointColours.push_back(
-            {toLinear(Transfer::Srgb, c.x), toLinear(Transfer::Srgb, c.y), toLinear(Transfer::Srgb, c.z)});
-      }
+      appendSparsePoints(readPointCloud(root / transforms.plyFilePath), source);
     }
     source->description = "nerfstudio transforms.json, " + std::to_string(views.size()) + " images, " +
                           std::to_string(source->points.size()) + " points";
@@ -305,10 +295,7 @@ Image loadCaptureBuffer(const fs::path& root, const CaptureSource& source, const
     case Buffer::Normal: {
       image = display ? decodeNormalMap(image) : renormalizeNormals(image);
       if (!d.worldNormals) {
-        Mat3d rotation;
-        for (int r = 0; r < 3; ++r)
-          for (int c = 0; c < 3; ++c) rotation.m[r][c] = camera.cameraToWorld.m[r][c];
-        image = cameraNormalsToWorld(image, d.normalAxes, rotation);
+        image = cameraNormalsToWorld(image, d.normalAxes, camera.rotation());
       }
       break;
     }

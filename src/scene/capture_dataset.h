@@ -55,6 +55,10 @@ struct CaptureSource {
   mutable std::map<std::string, DepthFit> fits_;
 };
 
+// Files of integer codes (PNG, JPEG), which readImage scales to [0, 1]: display-referred
+// radiance and n/2 + 1/2 normals, unlike the stored values of EXR and TIFF.
+bool isDisplayReferred(const std::filesystem::path& path);
+
 // True when root holds a capture: a COLMAP model (sparse/0/ or sparse/) or a nerfstudio
 // transforms.json, and no transforms_train.json.
 bool isCaptureFolder(const std::filesystem::path& root);

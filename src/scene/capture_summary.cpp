@@ -81,8 +81,7 @@ std::string normalSpaceCheck(const Dataset& dataset) {
     }
     NormalSpaceView v;
     v.normals = &normals.back();
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) v.cameraToWorld.m[r][c] = view.camera.cameraToWorld.m[r][c];
+    v.cameraToWorld = view.camera.rotation();
     v.intrinsics = {view.camera.fx, view.camera.fy, view.camera.cx, view.camera.cy};
     // The depth's surface separates camera axes that differ by a mirror (OpenGL, the paper's).
     if (!view.files[int(Buffer::Depth)].empty()) {

@@ -18,25 +18,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-CaptureCamera toCaptureCamera(const std::string& name, const Camera& c) {
-  CaptureCamera out;
-  out.imageName = name;
-  out.width = c.width, out.height = c.height;
-  out.fx = c.fx, out.fy = c.fy, out.cx = c.cx, out.cy = c.cy;
-  out.cameraToWorld = c.cameraToWorld;
-  return out;
-}
-
-Mat3d rotationOf(const Mat4& m) {
-  Mat3d r;
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) r.m[i][j] = m.m[i][j];
-  return r;
-}
-
 // World normals -> the paper's camera axes, stored as n/2 + 1/2 (0 stays mid-grey: no surface).
 Image encodedCameraNormals(const Image& world, const Camera& camera) {
-  Image normals = worldNormalsToCamera(world, CameraAxes::PaperPrior, rotationOf(camera.cameraToWorld));
+  Image normals = worldNormalsToCamera(world, CameraAxes::PaperPrior, camera.rotation());
   for (float& v : normals.pixels) v = v * 0.5f + 0.5f;
   return normals;
 }

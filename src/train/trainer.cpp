@@ -77,7 +77,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   LossNormalisation norm;
   norm.diffuseRays = double(batch.size());
   int64_t surface = 0;
-  for (const BatchRay& b : batch) surface += views_.target(b.view, b.pixel).surface ? 1 : 0;
+  for (const BatchRay& b : batch) surface += views_.surfaceAt(b.view, b.pixel) ? 1 : 0;
   norm.surfaceRays = double(std::max<int64_t>(surface, 1));
 
   const size_t n = scene_.size();

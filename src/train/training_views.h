@@ -54,6 +54,8 @@ class TrainingViews {
   double meanPixelsPerView() const { return double(targets_.size()) / double(std::max<size_t>(1, viewCount())); }
   // A pixel's targets, decoded (pixel is row-major within the view).
   PixelTarget target(size_t view, size_t pixel) const;
+  // target(view, pixel).surface without decoding the rest.
+  bool surfaceAt(size_t view, size_t pixel) const { return targets_[firstPixel_[view] + pixel].depth != 0; }
   const SupervisedBuffers& supervised() const { return supervised_; }
   // Bytes held for the targets and cameras.
   size_t memoryBytes() const;
