@@ -22,8 +22,10 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "eval/error_breakdown.h"
 #include "eval/region_metrics.h"
 #include "eval/view_metrics.h"
+#include "io/image.h"
 #include "raytrace/gaussian_tracer.h"
 #include "render/denoise.h"
 #include "render/gaussian_renderer.h"
@@ -47,6 +49,7 @@ struct EvalOptions {
   bool saveImages = false;
   std::string denoise = "none";
   std::string region;
+  bool breakdown = false;
   TraceFlags trace;
   EditsFlag edits;
 };
@@ -113,10 +116,30 @@ void denoisePasses(const std::string& target, ViewBuffers& rendered) {
   rendered[Buffer::Render] = std::move(filtered);
 }
 
+// The render as the mean of two renders of half the samples each with independent seeds, so
+// that their difference measures the noise (eval/error_breakdown.h); G-buffers of the first.
+ViewBuffers renderInHalves(const GaussianTracer& tracer, const Camera& camera, RenderSettings settings, uint64_t viewKey,
+                           ViewBuffers halves[2]) {
+  settings.spp /= 2;
+  halves[0] = renderScoredView(tracer, camera, settings, viewKey);
+  settings.seed = settings.seed * 0x9E3779B97F4A7C15ull + 0x632BE59BD9B4E019ull;  // any seed unlike the first
+  halves[1] = renderScoredView(tracer, camera, settings, viewKey);
+  ViewBuffers mean = halves[0];
+  for (Buffer b : {Buffer::Render, Buffer::Diffuse, Buffer::Specular}) {
+    std::vector<float>& m = mean[b].pixels;
+    const std::vector<float>& other = halves[1][b].pixels;
+    for (size_t i = 0; i < m.size(); ++i) m[i] = 0.5f * (m[i] + other[i]);
+  }
+  return mean;
+}
+
 void runEval(const EvalOptions& o) {
   ThreadLimit threads(o.threads);
   std::optional<WorldBox> region;
   if (!o.region.empty()) region = parseBox(o.region, "--region");
+  if (o.breakdown && (o.spp < 2 || o.spp % 2 != 0))
+    throw Error("command line", "--breakdown renders two independent halves of the samples: --spp must be even and "
+                "at least 2 (got " + std::to_string(o.spp) + ")");
   SceneSource source = loadSceneSource(o.run);
   fs::path output = metricsPath(o);
   const SceneRendering rendering = o.trace.resolve(source.settings);
@@ -144,18 +167,33 @@ void runEval(const EvalOptions& o) {
   fs::path imagesFolder = output.parent_path() / o.split;
   std::vector<ViewMetrics> views(split.views.size());
   std::vector<RegionMetrics> regions(region ? split.views.size() : 0);
+  ErrorBreakdown breakdown;
   auto start = std::chrono::steady_clock::now();
   {
     ProgressBar progress("eval", int64_t(split.views.size()), "views");
     for (size_t v = 0; v < split.views.size(); ++v) {
       ActivityScope activity("rendering view " + split.views[v].filePath);
-      ViewBuffers rendered = renderScoredView(*tracer, split.camera(v), settings, uint64_t(v));
+      ViewBuffers halves[2];
+      ViewBuffers rendered = o.breakdown ? renderInHalves(*tracer, split.camera(v), settings, uint64_t(v), halves)
+                                         : renderScoredView(*tracer, split.camera(v), settings, uint64_t(v));
       denoisePasses(o.denoise, rendered);
       // A capture's view may lack some buffers: their metrics are left empty ("-").
       ViewBuffers truth;
       for (Buffer b : kAllBuffers)
         if (dataset.findBufferFile(split.views[v], b)) truth[b] = dataset.loadBuffer(split, v, b);
       views[v] = evaluateView(rendered, truth);
+      if (o.breakdown) {
+        std::vector<PixelKind> kinds = classifyPixels(split.camera(v), truth);
+        // Noise is measured on the raw halves; after --denoise it no longer describes the render.
+        bool raw = o.denoise == "none";
+        breakdown += breakdownView(kinds, rendered, truth, raw ? &halves[0] : nullptr, raw ? &halves[1] : nullptr);
+        if (o.saveImages) {
+          fs::path kindsFolder = imagesFolder / "pixel_kinds";
+          fs::create_directories(kindsFolder);
+          writeImage(kindsFolder / (fs::path(split.views[v].filePath).filename().string() + ".png"),
+                     pixelKindImage(kinds, split.width, split.height));
+        }
+      }
       if (region)
         regions[v] = evaluateRegion(rendered, truth, regionMask(split.camera(v), truth[Buffer::Depth], *region));
       if (o.saveImages) writeRenderedBuffers(imagesFolder, split.views[v].filePath, rendered);
@@ -197,6 +235,7 @@ void runEval(const EvalOptions& o) {
   report["per_view"] = perView;
   RegionMetrics pooled;
   for (const RegionMetrics& r : regions) pooled += r;
+  if (o.breakdown) report["breakdown"] = toJson(breakdown);
   if (region) {
     report["region"] = {{"box", {region->lo.x, region->lo.y, region->lo.z, region->hi.x, region->hi.y, region->hi.z}},
                         {"pooled", toJson(pooled)}};
@@ -205,6 +244,7 @@ void runEval(const EvalOptions& o) {
 
   printTable(split, views, mean);
   if (region) printRegionTable(split, regions, pooled);
+  if (o.breakdown) printBreakdown(breakdown);
   std::printf("\nmetrics: %s%s\n", output.string().c_str(),
               o.saveImages ? (", images: " + imagesFolder.string()).c_str() : "");
 }
@@ -244,6 +284,13 @@ void addEvalCommand(CLI::App& app) {
                   "only, as the paper); specular (filter the specular buffer, render = diffuse + filtered specular)")
       ->check(CLI::IsMember({"none", "final", "specular"}))
       ->capture_default_str();
+  cmd->add_flag("--breakdown", o->breakdown,
+                "Also say where the error lies: every pixel is classed from the ground truth's buffers as silhouette "
+                "(depth step or grazing view), highlight edge (steep step of the true specular), flat or curved mirror "
+                "(roughness < 0.1), glossy (< 0.45) or rough, and the specular and final squared error (8-bit "
+                "tonemapped) is split by class, with the part expected from Monte Carlo noise (the render is made as "
+                "two independent halves of --spp, which must be even). With --save-images, writes a picture of the "
+                "classes to <split>/pixel_kinds/");
   o->trace.add(cmd);
   o->edits.add(cmd);
   cmd->add_flag("--save-images", o->saveImages,
