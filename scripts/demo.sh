@@ -23,12 +23,12 @@ echo "== 3/7 glint sheet: contact sheets of the train and test buffers"
 "$glint" sheet "$dataset" -o "$out/spheres_train_sheet.png" --rows 4
 "$glint" sheet "$dataset" --split test -o "$out/spheres_test_sheet.png" --rows 3
 
-# Kernel power 2 instead of the paper code's 3 (softer kernel edges blend the normals of
-# neighbouring Gaussians) and a 4x normal loss weight: the chrome spheres' reflections
-# follow their normals (README, Training with reflections: +1.1 dB specular and final on
-# this scene with 4 bounces, in 17:50 of training).
-echo "== 4/7 glint train: learning the Gaussians (kernel power 2, normal weight 10), with reflections (2 bounces) after the warm-up"
-"$glint" train "$dataset" -o "$run" --bounces 2 --config "$(dirname "$0")/demo-train.json" --force
+# The defaults: kernel power 2 instead of the paper code's 3 (softer kernel edges blend the
+# normals of neighbouring Gaussians) and a 4x normal loss weight, so that the chrome
+# spheres' reflections follow their normals (README, Training with reflections: +1.1 dB
+# specular and final on this scene with 4 bounces).
+echo "== 4/7 glint train: learning the Gaussians, with reflections (2 bounces) after the warm-up"
+"$glint" train "$dataset" -o "$run" --force
 
 # Paths are rendered with 4 reflected segments though 2 were trained: the ground truth's
 # chrome spheres reflect each other beyond the second bounce, and the diffuse cache of

@@ -134,7 +134,8 @@ class TrainPrinter : public TrainingObserver {
     progress_->advance();
     if (r.farFieldAdded > 0)
       progress_->note("reflections on at step " + std::to_string(r.step - 1) + ": " +
-                      formatCount(double(r.farFieldAdded)) + " far-field Gaussians added");
+                      formatCount(double(r.farFieldAdded)) + " far-field Gaussians added (" +
+                      formatCount(double(r.reflectionSeedsAdded)) + " of them seeded along mirror reflections)");
     if (r.overflowedRays > 0)
       std::fprintf(stderr, "glint train: warning: %lld rays overflowed their hit list at step %lld\n",
                    (long long)r.overflowedRays, (long long)r.step);

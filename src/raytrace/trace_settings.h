@@ -5,8 +5,11 @@ namespace glint {
 
 struct TraceSettings {
   // Generalised Gaussian exponent p of the response G = exp(-(r^2)^p / (2p)); 1 is the
-  // ordinary Gaussian, 3 the paper's code default.
-  float kernelPower = 3.0f;
+  // ordinary Gaussian, 3 the paper's code default. 2 blends the constant normals of
+  // neighbouring Gaussians more smoothly, so reflected rays turn less at Gaussian borders:
+  // on builtin:spheres specular rose from 25.36 to 25.92 dB and the chrome spheres' median
+  // normal error fell from 1.03 to 0.85 degrees (README, Training with reflections).
+  float kernelPower = 2.0f;
   // Hits whose alpha = kMaxAlpha * opacity * G is below this are ignored; it also sets
   // the proxy: the ellipsoid where alpha reaches alphaMin bounds every hit that counts.
   float alphaMin = 0.005f;

@@ -22,6 +22,10 @@ void checkFarFieldSettings(const FarFieldSettings& s, const std::string& where) 
   if (!(s.opacity > 0.0f && s.opacity < 1.0f)) throw Error(where, "far_field.opacity must lie in (0, 1)");
   if (!(s.diffuse >= 0.0f && std::isfinite(s.diffuse))) throw Error(where, "far_field.diffuse must be 0 or more");
   if (s.neighbours < 1 || s.neighbours > 64) throw Error(where, "far_field.neighbours must be in [1, 64]");
+  if (s.reflectionSeeds < 0 || s.reflectionSeeds > kMaxFarFieldCount)
+    throw Error(where, "far_field.reflection_seeds must be in [0, 10000000]");
+  if (!(s.reflectionSeedRoughness >= 0.0f && s.reflectionSeedRoughness <= 1.0f))
+    throw Error(where, "far_field.reflection_seed_roughness must lie in [0, 1]");
   for (size_t b = 0; b < s.boxes.size(); ++b) {
     const FarFieldBox& box = s.boxes[b];
     const std::string name = "far_field.boxes[" + std::to_string(b) + "]";
@@ -56,6 +60,10 @@ GaussianScene farFieldGaussians(const FarFieldSettings& s, const Vec3f& centre, 
   for (const FarFieldBox& box : s.boxes)
     for (int i = 0; i < box.count; ++i)
       points.push_back(box.min + Vec3f(rng.uniform(), rng.uniform(), rng.uniform()) * (box.max - box.min));
+  return farFieldAtPoints(points, s, sceneRadius);
+}
+
+GaussianScene farFieldAtPoints(const std::vector<Vec3f>& points, const FarFieldSettings& s, float sceneRadius) {
   std::vector<float> spacing = meanNeighbourDistances(points, s.neighbours);
   GaussianScene scene;
   scene.resize(points.size());

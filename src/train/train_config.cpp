@@ -105,6 +105,8 @@ void forEachField(Config& c, F&& f) {
   f("far_field", "diffuse", c.farField.diffuse);
   f("far_field", "neighbours", c.farField.neighbours);
   f("far_field", "boxes", c.farField.boxes);
+  f("far_field", "reflection_seeds", c.farField.reflectionSeeds);
+  f("far_field", "reflection_seed_roughness", c.farField.reflectionSeedRoughness);
   f("trace", "kernel_power", c.trace.kernelPower);
   f("trace", "alpha_min", c.trace.alphaMin);
   f("trace", "min_transmittance", c.trace.minTransmittance);

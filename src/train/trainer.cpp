@@ -8,10 +8,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <tuple>
 
 #include "core/error.h"
 #include "core/parallel.h"
 #include "train/far_field.h"
+#include "train/reflection_seeds.h"
 
 namespace glint {
 
@@ -161,7 +163,8 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
 StepReport Trainer::step() {
   auto start = std::chrono::steady_clock::now();
   StepReport report;
-  if (config_.bounces > 0 && step_ == config_.reflectionWarmup) report.farFieldAdded = addFarField();
+  if (config_.bounces > 0 && step_ == config_.reflectionWarmup)
+    std::tie(report.farFieldAdded, report.reflectionSeedsAdded) = addFarField();
   views_.drawBatch(config_.seed, step_, config_.batchRays, config_.batchViews, &batch_);
   forwardBackward(batch_, /*backward=*/true, &report);
   const GaussianGradients& gradient = slots_[0]->gradient;
@@ -190,8 +193,11 @@ StepReport Trainer::step() {
   return report;
 }
 
-size_t Trainer::addFarField() {
-  if (config_.farField.count == 0 && config_.farField.boxes.empty()) return 0;
+std::pair<size_t, size_t> Trainer::addFarField() {
+  // Seeds first: their reflected rays are traced through the warm-up's scene alone.
+  GaussianScene seeds = reflectionSeeds(config_.farField, views_, *tracer_, config_.trace, config_.backfaceSkip,
+                                        extent_, config_.seed);
+  if (config_.farField.count == 0 && config_.farField.boxes.empty() && seeds.size() == 0) return {0, 0};
   Vec3d sum(0.0);
   for (size_t v = 0; v < views_.viewCount(); ++v) sum += views_.camera(v).position();
   const Vec3f centre = Vec3f(sum / double(views_.viewCount()));
@@ -204,11 +210,12 @@ size_t Trainer::addFarField() {
   far.filter(keep);
   carveObservedFreeSpace(&far, views_, config_.trace);
   for (size_t i = 0; i < far.size(); ++i) scene_.append(far, i);
-  const size_t added = far.size();
+  for (size_t i = 0; i < seeds.size(); ++i) scene_.append(seeds, i);
+  const size_t added = far.size() + seeds.size();
   adam_.grow(scene_.size());
   pruneWeight_.resize(scene_.size(), 0.0f);
   tracer_->build(scene_, config_.trace);
-  return added;
+  return {added, seeds.size()};
 }
 
 size_t Trainer::housekeeping() {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,7 @@ struct StepReport {
   int64_t overflowedRays = 0;  // rays whose hit list overflowed (no gradient; never expected)
   size_t pruned = 0;         // removed this step (weight pruning and camera spheres)
   size_t farFieldAdded = 0;  // far-field Gaussians added before this step (when reflections start)
+  size_t reflectionSeedsAdded = 0;  // of them, seeded along mirror reflections (train/reflection_seeds.h)
   double seconds = 0;        // wall time of the step
 };
 
@@ -76,7 +78,8 @@ class Trainer {
   void setUp(const std::string& tracerKind);
   size_t housekeeping();
   // Appends the far-field Gaussians outside the camera spheres; returns how many.
-  size_t addFarField();
+  // Adds the far field and the reflection seeds; returns their counts.
+  std::pair<size_t, size_t> addFarField();
 
   TrainConfig config_;
   const TrainingViews& views_;

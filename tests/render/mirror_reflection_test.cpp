@@ -94,6 +94,7 @@ struct MirrorSetup {
     // depth the plane's.
     TraceSettings trace;
     trace.minTransmittance = 1e-4f;
+    trace.kernelPower = 3.0f;  // the layers' spacing was chosen for the flat-topped kernel of power 3
     tracer->build(scene, trace);
     camera.cameraToWorld = Mat4::lookAt(Vec3d(0, -1, 1.2), Vec3d(0, 0.2, 0), Vec3d(0, 0, 1));
     camera.width = 64;

@@ -36,7 +36,7 @@ TEST(RayLoss, MeanAbsoluteErrorsPerTerm) {
   EXPECT_NEAR(t.roughness, 0.2 / 2, 1e-7);
   EXPECT_NEAR(t.f0, 0.3 / 3 / 2, 1e-7);
   LossWeights w;
-  EXPECT_NEAR(t.weighted(w), 5 * t.diffuse + 2.5 * t.depth + 2.5 * t.normal + t.roughness + t.f0, 1e-12);
+  EXPECT_NEAR(t.weighted(w), 5 * t.diffuse + 2.5 * t.depth + 10 * t.normal + t.roughness + t.f0, 1e-12);
 }
 
 TEST(RayLoss, NoSurfaceMasksTheGBufferTerms) {
