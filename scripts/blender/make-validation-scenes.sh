@@ -2,7 +2,7 @@
 # Renders both Blender Cycles validation scenes into OUT_ROOT and checks them with `glint info`.
 # Usage: scripts/blender/make-validation-scenes.sh OUT_ROOT
 # Full settings (docs/blender-validation.md): 160x120, 100 training views at 256 spp, 20 test
-# views at 512 spp, plus the seed-vs-seed noise check. Takes about an hour on two cores.
+# views at 512 spp, plus the seed-vs-seed noise check. About 50 minutes on two idle cores.
 set -euo pipefail
 
 if [ $# -ne 1 ]; then

@@ -114,7 +114,8 @@ def _mix(tree, kind, a, b):
 
 
 def _file_output(tree, base_path, slots):
-    """A File Output node writing float EXRs; slots = [(buffer name, socket, 'RGB' or 'BW')]."""
+    """A File Output node writing float EXRs; slots = [(buffer name, socket, 'RGB' or 'RGBA')].
+    (Blender 3.4 offers no one-channel EXR here; see write_exr.)"""
     out = tree.nodes.new("CompositorNodeOutputFile")
     out.base_path = base_path
     out.format.file_format = "OPEN_EXR"
@@ -417,7 +418,7 @@ def check_sums(out, split, count):
     return worst
 
 
-def check_gbuffers(scene, out, split, pose, focal, args):
+def check_gbuffers(scene, out, split, pose, focal):
     """Compares view 0's depth and normal with Blender's own ray casts through pixel centres."""
     depth, w, h = load_exr(frame_path(out, split, "depth", 0))
     normal, _, _ = load_exr(frame_path(out, split, "normal", 0))
@@ -567,7 +568,7 @@ def main():
     print("checks:")
     for split in ("train", "test"):
         check_sums(args.out, split, len(poses[split]))
-        check_gbuffers(scene, args.out, split, poses[split][0], focal, args)
+        check_gbuffers(scene, args.out, split, poses[split][0], focal)
 
     if args.noise_check:
         set_samples(scene, args.test_spp, 1.0, args.seed + 1000)
