@@ -2,7 +2,8 @@
 # Installs the Debian 12 packages Glint builds and tests with; does nothing when all are present.
 # With --fuzz, also the clang toolchain and libFuzzer that `make fuzz` builds with; with
 # --colmap, Debian's colmap, which scripts/colmap-capture.sh and the colmap_capture test use
-# (the test is skipped without it, so `make test` does not need it).
+# (the test is skipped without it, so `make test` does not need it); with --blender, Debian's
+# Blender, which scripts/blender/ renders the Cycles validation scenes with.
 set -euo pipefail
 
 packages=(
@@ -17,7 +18,8 @@ for option in "$@"; do
   case "$option" in
     --fuzz) packages+=(clang-14 libfuzzer-14-dev libclang-rt-14-dev) ;;  # make fuzz (docs/fuzzing.md)
     --colmap) packages+=(colmap) ;;  # structure from motion for real-capture-like tests
-    *) echo "install-deps: unknown option $option (expected --fuzz or --colmap)" >&2; exit 2 ;;
+    --blender) packages+=(blender) ;;  # Cycles validation scenes (docs/blender-validation.md)
+    *) echo "install-deps: unknown option $option (expected --fuzz, --colmap or --blender)" >&2; exit 2 ;;
   esac
 done
 
