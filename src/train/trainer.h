@@ -77,8 +77,8 @@ class Trainer {
 
   void setUp(const std::string& tracerKind);
   size_t housekeeping();
-  // Appends the far-field Gaussians outside the camera spheres; returns how many.
-  // Adds the far field and the reflection seeds; returns their counts.
+  // Appends the far-field Gaussians outside the camera spheres and the reflection seeds;
+  // returns how many of each.
   std::pair<size_t, size_t> addFarField();
 
   TrainConfig config_;
