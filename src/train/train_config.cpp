@@ -87,6 +87,7 @@ void forEachField(Config& c, F&& f) {
   f("prune", "every", c.prune.every);
   f("prune", "start", c.prune.start);
   f("prune", "weight_threshold", c.prune.weightThreshold);
+  f("prune", "threshold_pixels", c.prune.thresholdPixels);
   f("prune", "camera_sphere_factor", c.prune.cameraSphereFactor);
   f("prune", "camera_cull_region", c.prune.cameraCullRegion);
   f("init", "source", c.initSource);
@@ -276,6 +277,8 @@ void TrainConfig::validate(const std::string& source) const {
   inRange(prune.every, kEveryStepsRange, "prune.every");
   require(prune.start >= 0, source, "prune.start must be non-negative");
   require(prune.weightThreshold >= 0, source, "prune.weight_threshold must be non-negative");
+  require(prune.thresholdPixels >= 0 && prune.thresholdPixels <= 1e9, source,
+          "prune.threshold_pixels must be in [0, 1e9] (0 = per training image)");
   require(prune.cameraSphereFactor >= 0 && prune.cameraSphereFactor < 1, source,
           "prune.camera_sphere_factor must be in [0, 1)");
   require(init.pixelStride >= 0 && init.pixelStride <= 16384, source,

@@ -44,6 +44,12 @@ struct PruneSettings {
   // step's image; a step here traces batchRays rays, so weights are scaled by
   // pixels-per-view / batchRays).
   float weightThreshold = 0.1f;
+  // When positive, weightThreshold holds for images of this many pixels and scales with the
+  // training views' own pixel count, so that a Gaussian of a given size is kept or pruned
+  // alike at any resolution: the paper's 0.1 is for its 1152x768 views (884,736 pixels),
+  // where a Gaussian gets 46 times the weight it gets at 160x120. 0: the threshold holds
+  // per training image as it is.
+  double thresholdPixels = 0;
   float cameraSphereFactor = 0.8f;  // sphere radius = this x the nearest input depth
   // "in-view" culls only the part of a sphere its camera sees; "whole-sphere" is the
   // paper's rule, which also removes real walls behind cameras inside a room

@@ -232,9 +232,14 @@ size_t Trainer::housekeeping() {
   // Weight per full training image, averaged over the interval's steps (appendix A.4).
   const double perImage = views_.meanPixelsPerView() / double(config_.batchRays);
   const double scale = perImage / double(p.every);
+  // The paper's threshold is for its resolution; at fewer pixels a Gaussian of the same
+  // size collects proportionally less weight (train_config.h).
+  const double threshold = p.thresholdPixels > 0
+                               ? double(p.weightThreshold) * views_.meanPixelsPerView() / p.thresholdPixels
+                               : double(p.weightThreshold);
   std::vector<bool> keep = outsideCameraSpheres(scene_, spheres_, cullRegion(config_.prune));
   for (size_t i = 0; i < scene_.size(); ++i)
-    if (double(pruneWeight_[i]) * scale < double(p.weightThreshold)) keep[i] = false;
+    if (double(pruneWeight_[i]) * scale < threshold) keep[i] = false;
   size_t kept = size_t(std::count(keep.begin(), keep.end(), true));
   if (kept == 0) throw Error(config_.dataset, "pruning would remove every Gaussian at step " + std::to_string(step_) +
                                                   "; lower prune.weight_threshold");

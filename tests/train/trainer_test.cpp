@@ -241,6 +241,27 @@ TEST_F(TrainerTest, FarFieldGaussiansJoinWhenReflectionsStart) {
   }
 }
 
+// With threshold_pixels the pruning threshold scales with the views' pixel count: set to
+// the views' own size it prunes exactly as the unscaled threshold; set to 46 times it (the
+// paper's 1152x768 against 160x120) the threshold is 46 times lower and fewer go.
+TEST_F(TrainerTest, PruningThresholdScalesWithThePixelCount) {
+  TrainConfig c = smallConfig();
+  c.prune.start = 20;
+  c.prune.every = 10;
+  c.prune.weightThreshold = 0.5f;
+  auto sizeAfter = [&](double thresholdPixels) {
+    TrainConfig scaled = c;
+    scaled.prune.thresholdPixels = thresholdPixels;
+    std::unique_ptr<Trainer> t = makeTrainer(scaled);
+    for (int i = 0; i < 30; ++i) t->step();
+    return t->scene().size();
+  };
+  const size_t unscaled = sizeAfter(0.0);
+  EXPECT_LT(unscaled, makeTrainer(c)->scene().size()) << "pruning should have removed Gaussians";
+  EXPECT_EQ(sizeAfter(views_->meanPixelsPerView()), unscaled);
+  EXPECT_GT(sizeAfter(46.0 * views_->meanPixelsPerView()), unscaled);
+}
+
 TEST_F(TrainerTest, ResumedRunIsBitExact) {
   TrainConfig c = smallConfig();
   c.bounces = 1;  // reflections and the far-field Gaussians start after the resume
