@@ -16,8 +16,9 @@ namespace {
 constexpr float kSpecular = 0.1f;
 
 // Training views of the plane z = 0 from a ring of eyes above it, with the given roughness
-// and a uniform specular buffer (the reflection of a bright, uniform sky above the cameras).
-Dataset writeFloor(const std::filesystem::path& root, float roughness) {
+// and a uniform specular buffer (the reflection of a bright, uniform sky above the cameras),
+// written under root and loaded as training targets.
+TrainingViews floorViews(const std::filesystem::path& root, float roughness) {
   DatasetSplit train;
   train.name = "train";
   train.width = test::kPlaneWidth;
@@ -42,7 +43,8 @@ Dataset writeFloor(const std::filesystem::path& root, float roughness) {
   testSplit.views[0].filePath = "test/render/render_0000";
   writeViewBuffers(root, testSplit.views[0], test::planeBuffers(testSplit.camera(0)), ImageFormat::Exr);
   writeTransforms(root, testSplit);
-  return Dataset::open(root);
+  Dataset dataset = Dataset::open(root);
+  return TrainingViews::load(dataset, dataset.train());
 }
 
 // The warm-up's scene: nothing but one small Gaussian far away, so no reflection is explained.
@@ -64,8 +66,7 @@ std::unique_ptr<GaussianTracer> emptyTracer(const TraceSettings& trace) {
 
 TEST(ReflectionSeeds, FillOnlyTheUnobservedSpaceTheMirrorShows) {
   test::TempFolder folder;
-  Dataset dataset = writeFloor(folder.path(), 0.02f);
-  TrainingViews views = TrainingViews::load(dataset, dataset.train());
+  TrainingViews views = floorViews(folder.path(), 0.02f);
   TraceSettings trace;
   FarFieldSettings s;
   s.reflectionSeeds = 500;
@@ -110,8 +111,7 @@ TEST(ReflectionSeeds, FillOnlyTheUnobservedSpaceTheMirrorShows) {
 
 TEST(ReflectionSeeds, NoneForRoughSurfacesOrWhenSwitchedOff) {
   test::TempFolder folder;
-  Dataset dataset = writeFloor(folder.path(), 0.5f);
-  TrainingViews views = TrainingViews::load(dataset, dataset.train());
+  TrainingViews views = floorViews(folder.path(), 0.5f);
   TraceSettings trace;
   FarFieldSettings s;
   s.reflectionSeeds = 500;
