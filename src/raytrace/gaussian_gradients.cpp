@@ -34,6 +34,19 @@ void GaussianGradients::filter(const std::vector<bool>& keep) {
   keepSelected(weight, keep);
 }
 
+void GaussianGradients::appendCopies(std::span<const uint32_t> from) {
+  const size_t n = size();
+  for (uint32_t i : from) GLINT_CHECK(i < n, "appendCopies: index out of range");
+  forEachParameter([&](const auto& p) {
+    std::vector<float>& v = values[p.index];
+    v.resize((n + from.size()) * p.components);
+    for (size_t k = 0; k < from.size(); ++k)
+      std::copy_n(v.begin() + from[k] * p.components, p.components, v.begin() + (n + k) * p.components);
+  });
+  weight.resize(n + from.size());
+  for (size_t k = 0; k < from.size(); ++k) weight[n + k] = weight[from[k]];
+}
+
 namespace {
 // to[j] += from[j] over [begin, end): one contiguous loop the compiler vectorises.
 void addFloats(std::vector<float>& to, const std::vector<float>& from, size_t begin, size_t end) {

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <span>
 #include <vector>
 
@@ -44,6 +45,8 @@ struct GaussianGradients {
   void zero(size_t begin, size_t end);
   // Keeps the entries of the Gaussians whose keep[i] is true, in order.
   void filter(const std::vector<bool>& keep);
+  // Appends a copy of each listed Gaussian's entries, in the order of `from`.
+  void appendCopies(std::span<const uint32_t> from);
 
   // The floats of the parameter stored in `member`, e.g. of(&GaussianScene::roughness).
   template <typename V>

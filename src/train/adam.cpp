@@ -81,4 +81,9 @@ void AdamOptimizer::grow(size_t n) {
   v_.grow(n);
 }
 
+void AdamOptimizer::appendCopies(std::span<const uint32_t> from) {
+  m_.appendCopies(from);
+  v_.appendCopies(from);
+}
+
 }  // namespace glint

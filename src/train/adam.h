@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "raytrace/gaussian_gradients.h"
@@ -42,6 +43,9 @@ class AdamOptimizer {
   void filter(const std::vector<bool>& keep);
   // Appends zero moments for Gaussians added at the end of the scene (n >= the current size).
   void grow(size_t n);
+  // Appends a copy of each listed Gaussian's moments (for the children of a split, which
+  // continue their parent's optimisation), in the order of `from`.
+  void appendCopies(std::span<const uint32_t> from);
 
   int64_t stepCount() const { return step_; }
   // The moments, for checkpoints (`weight` is unused).

@@ -15,7 +15,9 @@ namespace glint {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'K', 'P'};
-constexpr uint32_t kVersion = 1;
+// Version 2 added the densification score after the prune weight; version 1 files are read
+// with a zero score (they come from runs that did not densify).
+constexpr uint32_t kVersion = 2;
 
 class Writer {
  public:
@@ -90,11 +92,12 @@ void forEachStateArray(Scene& scene, Moments& first, Moments& second, Visit&& vi
 
 void writeCheckpoint(const std::filesystem::path& file, const TrainingState& state) {
   // The whole file is reserved at once: the header, the config, each array's count and
-  // floats (the values and both moments of every parameter, and the prune weight), the checksum.
+  // floats (the values and both moments of every parameter, the prune weight and the
+  // densification score), the checksum.
   const size_t n = state.scene.size();
-  size_t floatsPerGaussian = 1;
+  size_t floatsPerGaussian = 2;
   forEachParameter([&](const auto& p) { floatsPerGaussian += 3 * p.components; });
-  Writer w(128 + state.configJson.size() + (3 * kGaussianParameterCount + 1) * sizeof(uint64_t) +
+  Writer w(128 + state.configJson.size() + (3 * kGaussianParameterCount + 2) * sizeof(uint64_t) +
            n * floatsPerGaussian * sizeof(float));
   w.bytes(kMagic, sizeof(kMagic));
   w.value(kVersion);
@@ -105,11 +108,12 @@ void writeCheckpoint(const std::filesystem::path& file, const TrainingState& sta
   w.value(uint64_t(state.configJson.size()));
   w.bytes(state.configJson.data(), state.configJson.size());
   GLINT_CHECK(state.scene.consistent() && state.adam.firstMoment().size() == n &&
-                  state.adam.secondMoment().size() == n && state.pruneWeight.size() == n,
+                  state.adam.secondMoment().size() == n && state.pruneWeight.size() == n && state.densifyScore.size() == n,
               "writeCheckpoint: every array must have one entry per Gaussian");
   forEachStateArray(state.scene, state.adam.firstMoment(), state.adam.secondMoment(),
                     [&](const void* entries, size_t entrySize) { w.array(entries, n, entrySize); });
   w.array(state.pruneWeight.data(), state.pruneWeight.size(), sizeof(float));
+  w.array(state.densifyScore.data(), state.densifyScore.size(), sizeof(float));
   uint64_t checksum = fnv1a(w.data().data(), w.data().size());
   w.value(checksum);
   std::filesystem::create_directories(file.parent_path());
@@ -136,8 +140,8 @@ TrainingState readCheckpoint(const std::filesystem::path& file) {
   char magic[sizeof(kMagic)];
   r.bytes(magic, sizeof(magic));
   uint32_t version = r.value<uint32_t>();
-  if (version != kVersion)
-    throw Error(name, "has checkpoint version " + std::to_string(version) + "; this Glint reads version " +
+  if (version != kVersion && version != 1)
+    throw Error(name, "has checkpoint version " + std::to_string(version) + "; this Glint reads versions 1 to " +
                           std::to_string(kVersion));
   TrainingState state;
   state.step = r.value<int64_t>();
@@ -156,6 +160,8 @@ TrainingState readCheckpoint(const std::filesystem::path& file) {
   state.adam.setStepCount(adamStep);
   state.pruneWeight.resize(n);
   r.array(state.pruneWeight.data(), n, sizeof(float));
+  state.densifyScore.assign(n, 0.0f);
+  if (version >= 2) r.array(state.densifyScore.data(), n, sizeof(float));
   if (!r.atEnd()) throw Error(name, "is corrupt: unexpected bytes after the last array");
   return state;
 }

@@ -1,5 +1,5 @@
 // Resumable training state on disk (RUN/checkpoint/state.bin): parameters, Adam moments and
-// step, the pruning accumulator, the step counter and the config it was made with. Written
+// step, the pruning and densification accumulators, the step counter and the config it was made with. Written
 // atomically; read back bit for bit, so a resumed run continues exactly.
 #pragma once
 
@@ -19,6 +19,7 @@ struct TrainingState {
   GaussianScene scene;
   AdamOptimizer adam;
   std::vector<float> pruneWeight;  // blend weight accumulated since the last prune
+  std::vector<float> densifyScore;  // split score since the last densify step (train/densify.h)
   std::string configJson;          // the run's config, to refuse resuming with another
 };
 

@@ -80,26 +80,33 @@ GaussianScene farFieldAtPoints(const std::vector<Vec3f>& points, const FarFieldS
   return scene;
 }
 
+std::vector<Mat4> worldToCameras(const TrainingViews& views) {
+  std::vector<Mat4> worldToCamera;
+  for (size_t v = 0; v < views.viewCount(); ++v) worldToCamera.push_back(views.camera(v).cameraToWorld.inverse());
+  return worldToCamera;
+}
+
+double gapBehindObservedSurfaces(const Vec3d& p, const TrainingViews& views, std::span<const Mat4> worldToCamera) {
+  double gap = INFINITY;
+  for (size_t v = 0; v < views.viewCount() && gap > 0.0; ++v) {
+    const Camera& camera = views.camera(v);
+    Vec2d pixel;
+    if (!camera.project(worldToCamera[v], p, &pixel)) continue;
+    const PixelTarget t = views.target(v, size_t(pixel.y) * size_t(camera.width) + size_t(pixel.x));
+    if (!t.surface) continue;
+    gap = std::min(gap, length(p - camera.position()) - double(t.depth));
+  }
+  return gap;
+}
+
 size_t carveObservedFreeSpace(GaussianScene* farField, const TrainingViews& views, const TraceSettings& trace) {
   // Without depth buffers no view records where its free space ends.
   if (!views.supervised().depth) return 0;
   GaussianScene& g = *farField;
-  std::vector<Mat4> worldToCamera;
-  for (size_t v = 0; v < views.viewCount(); ++v) worldToCamera.push_back(views.camera(v).cameraToWorld.inverse());
+  const std::vector<Mat4> worldToCamera = worldToCameras(views);
   std::vector<bool> keep(g.size(), true);
   parallelFor(int64_t(g.size()), 256, [&](int64_t i) {
-    const Vec3d p(g.position[i]);
-    // The smallest distance, over the views, by which the centre lies behind the surface
-    // recorded in its direction.
-    double gap = INFINITY;
-    for (size_t v = 0; v < views.viewCount() && gap > 0.0; ++v) {
-      const Camera& camera = views.camera(v);
-      Vec2d pixel;
-      if (!camera.project(worldToCamera[v], p, &pixel)) continue;
-      const PixelTarget t = views.target(v, size_t(pixel.y) * size_t(camera.width) + size_t(pixel.x));
-      if (!t.surface) continue;
-      gap = std::min(gap, length(p - camera.position()) - double(t.depth));
-    }
+    const double gap = gapBehindObservedSurfaces(Vec3d(g.position[i]), views, worldToCamera);
     if (!(gap > 0.0)) {
       keep[i] = false;
       return;

@@ -5,9 +5,11 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "math/mat4.h"
 #include "math/vec.h"
 #include "raytrace/trace_settings.h"
 #include "scene/gaussians.h"
@@ -67,5 +69,12 @@ class TrainingViews;
 // Pixels without a surface (the sky) carve nothing, nor do views without depth buffers.
 // Returns how many were removed.
 size_t carveObservedFreeSpace(GaussianScene* farField, const TrainingViews& views, const TraceSettings& trace);
+
+// The world-to-camera matrices of the views, for gapBehindObservedSurfaces.
+std::vector<Mat4> worldToCameras(const TrainingViews& views);
+// The smallest distance, over the views, by which p lies behind the surface each records in
+// its direction: negative or zero when some view sees p in empty space, infinite when no
+// view records a surface toward p.
+double gapBehindObservedSurfaces(const Vec3d& p, const TrainingViews& views, std::span<const Mat4> worldToCamera);
 
 }  // namespace glint

@@ -15,15 +15,18 @@ namespace glint {
 class TrainingViews;
 
 // At most s.reflectionSeeds Gaussians (none when 0, or when the views lack the depth,
-// normal, roughness or specular buffers this reads). For random training pixels whose
-// true surface is near-mirror (roughness below s.reflectionSeedRoughness), the ray is
-// reflected about the true normal at the true surface point and traced through `tracer`
-// (the warm-up's scene); where what it meets does not match the radiance the pixel's
-// specular buffer implies (specular / Fresnel), one seed is placed at a random distance
-// along the ray's free segment (before the scene stops it, or up to 3 sceneRadius). Seeds
-// that any training view sees in front of its recorded surface are removed
-// (carveObservedFreeSpace), so that only unobserved space is filled. Each seed starts with
-// that implied radiance as its colour and otherwise the far-field attributes (normal 0:
+// normal, roughness or specular buffers this reads). Training pixels whose true surface is
+// near-mirror (roughness below s.reflectionSeedRoughness) are taken at an even stride; each
+// ray is reflected about the true normal at the true surface point and traced through
+// `tracer` (the warm-up's scene), which ends its free segment (or 3 sceneRadius does).
+// Where the pixel's specular buffer implies a radiance (specular / Fresnel) that the scene
+// does not show there, the reflection stops in the first photo-consistent cell along its
+// free segment: a cell that at least three views' reflections cross with the same colour,
+// as a surface seen in mirrors from several places is, and empty space (which shows each
+// view what lies behind it) is not (voxel colouring). One seed per such cell, at the mean
+// point and radiance of the reflections that stopped in it. Seeds that any training view
+// sees in front of its recorded surface are removed (carveObservedFreeSpace), so that only
+// unobserved space is filled. Each seed otherwise has the far-field attributes (normal 0:
 // paths end there). Deterministic in `seed`.
 GaussianScene reflectionSeeds(const FarFieldSettings& s, const TrainingViews& views, const GaussianTracer& tracer,
                               const TraceSettings& trace, float backfaceSkip, float sceneRadius, uint64_t seed);

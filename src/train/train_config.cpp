@@ -90,6 +90,11 @@ void forEachField(Config& c, F&& f) {
   f("prune", "threshold_pixels", c.prune.thresholdPixels);
   f("prune", "camera_sphere_factor", c.prune.cameraSphereFactor);
   f("prune", "camera_cull_region", c.prune.cameraCullRegion);
+  f("densify", "fraction", c.densify.fraction);
+  f("densify", "every", c.densify.every);
+  f("densify", "start", c.densify.start);
+  f("densify", "stop", c.densify.stop);
+  f("densify", "max_gaussians", c.densify.maxGaussians);
   f("init", "source", c.initSource);
   f("init", "pixel_stride", c.init.pixelStride);
   f("init", "max_pixel_samples", c.init.maxPixelSamples);
@@ -252,6 +257,7 @@ void TrainConfig::validate(const std::string& source) const {
             source, "baseline \"rgb\" trains on the render buffer alone: bounces and the G-buffer and specular "
                     "loss weights must be 0");
   checkFarFieldSettings(farField, source);
+  checkDensifySettings(densify, source);
   require(reflectionWarmup >= 0, source, "reflection_warmup must be non-negative");
   require(invalidNormalLength >= 0 && invalidNormalLength <= 1, source, "invalid_normal_length must be in [0, 1]");
   require(backfaceSkip >= 0, source, "backface_skip must be non-negative");

@@ -13,6 +13,7 @@
 #include "scene/learning_rates.h"
 #include "train/config_choices.h"
 #include "train/dense_init.h"
+#include "train/densify.h"
 #include "train/far_field.h"
 
 namespace glint {
@@ -100,6 +101,7 @@ struct TrainConfig {
   LearningRates lr;
   AdamSettings adam;
   PruneSettings prune;
+  DensifySettings densify;  // splitting where the losses pull hardest (train/densify.h)
   // Dense initialisation (appendix A.3): "auto" (point_cloud_dense.ply if present, else
   // the depth buffers), "depth" or "point-cloud", and the settings of either.
   InitChoice initSource = InitChoice::Auto;

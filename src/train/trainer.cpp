@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "train/densify.h"
 #include "train/far_field.h"
 #include "train/reflection_seeds.h"
 
@@ -19,6 +20,7 @@ namespace glint {
 
 struct Trainer::Slot {
   GaussianGradients gradient;
+  std::vector<float> splitScore;  // densification score of this slot's hits
   RayBackwardScratch<float> scratch;
   LossTerms terms;
   int64_t hitCount = 0;
@@ -40,6 +42,7 @@ Trainer::Trainer(const TrainConfig& config, const TrainingViews& views, std::vec
   if (scene_.empty()) throw Error(config_.dataset, "the initial scene has no Gaussians outside the camera spheres");
   adam_.reset(scene_.size());
   pruneWeight_.assign(scene_.size(), 0.0f);
+  densifyScore_.assign(scene_.size(), 0.0f);
   setUp(tracerKind);
 }
 
@@ -47,7 +50,7 @@ Trainer::Trainer(const TrainConfig& config, const TrainingViews& views, std::vec
                  TrainingState state, const std::string& tracerKind)
     : config_(config), views_(views), spheres_(std::move(spheres)), scene_(std::move(state.scene)),
       extent_(state.sceneExtent), step_(state.step), adam_(config.adam),
-      pruneWeight_(std::move(state.pruneWeight)) {
+      pruneWeight_(std::move(state.pruneWeight)), densifyScore_(std::move(state.densifyScore)) {
   adam_.reset(scene_.size());
   adam_.firstMoment() = std::move(state.adam.firstMoment());
   adam_.secondMoment() = std::move(state.adam.secondMoment());
@@ -71,6 +74,7 @@ TrainingState Trainer::state() const {
   s.scene = scene_;
   s.adam = adam_;
   s.pruneWeight = pruneWeight_;
+  s.densifyScore = densifyScore_;
   s.configJson = toJson(config_).dump();
   return s;
 }
@@ -92,6 +96,16 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   // A batch's pixels are scattered over its views (train_bench: bundles of them were
   // slower than tracing each ray alone).
   pathSettings.primaryCoherence = RayCoherence::Scattered;
+  const bool scoring = backward && scoringSplits();
+  if (scoring) {
+    sigmaMax_.resize(n);
+    parallelForChunks(int64_t(n), 8192, [&](int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) {
+        const Vec3f& s = scene_.logScale[size_t(i)];
+        sigmaMax_[size_t(i)] = std::exp(std::max({s.x, s.y, s.z}));
+      }
+    });
+  }
   // Slots start empty; each accumulates its share of every wavefront.
   parallelFor(slotCount, 1, [&](int64_t s) {
     Slot& slot = *slots_[s];
@@ -99,6 +113,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
       slot.gradient.reset(n);
     else
       slot.gradient.zero(0, n);
+    if (scoring) slot.splitScore.assign(n, 0.0f);
     slot.terms = {};
     slot.hitCount = slot.overflowed = slot.reflected = 0;
   });
@@ -120,7 +135,10 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     pathBatch_.trace(*tracer_, rays_, keys_, config_.seed, pathSettings, paths_, /*record=*/true);
     parallelFor(slotCount, 1, [&](int64_t s) {
       Slot& slot = *slots_[s];
-      auto sink = [&](uint32_t id, const HitGradient<float>& g) { slot.gradient.add(id, g); };
+      auto sink = [&](uint32_t id, const HitGradient<float>& g) {
+        slot.gradient.add(id, g);
+        if (scoring) slot.splitScore[id] += splitScore(g, sigmaMax_[id]);
+      };
       for (int64_t r = count * s / slotCount; r < count * (s + 1) / slotCount; ++r) {
         const BatchRay& b = batch[size_t(first + r)];
         const PixelTarget target = views_.target(b.view, b.pixel);
@@ -150,6 +168,9 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   GaussianGradients& total = slots_[0]->gradient;
   parallelForChunks(int64_t(n), 8192, [&](int64_t begin, int64_t end) {
     for (size_t s = 1; s < slots_.size(); ++s) total.addRange(slots_[s]->gradient, size_t(begin), size_t(end));
+    if (scoring)
+      for (const auto& slot : slots_)
+        for (int64_t i = begin; i < end; ++i) densifyScore_[size_t(i)] += slot->splitScore[size_t(i)];
   });
   for (const auto& slot : slots_) {
     report->terms += slot->terms;
@@ -185,7 +206,7 @@ StepReport Trainer::step() {
     }
   });
   ++step_;
-  report.pruned = housekeeping();
+  housekeeping(&report);
   report.step = step_;
   report.gaussians = scene_.size();
   report.loss = report.terms.weighted(config_.loss);
@@ -214,21 +235,42 @@ std::pair<size_t, size_t> Trainer::addFarField() {
   const size_t added = far.size() + seeds.size();
   adam_.grow(scene_.size());
   pruneWeight_.resize(scene_.size(), 0.0f);
+  densifyScore_.resize(scene_.size(), 0.0f);
   tracer_->build(scene_, config_.trace);
   return {added, seeds.size()};
 }
 
-size_t Trainer::housekeeping() {
+bool Trainer::scoringSplits() const {
+  const DensifySettings& d = config_.densify;
+  // The score of a densify step is what the steps since the previous one accumulated.
+  return d.fraction > 0 && step_ < d.stop && step_ + d.every >= d.start;
+}
+
+void Trainer::housekeeping(StepReport* report) {
+  bool changed = false;
   const PruneSettings& p = config_.prune;
-  if (step_ % p.every != 0) {
-    tracer_->refit();
-    return 0;
+  if (step_ % p.every == 0) {
+    if (step_ < p.start) {  // intervals before the first prune only restart the accumulator
+      std::fill(pruneWeight_.begin(), pruneWeight_.end(), 0.0f);
+    } else {
+      report->pruned = prune();
+      changed = report->pruned > 0;
+    }
   }
-  if (step_ < p.start) {  // intervals before the first prune only restart the accumulator
-    std::fill(pruneWeight_.begin(), pruneWeight_.end(), 0.0f);
-    tracer_->refit();
-    return 0;
+  const DensifySettings& d = config_.densify;
+  if (d.fraction > 0 && step_ % d.every == 0) {
+    if (step_ >= d.start && step_ <= d.stop) report->split = densify();
+    changed = changed || report->split > 0;
+    std::fill(densifyScore_.begin(), densifyScore_.end(), 0.0f);
   }
+  if (changed)
+    tracer_->build(scene_, config_.trace);
+  else
+    tracer_->refit();
+}
+
+size_t Trainer::prune() {
+  const PruneSettings& p = config_.prune;
   // Weight per full training image, averaged over the interval's steps (appendix A.4).
   const double perImage = views_.meanPixelsPerView() / double(config_.batchRays);
   const double scale = perImage / double(p.every);
@@ -245,15 +287,26 @@ size_t Trainer::housekeeping() {
                                                   "; lower prune.weight_threshold");
   size_t removed = scene_.size() - kept;
   std::fill(pruneWeight_.begin(), pruneWeight_.end(), 0.0f);
-  if (removed == 0) {
-    tracer_->refit();
-    return 0;
-  }
+  if (removed == 0) return 0;
   scene_.filter(keep);
   adam_.filter(keep);
+  keepSelected(densifyScore_, keep);
   pruneWeight_.assign(scene_.size(), 0.0f);
-  tracer_->build(scene_, config_.trace);
   return removed;
+}
+
+size_t Trainer::densify() {
+  const DensifySettings& d = config_.densify;
+  const size_t room = size_t(std::max<int64_t>(d.maxGaussians - int64_t(scene_.size()), 0));
+  const std::vector<uint32_t> parents = chooseSplits(densifyScore_, d.fraction, room);
+  if (parents.empty()) return 0;
+  splitGaussians(&scene_, parents);
+  adam_.appendCopies(parents);
+  // The children share the parent's weight so far, so that the current pruning interval
+  // judges them as it judges the Gaussians that were not split.
+  for (uint32_t i : parents) pruneWeight_.push_back(pruneWeight_[i]);
+  densifyScore_.resize(scene_.size(), 0.0f);
+  return parents.size();
 }
 
 }  // namespace glint

@@ -34,6 +34,7 @@ struct StepReport {
   int64_t reflectedSegments = 0;  // traced after first segments (0 before reflections start)
   int64_t overflowedRays = 0;  // rays whose hit list overflowed (no gradient; never expected)
   size_t pruned = 0;         // removed this step (weight pruning and camera spheres)
+  size_t split = 0;          // Gaussians split in two this step (train/densify.h)
   size_t farFieldAdded = 0;  // far-field Gaussians added before this step (when reflections start)
   size_t reflectionSeedsAdded = 0;  // of them, seeded along mirror reflections (train/reflection_seeds.h)
   double seconds = 0;        // wall time of the step
@@ -76,7 +77,14 @@ class Trainer {
   struct Slot;  // per-thread scratch and gradient buffer
 
   void setUp(const std::string& tracerKind);
-  size_t housekeeping();
+  // Pruning, densification, and the tracer's refit or rebuild; fills report->pruned and
+  // report->split.
+  void housekeeping(StepReport* report);
+  // Splits the Gaussians of highest densification score (train/densify.h); returns how many.
+  size_t densify();
+  size_t prune();  // weight pruning and camera-sphere culling; returns how many went
+  // Whether this step's backward pass accumulates the densification score.
+  bool scoringSplits() const;
   // Appends the far-field Gaussians outside the camera spheres and the reflection seeds;
   // returns how many of each.
   std::pair<size_t, size_t> addFarField();
@@ -89,6 +97,8 @@ class Trainer {
   int64_t step_ = 0;
   AdamOptimizer adam_;
   std::vector<float> pruneWeight_;
+  std::vector<float> densifyScore_;  // split score accumulated since the last densify step
+  std::vector<float> sigmaMax_;      // largest standard deviation per Gaussian, for the score
   std::unique_ptr<GaussianTracer> tracer_;
   std::vector<std::unique_ptr<Slot>> slots_;
   std::vector<BatchRay> batch_;

@@ -40,6 +40,8 @@ TrainingState randomState() {
   s.adam.setStepCount(4000);
   s.pruneWeight.resize(s.scene.size());
   for (float& w : s.pruneWeight) w = r();
+  s.densifyScore.resize(s.scene.size());
+  for (float& w : s.densifyScore) w = r();
   return s;
 }
 
@@ -71,12 +73,14 @@ TEST(Checkpoint, RoundTripIsBitExact) {
     EXPECT_TRUE(sameBytes(back.adam.secondMoment().values[p], s.adam.secondMoment().values[p])) << p;
   }
   EXPECT_TRUE(sameBytes(back.pruneWeight, s.pruneWeight));
+  EXPECT_TRUE(sameBytes(back.densifyScore, s.densifyScore));
 }
 
 // A checkpoint written before the parameter table (scene/gaussian_parameters.h) chose its
-// arrays (tests/data/README.md) loads with every array in its place, and is written again
-// byte for byte.
-TEST(Checkpoint, FileWrittenBeforeTheParameterTableLoadsAndRewritesIdentically) {
+// arrays (tests/data/README.md) loads with every array in its place and a zero
+// densification score (version 1 had none); written again as version 2 it differs from the
+// old file only in the version and the appended score.
+TEST(Checkpoint, VersionOneFileLoadsAndRewritesWithOnlyTheScoreAdded) {
   const std::filesystem::path folder = std::filesystem::path(GLINT_TEST_DATA) / "version1_run";
   TrainingState state = readCheckpoint(folder / "state.bin");
   EXPECT_EQ(state.step, 12);
@@ -98,9 +102,19 @@ TEST(Checkpoint, FileWrittenBeforeTheParameterTableLoadsAndRewritesIdentically) 
   EXPECT_EQ(position[2], 0.023812226951122284f);
   EXPECT_EQ(state.adam.firstMoment().of(&GaussianScene::rotation)[3], -0.00017370961722917855f);
 
+  EXPECT_EQ(state.densifyScore, std::vector<float>(state.scene.size(), 0.0f));
+
   test::TempFolder temp;
   writeCheckpoint(temp.path() / "state.bin", state);
-  EXPECT_EQ(test::readBytes(temp.path() / "state.bin"), test::readBytes(folder / "state.bin"));
+  const auto written = test::readBytes(temp.path() / "state.bin");
+  auto old = test::readBytes(folder / "state.bin");
+  // Version 2: the version word becomes 2, and before the checksum come the score's count
+  // and its zero floats.
+  const size_t checksum = sizeof(uint64_t), scoreBytes = sizeof(uint64_t) + state.scene.size() * sizeof(float);
+  ASSERT_EQ(written.size(), old.size() + scoreBytes);
+  old[8] = 2;
+  const auto body = [](const auto& bytes, size_t end) { return std::vector<char>(bytes.begin(), bytes.begin() + end); };
+  EXPECT_EQ(body(written, old.size() - checksum), body(old, old.size() - checksum));
 }
 
 TEST(Checkpoint, RejectsBadFiles) {

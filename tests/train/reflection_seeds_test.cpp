@@ -1,9 +1,12 @@
 // Reflection seeds: over a mirror floor seen from above, seeds fill only the space the
 // mirror shows and no camera sees directly, carry the radiance the specular buffer implies,
-// and are not made for rough floors.
+// stop on a textured ceiling where the views' reflections agree, and are not made for
+// rough floors.
 #include "train/reflection_seeds.h"
 
 #include <gtest/gtest.h>
+
+#include <cmath>
 
 #include "bsdf/fresnel.h"
 #include "io/temp_folder.h"
@@ -13,26 +16,42 @@
 namespace glint {
 namespace {
 
-constexpr float kSpecular = 0.1f;
+constexpr float kSky = 2.0f;  // radiance of the uniform sky above the cameras
 
-// Training views of the plane z = 0 from a ring of eyes above it, with the given roughness
-// and a uniform specular buffer (the reflection of a bright, uniform sky above the cameras),
-// written under root and loaded as training targets.
-TrainingViews floorViews(const std::filesystem::path& root, float roughness) {
+// A checkered ceiling at z = kCeiling above the cameras, which look down and never see it.
+constexpr double kCeiling = 6.0;
+Rgb ceilingRadiance(const Vec3d& p) {
+  const int square = int(std::floor(p.x / 0.5)) + int(std::floor(p.y / 0.5));
+  return Rgb((square % 2 + 2) % 2 == 0 ? 0.9f : 0.15f);
+}
+
+// Training views of the plane z = 0 from a ring of eyes above it, with the given roughness,
+// written under root and loaded as training targets. The specular buffer is F x the
+// radiance the mirror-reflected ray meets: a bright, uniform sky above the cameras, or with
+// `ceiling`, the checkered ceiling; `eyes` and the resolution are the plane dataset's
+// unless given.
+TrainingViews floorViews(const std::filesystem::path& root, float roughness, bool ceiling = false,
+                         std::vector<Vec3d> eyes = test::ringOfEyes(8), int width = test::kPlaneWidth,
+                         int height = test::kPlaneHeight) {
   DatasetSplit train;
   train.name = "train";
-  train.width = test::kPlaneWidth;
-  train.height = test::kPlaneHeight;
-  std::vector<Vec3d> eyes = test::ringOfEyes(8);
+  train.width = width;
+  train.height = height;
   for (size_t i = 0; i < eyes.size(); ++i) {
     train.views.push_back(test::planeView("train", int(i), eyes[i], Vec3d(0.1 * double(i), 0, 0)));
+    train.views.back().camera = Camera::fromFieldOfView(train.views.back().camera.cameraToWorld, 0.9, width, height);
     ViewBuffers b = test::planeBuffers(train.camera(i));
     for (int y = 0; y < train.height; ++y)
       for (int x = 0; x < train.width; ++x) {
         if (b[Buffer::Depth].at(x, y) == 0.0f) continue;
         b[Buffer::Roughness].at(x, y) = roughness;
-        b[Buffer::Specular].setRgb(x, y, Rgb(kSpecular));
-        b[Buffer::Render].setRgb(x, y, b[Buffer::Diffuse].rgb(x, y) + Rgb(kSpecular));
+        const Ray eye = train.camera(i).generateRay(x + 0.5, y + 0.5);
+        const Vec3d floor = eye.origin + eye.direction * double(b[Buffer::Depth].at(x, y));
+        const Vec3d up(eye.direction.x, eye.direction.y, -eye.direction.z);
+        const Rgb F = F_Schlick(Rgb(0.04f), float(up.z));
+        const Rgb specular = F * (ceiling ? ceilingRadiance(floor + up * (kCeiling / up.z)) : Rgb(kSky));
+        b[Buffer::Specular].setRgb(x, y, specular);
+        b[Buffer::Render].setRgb(x, y, b[Buffer::Diffuse].rgb(x, y) + specular);
       }
     writeViewBuffers(root, train.views.back(), b, ImageFormat::Exr);
   }
@@ -45,6 +64,17 @@ TrainingViews floorViews(const std::filesystem::path& root, float roughness) {
   writeTransforms(root, testSplit);
   Dataset dataset = Dataset::open(root);
   return TrainingViews::load(dataset, dataset.train());
+}
+
+// 24 eyes on a ring above the floor, all looking down at it: enough views and pixels that
+// many reflected rays cross each cell of the photo-consistency test.
+std::vector<Vec3d> manyEyes() {
+  std::vector<Vec3d> eyes;
+  for (int i = 0; i < 24; ++i) {
+    const double angle = 2.0 * 3.14159265358979 * i / 24;
+    eyes.push_back(Vec3d(2.0 * std::cos(angle), 2.0 * std::sin(angle), 3.0 + 0.02 * i));
+  }
+  return eyes;
 }
 
 // The warm-up's scene: nothing but one small Gaussian far away, so no reflection is explained.
@@ -66,14 +96,13 @@ std::unique_ptr<GaussianTracer> emptyTracer(const TraceSettings& trace) {
 
 TEST(ReflectionSeeds, FillOnlyTheUnobservedSpaceTheMirrorShows) {
   test::TempFolder folder;
-  TrainingViews views = floorViews(folder.path(), 0.02f);
+  TrainingViews views = floorViews(folder.path(), 0.02f, /*ceiling=*/false, manyEyes(), 48, 36);
   TraceSettings trace;
   FarFieldSettings s;
   s.reflectionSeeds = 500;
   GaussianScene seeds = reflectionSeeds(s, views, *emptyTracer(trace), trace, 0.1f, 3.5f, 11);
   ASSERT_GT(seeds.size(), 50u);
   EXPECT_LE(seeds.size(), 500u);
-  const Rgb fNormal = F_Schlick(Rgb(0.04f), 1.0f), fGrazing = F_Schlick(Rgb(0.04f), 0.05f);
   size_t seenInMirror = 0;
   for (size_t i = 0; i < seeds.size(); ++i) {
     const Vec3d p(seeds.position[i]);
@@ -95,8 +124,7 @@ TEST(ReflectionSeeds, FillOnlyTheUnobservedSpaceTheMirrorShows) {
     seenInMirror += mirroredInView;
     // The colour is the sky's radiance the specular buffer implies: specular / Fresnel
     // (within the training targets' packing: F0 in 8 bits, specular in RGB9E5).
-    EXPECT_GE(seeds.diffuse[i].x, 0.97f * kSpecular / fGrazing.x);
-    EXPECT_LE(seeds.diffuse[i].x, 1.03f * kSpecular / fNormal.x);
+    EXPECT_NEAR(seeds.diffuse[i].x, kSky, 0.03f * kSky);
     EXPECT_EQ(seeds.normal[i], Vec3f(0.0f));  // paths end at them, as at the far field
   }
   // Every seed lies on a ray some camera sees reflected (its mirror image is in a view);
@@ -109,9 +137,32 @@ TEST(ReflectionSeeds, FillOnlyTheUnobservedSpaceTheMirrorShows) {
   EXPECT_EQ(again.position[0], seeds.position[0]);
 }
 
+// A textured ceiling that only the mirror shows: photo-consistency puts the seeds on it,
+// where every view's reflection agrees, with its colour; not in the empty space between,
+// which each view sees a different part of the checkerboard through.
+TEST(ReflectionSeeds, StopWhereTheViewsReflectionsAgree) {
+  test::TempFolder folder;
+  TrainingViews views = floorViews(folder.path(), 0.02f, /*ceiling=*/true, manyEyes(), 64, 48);
+  TraceSettings trace;
+  FarFieldSettings s;
+  s.reflectionSeeds = 20000;
+  const float sceneRadius = 7.0f, cell = sceneRadius / 48.0f;
+  GaussianScene seeds = reflectionSeeds(s, views, *emptyTracer(trace), trace, 0.1f, sceneRadius, 3);
+  ASSERT_GT(seeds.size(), 100u);
+  size_t onCeiling = 0, rightColour = 0;
+  for (size_t i = 0; i < seeds.size(); ++i) {
+    const Vec3d p(seeds.position[i]);
+    if (std::abs(p.z - kCeiling) > 3.0 * cell) continue;
+    ++onCeiling;
+    rightColour += std::abs(seeds.diffuse[i].x - ceilingRadiance(p).x) < 0.1f;
+  }
+  EXPECT_GE(double(onCeiling), 0.8 * double(seeds.size())) << onCeiling << " of " << seeds.size();
+  EXPECT_GE(double(rightColour), 0.8 * double(onCeiling)) << rightColour << " of " << onCeiling;
+}
+
 TEST(ReflectionSeeds, NoneForRoughSurfacesOrWhenSwitchedOff) {
   test::TempFolder folder;
-  TrainingViews views = floorViews(folder.path(), 0.5f);
+  TrainingViews views = floorViews(folder.path(), 0.5f, /*ceiling=*/false, manyEyes(), 48, 36);
   TraceSettings trace;
   FarFieldSettings s;
   s.reflectionSeeds = 500;

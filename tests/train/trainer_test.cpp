@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 
@@ -262,6 +263,36 @@ TEST_F(TrainerTest, PruningThresholdScalesWithThePixelCount) {
   EXPECT_GT(sizeAfter(46.0 * views_->meanPixelsPerView()), unscaled);
 }
 
+// Densification splits the chosen share of the Gaussians at its steps only, and the run
+// goes on with the children (their Adam moments copied from the parents).
+TEST_F(TrainerTest, DensificationSplitsTheChosenShareOnSchedule) {
+  TrainConfig c = smallConfig();
+  c.prune.start = 1000;  // no pruning: the count changes by the splits alone
+  c.densify.fraction = 0.1f;
+  c.densify.every = 5;
+  c.densify.start = 10;
+  c.densify.stop = 15;
+  std::unique_ptr<Trainer> t = makeTrainer(c);
+  std::vector<size_t> splits;
+  for (int i = 0; i < 20; ++i) {
+    const size_t before = t->scene().size();
+    const StepReport r = t->step();
+    EXPECT_EQ(r.gaussians, before + r.split);
+    splits.push_back(r.split);
+  }
+  for (int i = 0; i < 20; ++i) {
+    const int stepAfter = i + 1;
+    if (stepAfter == 10 || stepAfter == 15)
+      EXPECT_GT(splits[size_t(i)], 0u) << stepAfter;
+    else
+      EXPECT_EQ(splits[size_t(i)], 0u) << stepAfter;
+  }
+  const size_t initial = makeTrainer(c)->scene().size();
+  EXPECT_EQ(splits[9], size_t(std::ceil(0.1 * double(initial))));
+  const GaussianScene& scene = t->scene();
+  for (size_t i = 0; i < scene.size(); ++i) ASSERT_TRUE(std::isfinite(scene.position[i].x)) << i;
+}
+
 TEST_F(TrainerTest, ResumedRunIsBitExact) {
   TrainConfig c = smallConfig();
   c.bounces = 1;  // reflections and the far-field Gaussians start after the resume
@@ -270,6 +301,10 @@ TEST_F(TrainerTest, ResumedRunIsBitExact) {
   c.prune.start = 20;  // prunes (and rebuilds the tracer) on both sides of the resume
   c.prune.every = 10;
   c.prune.weightThreshold = 0.5f;
+  c.densify.fraction = 0.05f;  // splits (and their accumulated scores) on both sides too
+  c.densify.every = 10;
+  c.densify.start = 20;
+  c.densify.stop = 40;
   std::unique_ptr<Trainer> straight = makeTrainer(c);
   for (int i = 0; i < 50; ++i) straight->step();
 
