@@ -27,7 +27,7 @@ void TraceFlags::add(CLI::App* cmd) {
                       fallback(defaults.trace.minTransmittance));
   cmd->add_option("--bounces", bounces_,
                   "Reflection segments after the first (0 = diffuse only; specular = their sum, render = diffuse + "
-                  "specular); default: the run's" + fallback(defaults.path().bounces))
+                  "specular); default: the run's render_bounces" + fallback(defaults.renderPath().bounces))
       ->check(CLI::Range(kRenderBouncesRange.min, kRenderBouncesRange.max));
   cmd->add_option("--invalid-normal", invalidNormalLength_,
                   "A path ends where the blended normal is shorter than this before normalisation; default: the "
@@ -51,7 +51,7 @@ SceneRendering TraceFlags::resolve(TrainConfig run) const {
   if (given("--invalid-normal")) run.invalidNormalLength = invalidNormalLength_;
   if (given("--backface-skip")) run.backfaceSkip = backfaceSkip_;
   run.validate("command line");
-  SceneRendering rendering{run.trace, run.path(), tracer_};
+  SceneRendering rendering{run.trace, run.renderPath(), tracer_};
   if (given("--bounces")) rendering.path.bounces = bounces_;
   return rendering;
 }

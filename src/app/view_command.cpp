@@ -35,7 +35,7 @@ void runView(const ViewOptions& o) {
   fs::path output = opened / kViewerFolderName;
   ViewerOptions options = makeViewerOptions(o.viewer, dataset, source.scene, output);
   options.maxGaussians = o.maxGaussians;
-  options.path = source.settings.path();  // the page starts at the run's bounces
+  options.path = source.settings.renderPath();  // the page starts at the run's render bounces
   std::fprintf(stderr, "glint view: %zu Gaussians at %dx%d; saving edits into %s\n", source.scene.size(),
                options.width, options.height, output.string().c_str());
   ViewerServer server(std::move(options), std::move(source.scene), source.settings.trace);

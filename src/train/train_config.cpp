@@ -59,6 +59,7 @@ void forEachField(Config& c, F&& f) {
   f("", "seed", c.seed);
   f("", "threads", c.threads);
   f("", "bounces", c.bounces);
+  f("", "render_bounces", c.renderBounces);
   f("", "baseline", c.baseline);
   f("", "reflection_warmup", c.reflectionWarmup);
   f("", "invalid_normal_length", c.invalidNormalLength);
@@ -251,6 +252,7 @@ void TrainConfig::validate(const std::string& source) const {
   inRange(saveEvery, kEveryStepsRange, "save_every");
   inRange(threads, kThreadsRange, "threads");
   inRange(bounces, kBouncesRange, "bounces");
+  inRange(renderBounces, kRenderBouncesRange, "render_bounces");
   if (baseline == Baseline::Rgb)
     require(bounces == 0 && loss.depth == 0 && loss.normal == 0 && loss.roughness == 0 && loss.f0 == 0 &&
                 loss.specular == 0,

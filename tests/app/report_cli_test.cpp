@@ -120,7 +120,7 @@ TEST_F(ReportCliTest, WritesTheRunsPageAndNamesMissingInputs) {
       << compared.output;
   html = readBytes(path("R") + "/report.html");
   EXPECT_NE(html.find("All evaluations of this run"), std::string::npos);
-  EXPECT_NE(html.find("<td>metrics.json: 2 spp, 2 bounces (this page)</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td>metrics.json: 2 spp, 4 bounces (this page)</td>"), std::string::npos);  // render_bounces
   EXPECT_NE(html.find("<td>second.json: 3 spp, 1 bounces, denoised specular</td>"), std::string::npos);
   nlohmann::json secondMetrics = nlohmann::json::parse(readBytes(path("R") + "/eval/second.json"));
   EXPECT_EQ(secondMetrics["bounces"], 1);

@@ -1,7 +1,8 @@
 // A run trained with settings other than the defaults (invalid_normal_length, backface_skip,
 // kernel power) renders through `glint render RUN` bit for bit as training's own evaluation
-// renders it (train/training_eval.h): the command takes every trace and path setting from
-// the run's config.json. Flags still override them.
+// code renders it with the run's render path (train/training_eval.h, render_bounces): the
+// command takes every trace and path setting from the run's config.json. Flags still
+// override them.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -25,13 +26,13 @@ using test::Outcome;
 using test::runGlint;
 
 // Renders the test views with the trainer's tracer once the last step is done, as the
-// loop's evaluation renders them.
+// loop's evaluation renders them, with the run's render path.
 class FinalEvaluation : public TrainingObserver {
  public:
   FinalEvaluation(const TrainConfig& config, const TestViews& views) : config_(config), views_(views) {}
   void betweenSteps(const Trainer& trainer, const StepReport& report) override {
     if (report.step != config_.iters) return;
-    for (size_t k = 0; k < views_.size(); ++k) rendered.push_back(views_.render(trainer.tracer(), k, 1, config_.path()));
+    for (size_t k = 0; k < views_.size(); ++k) rendered.push_back(views_.render(trainer.tracer(), k, 1, config_.renderPath()));
   }
   std::vector<ViewBuffers> rendered;
 
@@ -77,7 +78,7 @@ TEST_F(RunSettingsCliTest, RenderOfARunIsBitForBitTheTrainersEvaluation) {
   Outcome render = runGlint("render " + run.root().string() + " --split test --no-jitter -o " + out.string());
   ASSERT_EQ(render.status, 0) << render.output;
   EXPECT_NE(render.output.find("p = 2,"), std::string::npos) << render.output;
-  EXPECT_NE(render.output.find("1 bounces"), std::string::npos) << render.output;
+  EXPECT_NE(render.output.find("4 bounces"), std::string::npos) << render.output;  // render_bounces
   bool anySpecular = false;
   for (size_t v = 0; v < views.size(); ++v) {
     for (Buffer b : kRenderedBuffers) {

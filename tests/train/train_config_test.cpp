@@ -62,6 +62,27 @@ TEST(TrainConfig, DefaultsAreThePapers) {
   nlohmann::json j = toJson(c);
   EXPECT_EQ(j["trace"]["kernel_power"], 2.0);  // Glint's choice, not the paper code's 3 (trace_settings.h)
   EXPECT_EQ(j["batch_rays"], 16384);
+  EXPECT_EQ(j["densify"]["fraction"], 0.1f);  // Glint's: the paper does not densify (densify.h)
+  EXPECT_EQ(j["render_bounces"], 4);
+}
+
+// Rendering a run follows render_bounces when the run trains reflections, never fewer than
+// it trained, and none when it trains none (the RGB baseline included).
+TEST(TrainConfig, RenderPathFollowsRenderBouncesOnlyForRunsWithReflections) {
+  TrainConfig c;
+  EXPECT_EQ(c.path().bounces, 2);
+  EXPECT_EQ(c.renderPath().bounces, 4);
+  c.bounces = 6;
+  EXPECT_EQ(c.renderPath().bounces, 6);
+  c.bounces = 0;
+  EXPECT_EQ(c.renderPath().bounces, 0);
+  c.bounces = 2;
+  c.baseline = Baseline::Rgb;
+  EXPECT_EQ(c.renderPath().bounces, 0);
+  c.baseline = Baseline::None;
+  c.renderBounces = 1;
+  EXPECT_EQ(c.renderPath().bounces, 2);
+  EXPECT_EQ(c.renderPath().invalidNormalLength, c.path().invalidNormalLength);
 }
 
 // Writes `text` as a config file and expects readTrainConfig to refuse it, naming the file
