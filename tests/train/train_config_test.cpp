@@ -44,7 +44,7 @@ TEST(TrainConfig, DefaultsAreThePapers) {
   EXPECT_EQ(c.loss.diffuse, 5.0f);
   EXPECT_EQ(c.loss.depth, 2.5f);
   EXPECT_EQ(c.loss.normal, 10.0f);  // Glint's choice, not the paper's 2.5 (train_config.h)
-  EXPECT_EQ(c.farField.reflectionSeeds, 0);  // measured worse on builtin:room (far_field.h)
+  EXPECT_EQ(c.farField.reflectionSeeds, 0);  // measured worse (far_field.h)
   EXPECT_EQ(c.lr.opacity, 2.5e-2f);
   EXPECT_EQ(c.adam.epsilon, 1e-15f);
   EXPECT_EQ(c.scaleDecay, 0.9999f);
