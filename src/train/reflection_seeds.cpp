@@ -18,7 +18,7 @@ namespace {
 
 // The most mirror pixels whose reflections vote (an even stride over all of them beyond
 // this): the photo-consistency test needs many rays per cell whatever the number of seeds
-// asked for, and marching them is the cost (about 5 s for this many on one core).
+// asked for, and marching them (a few hundred cells each) is the cost.
 constexpr size_t kMaxRays = 262144;
 // Photo-consistency (voxel colouring, Seitz and Dyer 1999): space is cut into cells of this
 // fraction of the scene radius; the colours (c / (1 + c) per channel, which keeps HDR
