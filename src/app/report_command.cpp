@@ -112,6 +112,15 @@ ReportView loadViewImages(const Dataset& dataset, const DatasetSplit& split, siz
                                                                                           : metrics.final;
     view.passes.push_back(std::move(pass));
   }
+  for (Buffer buffer : {Buffer::Normal, Buffer::Depth, Buffer::Roughness, Buffer::F0}) {
+    fs::path oursFile = renderedBufferPath(imagesFolder, split.views[v].filePath, buffer);
+    requireInput(oursFile, "run `glint eval " + run + " --save-images` first (it writes the rendered views)");
+    Image truth = dataset.loadBuffer(split, v, buffer), ours = readImage(oursFile);
+    if (ours.width != truth.width || ours.height != truth.height || ours.channels != truth.channels)
+      throw Error(oursFile.string(), "does not match the ground truth's " + std::string(bufferName(buffer)) +
+                                         " buffer in size or channels; re-run `glint eval` on this dataset");
+    view.gBuffers.push_back({bufferName(buffer), gBufferPictures(buffer, truth, ours)});
+  }
   return view;
 }
 
@@ -128,6 +137,11 @@ std::string formatSeconds(double seconds) {
 // The value of a log column in the last row, NaN for an empty log.
 double lastValue(const TrainingLog& log, const char* column) {
   return log.rows() == 0 ? std::nan("") : log.column(column).back();
+}
+
+// The edit file an evaluation applied (`glint eval --edits`), or "" for the unedited scene.
+std::string evaluationEdits(const nlohmann::json& m) {
+  return m.contains("edits") && m["edits"].is_string() ? m["edits"].get<std::string>() : "";
 }
 
 // How an evaluation was made, from its metrics file: "64 spp, 4 bounces, denoised specular".
@@ -163,7 +177,7 @@ std::vector<OtherEvaluation> otherEvaluations(const fs::path& primary, const Dat
                      mismatch.c_str());
         continue;
       }
-      others.push_back({file.filename().string() + ": " + evaluationSettings(m.all), m.mean});
+      others.push_back({file.filename().string() + ": " + evaluationSettings(m.all), m.mean, evaluationEdits(m.all)});
     } catch (const Error& e) {
       // The error names the file already.
       std::fprintf(stderr, "glint report: note: left out of the evaluations: %s\n", e.what());
@@ -239,6 +253,7 @@ void runReport(const ReportOptions& o) {
   content.mean = metrics.mean;
   content.perView = metrics.perView;
   content.evaluationLabel = metricsFile.filename().string() + ": " + evaluationSettings(metrics.all);
+  content.evaluationEdits = evaluationEdits(metrics.all);
   content.otherEvaluations = otherEvaluations(metricsFile, split, datasetPath);
   size_t shown = o.views < 0 ? split.views.size() : std::min(split.views.size(), size_t(o.views));
   {
@@ -248,6 +263,10 @@ void runReport(const ReportOptions& o) {
           loadViewImages(dataset, split, v, metricsFile.parent_path() / split.name, metrics.perView[v].second, o.run));
       progress.advance();
     }
+  }
+  if (config) {  // the file as written, every setting of the run (defaults included)
+    content.configSource = configFile.string();
+    content.configText = readJsonFile(configFile).dump(2);
   }
   content.charts = trainingCharts(log);
   content.chartNote = "Lines are running means over " + std::to_string(kSmoothingSteps) +
@@ -274,8 +293,11 @@ void addReportCommand(CLI::App& app) {
       "Write RUN/report.html, one self-contained page (no network, no other files) of a training run: its "
       "settings, the mean and per-view metrics of `glint eval` (RUN/eval/metrics.json, compared in one table with "
       "every other metrics file of RUN/eval/ on the same views), ground truth against ours for the diffuse, specular "
-      "and final passes of each test view, and the training curves. Needs RUN/config.json and RUN/log.csv (from "
-      "`glint train`) and RUN/eval/ (from `glint eval RUN --save-images`).");
+      "and final passes of each test view with per-pixel error maps, the G-buffers (normal, depth, roughness, F0) "
+      "beside the ground truth's, a table of edit consistency when some evaluation applied --edits, the whole "
+      "training configuration, and the training curves. LPIPS is left out (it needs a network's trained weights). "
+      "Needs RUN/config.json and RUN/log.csv (from `glint train`) and RUN/eval/ (from `glint eval RUN "
+      "--save-images`).");
   cmd->add_option("run", o->run, "Training run folder")->required();
   cmd->add_option("-o,--output", o->output, "Page to write (default RUN/report.html, rewritten each time), atomically");
   cmd->add_option("--dataset", o->dataset, "Dataset with the ground truth; default: the dataset of RUN/config.json");

@@ -1,5 +1,7 @@
-// Markup of the report page: header facts, metric tables, image pairs per view, charts.
+// Markup of the report page: header facts, metric tables, images per view, charts, config.
 #include "eval/html_report.h"
+
+#include <algorithm>
 
 #include "io/base64.h"
 #include "io/tonemap.h"
@@ -27,6 +29,12 @@ tr.mean td { font-weight: 600; border-top: 2px solid #ccc; }
 .passes { display: grid; grid-template-columns: repeat(3, minmax(0, 1fr)); gap: 16px; }
 .pass-name { font-size: 12px; color: #555; text-transform: uppercase; letter-spacing: .05em; margin-bottom: 3px; }
 .pair { display: grid; grid-template-columns: 1fr 1fr; gap: 4px; }
+.triple { display: grid; grid-template-columns: repeat(3, 1fr); gap: 4px; }
+.gbuffers { display: grid; grid-template-columns: repeat(4, minmax(0, 1fr)); gap: 16px; margin-top: 10px; }
+.ramp { display: inline-block; width: 160px; height: 10px; vertical-align: middle; border-radius: 2px;
+        background: linear-gradient(to right, #000, #470f73, #bf3361, #fa8c1a, #fcf7b3); }
+pre.config { background: #fff; padding: 10px 12px; border-radius: 6px; overflow-x: auto; font-size: 12.5px; }
+details summary { cursor: pointer; color: #444; }
 figure { margin: 0; }
 figure img { display: block; width: 100%; height: auto; image-rendering: pixelated; background: #000; }
 figcaption { font-size: 12px; color: #444; margin-top: 2px; font-variant-numeric: tabular-nums; }
@@ -95,10 +103,21 @@ std::string perViewTable(const std::vector<std::pair<std::string, ViewMetrics>>&
   return html;
 }
 
-std::string figure(const Image& linear, const std::string& alt, const std::string& caption) {
-  return "<figure><img src=\"" + tonemappedPngDataUri(linear) + "\" width=\"" + std::to_string(linear.width) +
-         "\" height=\"" + std::to_string(linear.height) + "\" alt=\"" + escapeXml(alt) + "\"><figcaption>" + caption +
+std::string figureOf(const std::string& dataUri, const Image& image, const std::string& alt,
+                     const std::string& caption) {
+  return "<figure><img src=\"" + dataUri + "\" width=\"" + std::to_string(image.width) + "\" height=\"" +
+         std::to_string(image.height) + "\" alt=\"" + escapeXml(alt) + "\"><figcaption>" + caption +
          "</figcaption></figure>";
+}
+
+// A figure of linear radiance, tonemapped.
+std::string figure(const Image& linear, const std::string& alt, const std::string& caption) {
+  return figureOf(tonemappedPngDataUri(linear), linear, alt, caption);
+}
+
+// A figure of an image already in display values (error maps, G-buffers).
+std::string displayFigure(const Image& shown, const std::string& alt, const std::string& caption) {
+  return figureOf(displayPngDataUri(shown), shown, alt, caption);
 }
 
 std::string viewSection(const ReportView& view) {
@@ -106,12 +125,58 @@ std::string viewSection(const ReportView& view) {
   for (const ReportPass& p : view.passes) {
     std::string caption = "ours <b>" + escapeXml(formatMetric(p.metrics.psnrTonemapped, 2)) +
                           " dB</b> &middot; linear " + escapeXml(formatMetric(p.metrics.psnr, 2));
-    html += "<div><div class=\"pass-name\">" + escapeXml(p.name) + "</div><div class=\"pair\">" +
+    html += "<div><div class=\"pass-name\">" + escapeXml(p.name) + "</div><div class=\"triple\">" +
             figure(p.truth, view.name + " " + p.name + " ground truth", "ground truth") +
-            figure(p.ours, view.name + " " + p.name + " ours", caption) + "</div></div>\n";
+            figure(p.ours, view.name + " " + p.name + " ours", caption) +
+            displayFigure(errorMap(p.truth, p.ours), view.name + " " + p.name + " error map", "error") +
+            "</div></div>\n";
   }
-  html += "</div></section>\n";
+  html += "</div>\n";
+  if (!view.gBuffers.empty()) {
+    html += "<div class=\"gbuffers\">\n";
+    for (const ReportGBuffer& g : view.gBuffers)
+      html += "<div><div class=\"pass-name\">" + escapeXml(g.name) + "</div><div class=\"pair\">" +
+              displayFigure(g.pictures.truth, view.name + " " + g.name + " ground truth", "ground truth") +
+              displayFigure(g.pictures.ours, view.name + " " + g.name + " ours", "ours") +
+              "</div><div class=\"hint\">" + escapeXml(g.pictures.scale) + "</div></div>\n";
+    html += "</div>\n";
+  }
+  html += "</section>\n";
   return html;
+}
+
+// Edited evaluations (`glint eval --edits` against the edited scene's own ground truth)
+// against the run's unedited one: how much of each pass an edit costs. Empty when the run
+// has no edited evaluation or no unedited one to compare with.
+std::string editConsistencyTable(const HtmlReportContent& c) {
+  std::vector<OtherEvaluation> all = c.otherEvaluations;
+  all.insert(all.begin(), {c.evaluationLabel + " (this page)", c.mean, c.evaluationEdits});
+  const OtherEvaluation* unedited = nullptr;
+  for (const OtherEvaluation& e : all)
+    if (e.edits.empty()) {
+      unedited = &e;
+      break;
+    }
+  bool anyEdited = std::any_of(all.begin(), all.end(), [](const OtherEvaluation& e) { return !e.edits.empty(); });
+  if (!unedited || !anyEdited) return "";
+  std::string html = "<table><thead><tr><th>edit file</th>";
+  for (const char* pass : {"diffuse", "specular", "final"})
+    html += std::string("<th>") + pass + " PSNR 8-bit</th><th>" + pass + " drop</th>";
+  html += "</tr></thead><tbody>\n<tr>" + cell("none (" + unedited->label + ")");
+  for (const PassMetrics* p : {&unedited->mean.diffuse, &unedited->mean.specular, &unedited->mean.final})
+    html += cell(formatMetric(p->psnrTonemapped, 2)) + cell("-");
+  html += "</tr>\n";
+  for (const OtherEvaluation& e : all) {
+    if (e.edits.empty()) continue;
+    html += "<tr>" + cell(e.edits);
+    const PassMetrics* before[] = {&unedited->mean.diffuse, &unedited->mean.specular, &unedited->mean.final};
+    const PassMetrics* after[] = {&e.mean.diffuse, &e.mean.specular, &e.mean.final};
+    for (int k = 0; k < 3; ++k)
+      html += cell(formatMetric(after[k]->psnrTonemapped, 2)) +
+              cell(formatMetric(before[k]->psnrTonemapped - after[k]->psnrTonemapped, 2) + " dB");
+    html += "</tr>\n";
+  }
+  return html + "</tbody></table>\n";
 }
 
 }  // namespace
@@ -120,8 +185,10 @@ std::string tonemappedPngDataUri(const Image& linear) {
   Image shown(linear.width, linear.height, 3);
   for (int y = 0; y < linear.height; ++y)
     for (int x = 0; x < linear.width; ++x) shown.setRgb(x, y, tonemapFilmic(linear.rgb(x, y)));
-  return "data:image/png;base64," + encodeBase64(encodePng(shown));
+  return displayPngDataUri(shown);
 }
+
+std::string displayPngDataUri(const Image& shown) { return "data:image/png;base64," + encodeBase64(encodePng(shown)); }
 
 std::string renderHtmlReport(const HtmlReportContent& c) {
   std::string html = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -134,16 +201,24 @@ std::string renderHtmlReport(const HtmlReportContent& c) {
   html += "<section><h2>Metrics (mean over " + std::to_string(c.perView.size()) + " views)</h2>\n" + meanTable(c.mean);
   html += "<p class=\"hint\">PSNR and SSIM in linear space (data range 1) and on 8-bit images made with the filmic "
           "tonemap, as shown below. SSIM: 11x11 Gaussian window, sigma 1.5. Depth and normals where the ground "
-          "truth has a surface.</p>\n</section>\n";
+          "truth has a surface. LPIPS is not reported: it needs the trained weights of a neural network, which Glint "
+          "neither ships nor downloads.</p>\n</section>\n";
   if (!c.otherEvaluations.empty())
     html += "<section><h2>All evaluations of this run</h2>\n" + evaluationsTable(c) +
             "<p class=\"hint\">Every metrics file of <code>glint eval</code> in the run's eval folder, on the same "
             "views.</p>\n</section>\n";
+  if (std::string edits = editConsistencyTable(c); !edits.empty())
+    html += "<section><h2>Edit consistency</h2>\n" + edits +
+            "<p class=\"hint\">Each edited evaluation is scored against the edited scene's own ground truth "
+            "(<code>glint synth --edits</code>, then <code>glint eval --edits</code>); the drop is the unedited "
+            "evaluation's 8-bit PSNR minus the edited one's.</p>\n</section>\n";
   html += "<section><h2>Per view</h2>\n" + perViewTable(c.perView, c.mean) + "</section>\n";
 
   if (!c.views.empty()) {
     html += "<section><h2>Views: ground truth and ours</h2>\n<p class=\"hint\">Filmic tonemap (the same as the 8-bit "
-            "metrics). Under each of ours: the view's PSNR on the 8-bit images, then in linear space.</p>\n";
+            "metrics). Under each of ours: the view's PSNR on the 8-bit images, then in linear space. Error maps: "
+            "the largest channel difference of the 8-bit images per pixel, <span class=\"ramp\"></span> from 0 to "
+            "64 levels of 255 or more. Below, the G-buffers the evaluation rendered beside the ground truth's.</p>\n";
     for (const ReportView& v : c.views) html += viewSection(v);
     html += "</section>\n";
   }
@@ -154,6 +229,9 @@ std::string renderHtmlReport(const HtmlReportContent& c) {
     if (!c.chartNote.empty()) html += "<p class=\"hint\">" + escapeXml(c.chartNote) + "</p>\n";
     html += "</section>\n";
   }
+  if (!c.configText.empty())
+    html += "<section><h2>Training configuration</h2>\n<details><summary>" + escapeXml(c.configSource) +
+            "</summary>\n<pre class=\"config\">" + escapeXml(c.configText) + "</pre></details>\n</section>\n";
   if (!c.note.empty()) html += "<footer>" + escapeXml(c.note) + "</footer>\n";
   html += "</body>\n</html>\n";
   return html;

@@ -85,7 +85,12 @@ TEST_F(ReportCliTest, WritesTheRunsPageAndNamesMissingInputs) {
   }
   EXPECT_EQ(countOf(html, "<section class=\"view\">"), 2);
   EXPECT_EQ(countOf(html, "<td>test/render/render_000"), 2);
-  EXPECT_EQ(countOf(html, "src=\"data:image/png;base64,"), 12);
+  // Per view: ground truth, ours and error map of three passes; ground truth and ours of
+  // the normal, depth, roughness and F0 buffers.
+  EXPECT_EQ(countOf(html, "src=\"data:image/png;base64,"), 2 * (3 * 3 + 4 * 2));
+  EXPECT_NE(html.find("<h2>Training configuration</h2>"), std::string::npos);
+  EXPECT_NE(html.find("&quot;render_bounces&quot;: 4"), std::string::npos);  // the whole config, defaults too
+  EXPECT_EQ(html.find("Edit consistency"), std::string::npos);
   EXPECT_EQ(countOf(html, "<svg "), 4);  // loss, L1 terms, Gaussians, test PSNR
   EXPECT_NE(html.find("<dd>40 of 40"), std::string::npos);  // steps from the log and config
   EXPECT_EQ(html.find("src=\"http"), std::string::npos);
@@ -130,6 +135,27 @@ TEST_F(ReportCliTest, WritesTheRunsPageAndNamesMissingInputs) {
   EXPECT_NE(html.find(finalCell), std::string::npos) << finalCell;
   EXPECT_EQ(html.find("notes.json"), std::string::npos);
   EXPECT_EQ(html.find("train_split.json"), std::string::npos);
+
+  // An evaluation with --edits gets a row of the edit-consistency table, with its drop.
+  std::ofstream(path("edits.json"))
+      << R"({"glint_edits": 1, "selections": {"all": "everything"},
+            "operations": [{"op": "roughness", "selection": "all", "set": 0.9}]})";
+  Outcome edited = runGlint("eval " + path("R") + " --spp 2 --edits " + path("edits.json") + " -o " + path("R") +
+                            "/eval/edited.json");
+  ASSERT_EQ(edited.status, 0) << edited.output;
+  ASSERT_EQ(runGlint("report " + path("R")).status, 0);
+  html = readBytes(path("R") + "/report.html");
+  size_t table = html.find("<h2>Edit consistency</h2>");
+  ASSERT_NE(table, std::string::npos);
+  nlohmann::json editedMetrics = nlohmann::json::parse(readBytes(path("R") + "/eval/edited.json"));
+  char drop[64];
+  std::snprintf(drop, sizeof drop, "<td>%.2f dB</td></tr>",
+                metrics["mean"]["final"]["psnr_tonemapped"].get<double>() -
+                    editedMetrics["mean"]["final"]["psnr_tonemapped"].get<double>());
+  size_t row = html.find("<tr><td>" + path("edits.json") + "</td>", table);
+  ASSERT_NE(row, std::string::npos);
+  std::string cells = html.substr(row, html.find("</tr>", row) + 5 - row);
+  EXPECT_TRUE(cells.ends_with(drop)) << cells << " does not end with the final pass's drop " << drop;
 }
 
 TEST_F(ReportCliTest, CorruptInputsAreNamed) {

@@ -1,5 +1,6 @@
 // The report page: a section per view, escaped text, images as data: URIs whose PNGs hold
-// the tonemapped pixels, well-formed markup, no reference to anything outside the page.
+// the tonemapped pixels, error maps and G-buffers, the edit-consistency table and the
+// configuration, well-formed markup, no reference to anything outside the page.
 #include "eval/html_report.h"
 
 #include <gtest/gtest.h>
@@ -44,6 +45,8 @@ HtmlReportContent sampleContent(int views) {
     ReportView view{name, {}};
     for (const char* pass : {"diffuse", "specular", "final"})
       view.passes.push_back({pass, ramp(0.5f * float(v)), ramp(0.5f * float(v) + 0.05f), c.mean.diffuse});
+    for (const char* g : {"normal", "depth", "roughness", "f0"})
+      view.gBuffers.push_back({g, {Image(4, 3, 3, 0.25f), Image(4, 3, 3, 0.75f), "scale <of> " + std::string(g)}});
     c.views.push_back(view);
   }
   LineChart chart;
@@ -59,7 +62,12 @@ TEST(HtmlReportTest, HasASectionPerViewAndEscapesText) {
   EXPECT_EQ(html.rfind("<!DOCTYPE html>", 0), 0u);
   EXPECT_EQ(test::markupProblem(html, true), "");
   EXPECT_EQ(countOf(html, "<section class=\"view\">"), 3);
-  EXPECT_EQ(countOf(html, "<img "), 3 * 6);  // ground truth and ours of three passes
+  // Ground truth, ours and error map of three passes, ground truth and ours of four G-buffers.
+  EXPECT_EQ(countOf(html, "<img "), 3 * (9 + 8));
+  EXPECT_NE(html.find("scale &lt;of&gt; depth"), std::string::npos);
+  EXPECT_NE(html.find("LPIPS is not reported"), std::string::npos);
+  EXPECT_EQ(html.find("Edit consistency"), std::string::npos);  // no edited evaluation
+  EXPECT_EQ(html.find("Training configuration"), std::string::npos);  // none given
   for (int v = 0; v < 3; ++v) EXPECT_NE(html.find("<h3>test/render/render_000" + std::to_string(v)), std::string::npos);
   // Per-view table: three rows and the mean.
   EXPECT_EQ(countOf(html, "<td>test/render/render_000"), 3);
@@ -95,24 +103,70 @@ TEST(HtmlReportTest, ImagesAreTonemappedPngDataUris) {
     size_t begin = at + prefix.size();
     payloads.push_back(html.substr(begin, html.find('"', begin) - begin));
   }
-  ASSERT_EQ(payloads.size(), 12u);
+  constexpr size_t kPerView = 3 * 3 + 4 * 2;
+  ASSERT_EQ(payloads.size(), 2 * kPerView);
   test::TempFolder folder;
   for (size_t i = 0; i < payloads.size(); ++i) {
     std::optional<std::string> png = test::decodeBase64(payloads[i]);
     ASSERT_TRUE(png.has_value()) << i;
     ASSERT_EQ(png->substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << i;
-    // Decode the PNG and compare with the tonemapped radiance: image i belongs to view
-    // i / 6 and is its ground truth when i is even.
+    // Decode the PNG and compare with what it shows: per view, ground truth, ours and the
+    // error map of each pass, then ground truth (0.25) and ours (0.75) of each G-buffer.
     test::writeBytes(folder / "shown.png", *png);
     Image shown = readImage(folder / "shown.png");
     ASSERT_EQ(shown.width, 4);
     ASSERT_EQ(shown.height, 3);
-    Image linear = ramp(0.5f * float(i / 6) + (i % 2 == 0 ? 0.0f : 0.05f));
+    size_t view = i / kPerView, k = i % kPerView;
+    Image truth = ramp(0.5f * float(view)), ours = ramp(0.5f * float(view) + 0.05f);
+    Image expected;
+    if (k >= 9) {
+      expected = Image(4, 3, 3, (k - 9) % 2 == 0 ? 0.25f : 0.75f);
+    } else if (k % 3 == 2) {
+      expected = errorMap(truth, ours);
+    } else {
+      expected = k % 3 == 0 ? truth : ours;
+      for (float& value : expected.pixels) value = tonemapFilmic(value);
+    }
     for (int y = 0; y < 3; ++y)
       for (int x = 0; x < 4; ++x)
-        for (int ch = 0; ch < 3; ++ch)
-          EXPECT_NEAR(shown.at(x, y, ch), tonemapFilmic(linear.at(x, y, ch)), 0.5f / 255 + 1e-6f) << i;
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(shown.at(x, y, ch), expected.at(x, y, ch), 0.5f / 255 + 1e-6f) << i;
   }
+}
+
+TEST(HtmlReportTest, EditedEvaluationsGetTheirDropFromTheUneditedOne) {
+  HtmlReportContent c = sampleContent(1);
+  c.evaluationLabel = "metrics.json: 64 spp";
+  c.mean.final.psnrTonemapped = 30.0;
+  OtherEvaluation moved{"moved.json: 64 spp, edits move.json", c.mean, "move.json"};
+  moved.mean.final.psnrTonemapped = 28.75;
+  moved.mean.diffuse.psnrTonemapped = 31.2 - 2.5;
+  c.otherEvaluations = {{"more.json: 128 spp", c.mean, ""}, moved};
+  std::string html = renderHtmlReport(c);
+  EXPECT_EQ(test::markupProblem(html, true), "");
+  size_t table = html.find("<h2>Edit consistency</h2>");
+  ASSERT_NE(table, std::string::npos);
+  // The page's own evaluation is the unedited reference, not the other unedited one.
+  EXPECT_NE(html.find("<td>none (metrics.json: 64 spp (this page))</td>", table), std::string::npos);
+  size_t row = html.find("<tr><td>move.json</td>", table);
+  ASSERT_NE(row, std::string::npos);
+  std::string cells = html.substr(row, html.find("</tr>", row) - row);
+  EXPECT_NE(cells.find("<td>28.70</td><td>2.50 dB</td>"), std::string::npos) << cells;  // diffuse
+  EXPECT_NE(cells.find("<td>28.75</td><td>1.25 dB</td>"), std::string::npos) << cells;  // final
+
+  // Without an unedited evaluation there is nothing to compare with.
+  c.evaluationEdits = "move.json";
+  c.otherEvaluations = {moved};
+  EXPECT_EQ(renderHtmlReport(c).find("Edit consistency"), std::string::npos);
+}
+
+TEST(HtmlReportTest, ConfigurationIsShownWholeAndEscaped) {
+  HtmlReportContent c = sampleContent(0);
+  c.configSource = "R/config.json";
+  c.configText = "{\n  \"dataset\": \"<D>\",\n  \"iters\": 8000\n}";
+  std::string html = renderHtmlReport(c);
+  EXPECT_EQ(test::markupProblem(html, true), "");
+  EXPECT_NE(html.find("<summary>R/config.json</summary>"), std::string::npos);
+  EXPECT_NE(html.find("&quot;dataset&quot;: &quot;&lt;D&gt;&quot;,\n  &quot;iters&quot;: 8000"), std::string::npos);
 }
 
 }  // namespace
