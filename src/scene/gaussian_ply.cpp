@@ -97,6 +97,13 @@ int shDegreeOf(int count) {
   return degree;
 }
 
+// A number as %g writes it: "0.9", "2.5", "1".
+std::string shortNumber(float value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", double(value));
+  return text;
+}
+
 // Gaussians with a non-zero f_rest_* value.
 size_t countNonZeroShRest(const PlyTable& table) {
   std::vector<bool> nonZero(table.count, false);
@@ -116,7 +123,9 @@ void importThreeDgs(const PlyTable& table, bool hasNormals, bool hasRoughness, b
   if (!hasNormals) setShortestAxisNormals(scene, medianPosition(scene));
   if (!hasRoughness) std::fill(scene.roughness.begin(), scene.roughness.end(), kImportedRoughness);
   if (!hasF0) std::fill(scene.f0.begin(), scene.f0.end(), Rgb(kImportedF0));
-  info.materialsSet = !hasNormals || !hasRoughness;
+  info.normalsSet = !hasNormals;
+  info.roughnessSet = !hasRoughness;
+  info.f0Set = !hasF0;
   info.shDegree = shDegreeOf(countShRest(table));
   info.gaussiansWithShRest = countNonZeroShRest(table);
 }
@@ -162,17 +171,17 @@ std::string describeImport(const GaussianPlyImport& import) {
   if (import.colour.colour == SplatColour::Linear) {
     line += "linear";
   } else {
-    char exposure[32];
-    std::snprintf(exposure, sizeof(exposure), "%g", double(import.colour.exposure));
-    line += "display-referred (inverse filmic tonemap, exposure " + std::string(exposure) + ")";
+    line += "display-referred (inverse filmic tonemap, exposure " + shortNumber(import.colour.exposure) + ")";
   }
-  if (!import.materialsSet) return line + "; materials from the file";
-  char materials[160];
-  std::snprintf(materials, sizeof(materials),
-                "; materials set to a rough dielectric (roughness %g, F0 %g) with normals along each Gaussian's "
-                "shortest axis, facing away from the median position",
-                double(kImportedRoughness), double(kImportedF0));
-  return line + materials;
+  if (!import.normalsSet && !import.roughnessSet && !import.f0Set) return line + "; materials from the file";
+  std::vector<std::string> set;
+  if (import.roughnessSet) set.push_back("roughness " + shortNumber(kImportedRoughness));
+  if (import.f0Set) set.push_back("F0 " + shortNumber(kImportedF0));
+  if (import.normalsSet)
+    set.push_back("normals along each Gaussian's shortest axis, facing away from the median position");
+  line += "; materials set to a rough dielectric (";
+  for (size_t i = 0; i < set.size(); ++i) line += (i > 0 ? ", " : "") + set[i];
+  return line + ")";
 }
 
 std::string droppedShWarning(const GaussianPlyImport& import, const std::string& file) {

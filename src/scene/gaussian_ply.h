@@ -36,7 +36,8 @@ struct GaussianPlyImport {
   PlyLayout layout = PlyLayout::Glint;  // the layout used (never Auto)
   // 3DGS only:
   SplatColourEncoding colour;       // how f_dc was decoded (the export comment's, else display)
-  bool materialsSet = false;        // normals and roughness were absent and set to the defaults
+  // Which material groups the file lacked and were set to the imported defaults.
+  bool normalsSet = false, roughnessSet = false, f0Set = false;
   int shDegree = 0;                 // the SH degree the f_rest_* properties hold (0 for none)
   size_t gaussiansWithShRest = 0;   // Gaussians with a non-zero f_rest coefficient (dropped)
 };

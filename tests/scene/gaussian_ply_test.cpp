@@ -186,7 +186,9 @@ TEST(GaussianPly, LayoutDetectionRuleAndExplicitOverride) {
   writeGaussianPly(glintPath, scene);
   exportGaussianPly3dgs(splatPath, scene);
   // A file without Glint's export comment holds display-referred colour.
-  GaussianScene asSh = readGaussianPly(glintPath, PlyLayout::ThreeDgs);
+  GaussianPlyImport import;
+  GaussianScene asSh = readGaussianPly(glintPath, PlyLayout::ThreeDgs, &import);
+  EXPECT_NE(describeImport(import).find("materials from the file"), std::string::npos) << describeImport(import);
   EXPECT_FLOAT_EQ(asSh.diffuse[2].y, untonemapFilmic(float(0.5 + kShC0 * scene.diffuse[2].y)));
   EXPECT_EQ(asSh.roughness[2], scene.roughness[2]);  // materials are still read
   EXPECT_EQ(asSh.normal[2], scene.normal[2]);
@@ -235,7 +237,7 @@ TEST(GaussianPly, ThreeDgsExportIsDisplayReferredStandardAndLoadsBack) {
   GaussianScene read = readGaussianPly(path, PlyLayout::Auto, &import);
   EXPECT_EQ(import.layout, PlyLayout::ThreeDgs);
   EXPECT_EQ(import.colour.colour, SplatColour::Display);
-  EXPECT_TRUE(import.materialsSet);
+  EXPECT_TRUE(import.normalsSet && import.roughnessSet && import.f0Set);
   EXPECT_EQ(import.gaussiansWithShRest, 0u);
   expectSameGeometry(scene, read);
   for (size_t i = 0; i < scene.size(); ++i) {
