@@ -83,7 +83,8 @@ void readAsciiPlyData(std::istream& in, uint64_t dataBytes, const PlyHeader& hea
   for (size_t e = 0; e < target; ++e) {
     const PlyElement& element = header.elements[e];
     const std::string where = "element '" + printableText(element.name) + "'";
-    for (uint64_t row = 0; row < element.count; ++row) {
+    // Rows without properties hold no tokens: a huge count of them is no work.
+    for (uint64_t row = 0; row < element.count && !element.properties.empty(); ++row) {
       for (const PlyProperty& property : element.properties) {
         if (property.isList) values.skipList(property, where);
         else values.next(property.type, property.name, where);
@@ -99,7 +100,7 @@ void readAsciiPlyData(std::istream& in, uint64_t dataBytes, const PlyHeader& hea
                                   " rows declared but only " + std::to_string(dataBytes) + " bytes of data follow");
   }
   for (auto& column : table.columns) column.resize(table.count);
-  for (size_t row = 0; row < table.count; ++row) {
+  for (size_t row = 0; row < table.count && tokensPerRow > 0; ++row) {
     const std::string where = table.element + " " + std::to_string(row);
     size_t c = 0;
     for (const PlyProperty& property : element.properties) {

@@ -256,6 +256,11 @@ TEST(Ply, AsciiKeepsEveryCheck) {
     test::writeBytes(path, c.text);
     for (const std::string& detail : c.details) expectErrorNaming([&] { readPly(path); }, path, detail);
   }
+  // Elements without properties hold nothing, however many rows they declare.
+  auto empty = folder / "empty_rows.ply";
+  test::writeBytes(empty, "ply\nformat ascii 1.0\nelement marker 1000000000000\nelement vertex 1000000000000\n"
+                          "end_header\n");
+  EXPECT_EQ(readPly(empty).count, 1000000000000u);
   // Lists inside the wanted element are skipped, as in binary files.
   auto lists = folder / "lists.ply";
   test::writeBytes(lists, "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty list uchar float extra\n"
