@@ -14,10 +14,11 @@
 namespace glint {
 
 // The far-field cloud is drawn around the training cameras' centre with a standard
-// deviation of 4 S (S = the camera sphere's radius, train/scene_extent.h). Five S keeps
-// the rooms Glint trains whole (builtin:room's far corners lie 3.9 S from its cameras'
-// centre, builtin:spheres' 1.7 S) and removes about 70% of the cloud, the part tens of
-// metres out that a splat viewer shows as fog around the scene.
+// deviation of 4 S (S = the camera sphere's radius, train/scene_extent.h), truncated at
+// 12 S. Five S keeps the builtin rooms whole (their farthest corners lie 3.9 S from the
+// training cameras' centre in builtin:room, 2.0 S in builtin:gallery, 1.8 S in
+// builtin:spheres) and removes about two thirds of the cloud (a chi distribution's tail),
+// the part tens of metres out that a splat viewer shows as fog around the scene.
 inline constexpr float kDefaultFarFieldRadius = 5.0f;
 
 // True for the Gaussians whose centre lies within radiusFactor x cameras.radius of
