@@ -2,7 +2,6 @@
 // the standard 3D Gaussian Splatting layout (for the wider ecosystem's viewers) or in Glint's,
 // optionally without the far field or cropped to a box.
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
@@ -19,8 +18,6 @@
 namespace glint {
 
 namespace {
-
-namespace fs = std::filesystem;
 
 struct ExportOptions {
   std::string input;

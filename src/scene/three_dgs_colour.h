@@ -7,8 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "math/vec.h"
-
 namespace glint {
 
 // Zeroth-order real spherical harmonic, Y_0^0 = 1 / (2 sqrt(pi)). 3DGS stores colour as
