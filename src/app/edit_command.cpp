@@ -1,11 +1,11 @@
 // `glint edit SCENE.ply|RUN EDITS.json -o OUT.ply`: bakes an edit file into a new Gaussian
 // scene (Glint's PLY layout), printing how many Gaussians each operation changed.
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "app/commands.h"
+#include "app/output_file.h"
 #include "app/scene_source.h"
 #include "core/error.h"
 #include "edit/edit_file.h"
@@ -16,10 +16,9 @@ namespace glint {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 struct EditOptions {
   std::string scene;
+  std::string inputLayout = "auto";
   std::string edits;
   std::string output;
   bool force = false;
@@ -27,10 +26,9 @@ struct EditOptions {
 };
 
 void runEdit(const EditOptions& o) {
-  if (fs::exists(o.output) && !o.force)
-    throw Error(o.output, "already exists; choose another -o file or pass --force to replace it");
+  refuseExistingOutput(o.output, o.force);
   EditDocument document = readEditFile(o.edits);  // validate before loading a large scene
-  SceneSource source = loadSceneSource(o.scene);
+  SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
   EditReport report = applyEdits(document, source.scene, o.maxGaussians);
   std::fprintf(stderr, "glint edit: %s with %s\n%s", o.scene.c_str(), o.edits.c_str(),
                formatEditReport(report).c_str());
@@ -49,6 +47,7 @@ void addEditCommand(CLI::App& app) {
       "edited scene as a new .ply in Glint's layout. Prints how many Gaussians each operation selected and warns "
       "about selections that hold none.");
   cmd->add_option("scene", o->scene, "Gaussian scene .ply, or a training run folder (its scene.ply)")->required();
+  addInputLayoutFlag(*cmd, o->inputLayout);
   cmd->add_option("edits", o->edits, "Edit file (JSON, \"glint_edits\": 1)")->required();
   cmd->add_option("-o,--output", o->output, "Output .ply file (written atomically)")->required();
   cmd->add_flag("--force", o->force, "Replace the output file if it exists");

@@ -40,6 +40,7 @@ namespace {
 
 struct EvalOptions {
   std::string run;
+  std::string inputLayout = "auto";
   std::string dataset;
   std::string split = "test";
   std::string output;
@@ -140,7 +141,7 @@ void runEval(const EvalOptions& o) {
   if (o.breakdown && (o.spp < 2 || o.spp % 2 != 0))
     throw Error("command line", "--breakdown renders two independent halves of the samples: --spp must be even and "
                 "at least 2 (got " + std::to_string(o.spp) + ")");
-  SceneSource source = loadSceneSource(o.run);
+  SceneSource source = loadSceneSource(o.run, parseInputLayout(o.inputLayout));
   fs::path output = metricsPath(o);
   const SceneRendering rendering = o.trace.resolve(source.settings);
   const TraceSettings& trace = rendering.trace;
@@ -262,6 +263,7 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_option("run", o->run,
                   "Training run folder (scene.ply, config.json), or a Gaussian scene .ply (then -o is required)")
       ->required();
+  addInputLayoutFlag(*cmd, o->inputLayout);
   cmd->add_option("--dataset", o->dataset, "Dataset with the ground truth; default: the run's dataset");
   cmd->add_option("--split", o->split, "Split to evaluate")
       ->check(CLI::IsMember({"train", "test"}))

@@ -32,6 +32,7 @@ namespace {
 
 struct RenderOptions {
   std::string scene;
+  std::string inputLayout = "auto";
   std::string dataset;
   std::string split = "test";
   std::string output;
@@ -140,7 +141,7 @@ void renderCameraPath(const RenderOptions& o, const GaussianTracer& tracer, cons
 
 void runRender(const RenderOptions& o) {
   if (o.output.empty() && o.debugPixel.empty()) throw Error("glint render", "needs an output folder: pass -o OUT");
-  SceneSource source = loadSceneSource(o.scene);
+  SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
   GaussianScene& scene = source.scene;
   const SceneRendering rendering = o.trace.resolve(source.settings);
   const TraceSettings& trace = rendering.trace;
@@ -246,6 +247,7 @@ void addRenderCommand(CLI::App& app) {
                   "Gaussian scene (.ply in Glint's or the 3DGS layout), or a training run folder (scene.ply, and "
                   "config.json for the dataset and the trace and path settings it was trained with)")
       ->required();
+  addInputLayoutFlag(*cmd, o->inputLayout);
   cmd->add_option("--dataset", o->dataset,
                   "Dataset whose cameras to use (only transforms_*.json is needed); default: the run's dataset");
   cmd->add_option("--split", o->split, "Camera split")->check(CLI::IsMember({"train", "test"}))->capture_default_str();

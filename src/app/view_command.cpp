@@ -19,13 +19,14 @@ namespace fs = std::filesystem;
 
 struct ViewOptions {
   std::string scene;
+  std::string inputLayout = "auto";
   std::string dataset;
   ViewerFlags viewer;
   size_t maxGaussians = kDefaultMaxGaussians;
 };
 
 void runView(const ViewOptions& o) {
-  SceneSource source = loadSceneSource(o.scene);
+  SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
   fs::path datasetPath = o.dataset.empty() ? fs::path(source.settings.dataset) : fs::path(o.dataset);
   std::optional<Dataset> dataset;
   if (!datasetPath.empty()) dataset = Dataset::open(datasetPath, /*requireBuffers=*/false, source.settings.holdout);
@@ -59,6 +60,7 @@ void addViewCommand(CLI::App& app) {
               "(or beside the .ply). The printed URL carries a per-launch token that requests changing the viewer "
               "must send; requests naming another host or coming from another site's page are refused.");
   cmd->add_option("scene", o->scene, "Gaussian scene (.ply) or training run folder")->required();
+  addInputLayoutFlag(*cmd, o->inputLayout);
   cmd->add_option("--dataset", o->dataset, "Dataset whose cameras to offer (default: the run's dataset)");
   cmd->add_option("--port", o->viewer.port, "Port to listen on (0 = any free port, printed)")
       ->check(CLI::Range(0, 65535))
