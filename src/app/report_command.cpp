@@ -226,8 +226,15 @@ void runReport(const ReportOptions& o) {
                  metricsFile.string().c_str(), o.run.c_str());
 
   const fs::path datasetPath = datasetFolder(o, configFile, config);
-  Dataset dataset =
-      Dataset::open(datasetPath, /*requireBuffers=*/true, config ? config->holdout : Dataset::kDefaultHoldout);
+  // Read as the evaluation read it: the run's settings, and the --downscale and --background
+  // that metrics.json records.
+  DatasetReading reading = config ? config->datasetReading(/*requireBuffers=*/true) : DatasetReading{};
+  if (metrics.all.contains("downscale") && metrics.all["downscale"].is_number_integer())
+    reading.downscale = std::clamp(metrics.all["downscale"].get<int>(), 1, kMaxDownscale);
+  if (metrics.all.contains("background") && metrics.all["background"].is_string())
+    reading.background = choiceFromName<AlphaBackground>(metrics.all["background"].get<std::string>())
+                             .value_or(reading.background);
+  Dataset dataset = Dataset::open(datasetPath, reading);
   const DatasetSplit& split = dataset.split(metrics.split);
   if (std::string mismatch = viewsMismatch(metrics, split, datasetPath); !mismatch.empty())
     throw Error(metricsFile.string(), mismatch + "; was it evaluated on another dataset?");
