@@ -10,14 +10,14 @@ void DatasetFlags::add(CLI::App* cmd, bool withBackground) {
                       std::to_string(kDownscaleRange.max) +
                       "]: images and buffers box-filtered over N x N pixels (normals averaged and renormalised, "
                       "depth over the surface pixels), focal lengths and principal point divided by N, and the "
-                      "last width % N columns and height % N rows dropped (docs/data-format.md). Default: the "
-                      "run's, else 1")
+                      "last width % N columns and height % N rows dropped (docs/data-format.md). Default 1; "
+                      "eval and render default to the run's")
       ->check(CLI::Range(kDownscaleRange.min, kDownscaleRange.max));
   if (withBackground)
     cmd->add_option("--background", background_,
                     "white or black: the colour behind the transparent pixels of a NeRF-synthetic dataset's RGBA "
-                    "images, composited in linear values (docs/data-format.md). Default: the run's, else white, as "
-                    "NeRF-synthetic results are usually reported")
+                    "images, composited in linear values (docs/data-format.md). Default white, as NeRF-synthetic "
+                    "results are usually reported; eval defaults to the run's")
         ->check(CLI::IsMember(choiceNames<AlphaBackground>()));
 }
 

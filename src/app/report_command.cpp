@@ -94,13 +94,15 @@ fs::path datasetFolder(const ReportOptions& o, const fs::path& configFile, const
   return config->dataset;
 }
 
-// The ground truth and our rendering of one view's radiance passes.
+// The ground truth and our rendering of one view's radiance passes (those the dataset has).
 ReportView loadViewImages(const Dataset& dataset, const DatasetSplit& split, size_t v, const fs::path& imagesFolder,
                           const ViewMetrics& metrics, const std::string& run) {
   ReportView view{split.views[v].filePath, {}};
   const std::pair<const char*, Buffer> passes[] = {
       {"diffuse", Buffer::Diffuse}, {"specular", Buffer::Specular}, {"final", Buffer::Render}};
   for (const auto& [name, buffer] : passes) {
+    // A dataset of final images only (NeRF-synthetic, a capture) has no truth for the others.
+    if (!dataset.findBufferFile(split.views[v], buffer)) continue;
     fs::path oursFile = renderedBufferPath(imagesFolder, split.views[v].filePath, buffer);
     requireInput(oursFile, "run `glint eval " + run + " --save-images` first (it writes the rendered views)");
     ReportPass pass{name, dataset.loadBuffer(split, v, buffer), readImage(oursFile), {}};

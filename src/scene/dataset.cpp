@@ -165,6 +165,9 @@ Image Dataset::loadFullResolution(const DatasetSplit& split, size_t index, Buffe
   GLINT_CHECK(index < split.views.size(), "view index out of range");
   const DatasetView& view = split.views[index];
   if (capture_) {
+    if (view.files[int(buffer)].empty() && capture_->alphaBackground)
+      throw Error(root_.string(), "is in the NeRF-synthetic layout, whose views hold final images only: view " +
+                                      view.filePath + " has no " + bufferName(buffer) + " buffer");
     if (view.files[int(buffer)].empty())
       throw Error((root_ / "priors" / bufferName(buffer)).string(),
                   "has no " + std::string(bufferName(buffer)) + " buffer for view " + view.filePath);

@@ -252,7 +252,8 @@ DenseInit denseInitialisation(const Dataset& dataset, const DenseInitSettings& s
   const bool hasDepth = dataset.findBufferFile(dataset.train().views.at(0), Buffer::Depth).has_value();
   if (!hasDepth && dataset.capture() && !dataset.capture()->points.empty())
     return initFromSparsePoints(dataset, settings);
-  if (!hasDepth) return initInCameraVolume(dataset, settings);
+  // --init depth on a dataset without depth goes on to the error naming the missing buffers.
+  if (!hasDepth && !settings.forceDepthBuffers) return initInCameraVolume(dataset, settings);
   return initFromDepthBuffers(dataset, settings);
 }
 

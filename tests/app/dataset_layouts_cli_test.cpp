@@ -81,9 +81,12 @@ TEST_F(DatasetLayoutsCliTest, DownscaleShrinksTrainingEvalAndRenderViews) {
   EXPECT_EQ(readJsonFile(path("D2") + "/config.json")["downscale"], 2);
 
   // eval and render follow the run's factor, or the flag's.
-  Outcome eval = runGlint("eval " + path("D2") + " --spp 1");
+  Outcome eval = runGlint("eval " + path("D2") + " --spp 1 --save-images");
   ASSERT_EQ(eval.status, 0) << eval.output;
   EXPECT_EQ(readJsonFile(path("D2") + "/eval/metrics.json")["width"], 32);
+  // The report shows the ground truth at the evaluated size.
+  Outcome report = runGlint("report " + path("D2"));
+  EXPECT_EQ(report.status, 0) << report.output;
   Outcome eval4 = runGlint("eval " + path("D2") + " --spp 1 --downscale 4 -o " + path("m4.json"));
   ASSERT_EQ(eval4.status, 0) << eval4.output;
   EXPECT_EQ(readJsonFile(path("m4.json"))["width"], 16);
