@@ -228,6 +228,9 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
     madeFolder = !fs::exists(run.root());
     undoFailedStart = madeFolder || (fs::is_directory(run.root()) && fs::is_empty(run.root())) ||
                       run.isUnfinishedStart();
+    if (run.isUnfinishedStart())
+      std::fprintf(stderr, "glint train: %s holds a start that never saved a checkpoint; starting afresh (its "
+                   "config.json and log.csv are replaced)\n", run.root().string().c_str());
     run.create(config, o.force);
   }
 

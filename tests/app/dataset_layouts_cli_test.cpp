@@ -150,6 +150,7 @@ TEST_F(DatasetLayoutsCliTest, AFailedStartLeavesNothingThatBlocksTheRetry) {
   std::ofstream(path("killed") + "/log.csv") << "step,loss\n";
   Outcome afterKill = runGlint("train " + path("broken") + " -o " + path("killed") + " --iters 2 --threads 2");
   EXPECT_EQ(afterKill.status, 0) << afterKill.output;
+  EXPECT_NE(afterKill.output.find("never saved a checkpoint; starting afresh"), std::string::npos) << afterKill.output;
   // But a run with a checkpoint still does.
   Outcome again = runGlint("train " + path("broken") + " -o " + path("killed") + " --iters 2");
   EXPECT_NE(again.status, 0);
