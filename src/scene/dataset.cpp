@@ -139,9 +139,10 @@ const DatasetSplit& Dataset::split(const std::string& name) const {
   const DatasetSplit& s = name == "train" ? train_ : test_;
   // A capture's splits come from its holdout; the transforms layouts' from their files.
   const bool splitByFiles = !capture_ || capture_->alphaBackground || capture_->priorTransforms;
+  const bool valCounts = name == "test" && capture_ && capture_->alphaBackground;  // NeRF-synthetic's val
   if (s.views.empty() && splitByFiles)
     throw Error(transformsPath(root_, name).string(),
-                std::string("file not found") + (name == "test" && capture_ ? " (nor transforms_val.json)" : "") +
+                std::string("file not found") + (valCounts ? " (nor transforms_val.json)" : "") +
                     ": this dataset holds the " + (name == "train" ? "test" : "train") + " split only");
   return s;
 }
