@@ -7,7 +7,9 @@
 #include "app/commands.h"
 #include "app/output_file.h"
 #include "app/scene_source.h"
+#include "app/thread_flag.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "edit/edit_file.h"
 #include "edit/gaussian_edits.h"
 #include "scene/gaussian_ply.h"
@@ -23,9 +25,11 @@ struct EditOptions {
   std::string output;
   bool force = false;
   size_t maxGaussians = kDefaultMaxGaussians;
+  int threads = 0;
 };
 
 void runEdit(const EditOptions& o) {
+  ThreadLimit threads(o.threads);
   refuseExistingOutput(o.output, o.force);
   EditDocument document = readEditFile(o.edits);  // validate before loading a large scene
   SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
@@ -56,6 +60,7 @@ void addEditCommand(CLI::App& app) {
                   "refused before they allocate")
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
+  addThreadsFlag(cmd, &o->threads);
   cmd->callback([o]() { runEdit(*o); });
 }
 

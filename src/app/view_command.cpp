@@ -7,9 +7,11 @@
 
 #include "app/commands.h"
 #include "app/scene_source.h"
+#include "app/thread_flag.h"
 #include "app/viewer/viewer_outputs.h"
 #include "app/viewer/viewer_setup.h"
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace glint {
 
@@ -23,13 +25,16 @@ struct ViewOptions {
   std::string dataset;
   ViewerFlags viewer;
   size_t maxGaussians = kDefaultMaxGaussians;
+  int threads = 0;
 };
 
 void runView(const ViewOptions& o) {
+  ThreadLimit threads(o.threads);
   SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
   fs::path datasetPath = o.dataset.empty() ? fs::path(source.settings.dataset) : fs::path(o.dataset);
   std::optional<Dataset> dataset;
-  if (!datasetPath.empty()) dataset = Dataset::open(datasetPath, /*requireBuffers=*/false, source.settings.holdout);
+  if (!datasetPath.empty())
+    dataset = Dataset::open(datasetPath, source.settings.datasetReading(/*requireBuffers=*/false));
   // Saved edits and exports go into a viewer/ folder beside what was opened (the run folder, or
   // the .ply's folder): never over a file of the run (viewer_outputs.h).
   fs::path opened = fs::is_directory(o.scene) ? fs::path(o.scene) : fs::absolute(o.scene).parent_path();
@@ -79,6 +84,7 @@ void addViewCommand(CLI::App& app) {
                   "scene kept (the viewer holds about 230 bytes a Gaussian shown, 390 while an edit rebuilds)")
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
+  addThreadsFlag(cmd, &o->threads, "the viewer renders with them");
   cmd->callback([o]() { runView(*o); });
 }
 
