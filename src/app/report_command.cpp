@@ -115,6 +115,7 @@ ReportView loadViewImages(const Dataset& dataset, const DatasetSplit& split, siz
     view.passes.push_back(std::move(pass));
   }
   for (Buffer buffer : {Buffer::Normal, Buffer::Depth, Buffer::Roughness, Buffer::F0}) {
+    if (!dataset.findBufferFile(split.views[v], buffer)) continue;  // as above
     fs::path oursFile = renderedBufferPath(imagesFolder, split.views[v].filePath, buffer);
     requireInput(oursFile, "run `glint eval " + run + " --save-images` first (it writes the rendered views)");
     Image truth = dataset.loadBuffer(split, v, buffer), ours = readImage(oursFile);
