@@ -1,13 +1,17 @@
-// `glint export RUN_OR_PLY --format 3dgs|glint -o OUT.ply`: rewrites a Gaussian scene in
-// the standard 3D Gaussian Splatting layout (for the wider ecosystem's viewers) or in Glint's.
+// `glint export RUN_OR_PLY --format 3dgs|glint|spz|compressed-ply -o OUT`: rewrites a Gaussian
+// scene in the standard 3D Gaussian Splatting layout (for the wider ecosystem's viewers), in
+// Glint's, or in the compressed forms splat users share.
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <string>
 
+#include "app/bake_flags.h"
 #include "app/commands.h"
 #include "core/error.h"
+#include "scene/compressed_ply_writer.h"
 #include "scene/gaussian_ply.h"
+#include "scene/spz_writer.h"
 #include "train/run_folder.h"
 
 namespace glint {
@@ -21,6 +25,7 @@ struct ExportOptions {
   std::string output;
   std::string format = "3dgs";
   std::string inputLayout = "auto";
+  BakeFlags bake;
 };
 
 PlyLayout layoutFromName(const std::string& name) {
@@ -43,9 +48,24 @@ fs::path scenePath(const fs::path& input) {
 }
 
 void runExport(const ExportOptions& o) {
+  o.bake.check();
+  if (o.bake.given() && o.format == "glint")
+    throw Error("--bake-reflections", "writes SH colours, which Glint's layout has not: use --format 3dgs, spz or "
+                                      "compressed-ply");
   fs::path input = scenePath(o.input);
   PlyLayout detected = PlyLayout::Auto;
   GaussianScene scene = readGaussianPly(input, layoutFromName(o.inputLayout), &detected);
+  if (o.format == "spz" || o.format == "compressed-ply" || o.bake.given()) {
+    // Display-referred colour (the filmic tonemap), as splat viewers expect; SH when baked.
+    const SplatColour colour = o.bake.given() ? o.bake.bake(o.input, scene) : displayColour(scene);
+    if (o.format == "spz") writeSpz(o.output, scene, colour);
+    else if (o.format == "compressed-ply") writeCompressedPly(o.output, scene, colour);
+    else exportGaussianPly3dgs(o.output, scene, colour);
+    std::fprintf(stderr, "glint export: %s (%s layout) -> %s (%s, display-referred colour, SH degree %d), %zu Gaussians\n",
+                 input.string().c_str(), plyLayoutName(detected), o.output.c_str(), o.format.c_str(), colour.shDegree,
+                 scene.size());
+    return;
+  }
   PlyLayout format = layoutFromName(o.format);
   if (format == PlyLayout::ThreeDgs) {
     exportGaussianPly3dgs(o.output, scene);
@@ -69,15 +89,20 @@ void addExportCommand(CLI::App& app) {
   cmd->add_option("input", options->input,
                   "Gaussian scene .ply (Glint or 3DGS layout), or a training run folder containing scene.ply")
       ->required();
-  cmd->add_option("-o,--output", options->output, "Output .ply file (written atomically)")->required();
-  cmd->add_option("--format", options->format, "Layout to write: 3dgs or glint")
-      ->check(CLI::IsMember({"3dgs", "glint"}))
+  cmd->add_option("-o,--output", options->output, "Output file (written atomically)")->required();
+  cmd->add_option("--format", options->format,
+                  "Layout to write: 3dgs or glint (.ply); spz (Niantic's gzip-compressed .spz, about a tenth of the "
+                  "3dgs size) or compressed-ply (PlayCanvas's .compressed.ply, chunks of 256 quantised Gaussians, "
+                  "read by SuperSplat and splat-transform). spz and compressed-ply store display-referred colour "
+                  "(the filmic tonemap) and drop normals, roughness and F0")
+      ->check(CLI::IsMember({"3dgs", "glint", "spz", "compressed-ply"}))
       ->capture_default_str();
   cmd->add_option("--input-layout", options->inputLayout,
                   "How to read the input's f_dc: auto (3DGS if it has f_rest_0 or nx and none of normal_0, "
                   "roughness, f0_0; otherwise Glint), glint (linear colour) or 3dgs (SH DC)")
       ->check(CLI::IsMember({"auto", "glint", "3dgs"}))
       ->capture_default_str();
+  options->bake.add(cmd);
   cmd->callback([options]() { runExport(*options); });
 }
 

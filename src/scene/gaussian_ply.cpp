@@ -15,9 +15,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// 3DGS stores SH up to degree 3: 15 coefficients beyond the DC term per colour channel.
-constexpr int kShRestCount = 45;
-
 std::string sourceName(const PlyTable& table) { return table.source.empty() ? "(PLY table)" : table.source; }
 
 // The named column, or an Error saying this is not a Gaussian scene.
@@ -134,7 +131,17 @@ void writeGaussianPly(const fs::path& path, const GaussianScene& scene) {
 }
 
 void exportGaussianPly3dgs(const fs::path& path, const GaussianScene& scene) {
-  GLINT_CHECK(scene.consistent(), "exportGaussianPly3dgs: the scene's arrays have different sizes");
+  // Linear colour as the DC term and all 45 f_rest as zeros (degree 3, no view dependence).
+  SplatColour colour;
+  colour.base = scene.diffuse;
+  colour.shDegree = kMaxShDegree;
+  colour.sh.assign(scene.size() * colour.restCount(), Rgb(0.0f));
+  exportGaussianPly3dgs(path, scene, colour);
+}
+
+void exportGaussianPly3dgs(const fs::path& path, const GaussianScene& scene, const SplatColour& colour) {
+  GLINT_CHECK(scene.consistent() && colour.consistent(scene.size()),
+              "exportGaussianPly3dgs: the scene's arrays have different sizes");
   size_t n = scene.size();
   PlyTable table;
   table.count = n;
@@ -142,10 +149,17 @@ void exportGaussianPly3dgs(const fs::path& path, const GaussianScene& scene) {
   for (const char* name : {"nx", "ny", "nz"}) table.add(name, std::vector<float>(n, 0.0f));
   for (int k = 0; k < 3; ++k) {
     std::vector<float> column(n);
-    for (size_t i = 0; i < n; ++i) column[i] = float((double(scene.diffuse[i][k]) - 0.5) / kShC0);
+    for (size_t i = 0; i < n; ++i) column[i] = float((double(colour.base[i][k]) - 0.5) / kShC0);
     table.add("f_dc_" + std::to_string(k), std::move(column));
   }
-  for (int k = 0; k < kShRestCount; ++k) table.add("f_rest_" + std::to_string(k), std::vector<float>(n, 0.0f));
+  const size_t rest = colour.restCount();
+  for (int channel = 0; channel < 3; ++channel) {
+    for (size_t k = 0; k < rest; ++k) {
+      std::vector<float> column(n);
+      for (size_t i = 0; i < n; ++i) column[i] = colour.rest(i)[k][channel];
+      table.add("f_rest_" + std::to_string(size_t(channel) * rest + k), std::move(column));
+    }
+  }
   // Opacity, scale and rotation are stored as in Glint's layout.
   addParameter(table, scene, parameterOf(&GaussianScene::opacityLogit));
   addParameter(table, scene, parameterOf(&GaussianScene::logScale));

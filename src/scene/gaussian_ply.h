@@ -6,6 +6,7 @@
 
 #include "io/ply.h"
 #include "scene/gaussians.h"
+#include "scene/splat_colour.h"
 
 namespace glint {
 
@@ -52,5 +53,11 @@ void writeGaussianPly(const std::filesystem::path& path, const GaussianScene& sc
 // f_dc = (colour - 0.5) / kShC0, f_rest = 0 (view-independent colour) and nx ny nz = 0
 // (as 3DGS writes them). Normals, roughness and F0 are not exported.
 void exportGaussianPly3dgs(const std::filesystem::path& path, const GaussianScene& scene);
+
+// The same layout with the given colours (colour.consistent(scene.size())): f_dc =
+// (base - 0.5) / kShC0 and f_rest_0 .. f_rest_(3 r - 1) the SH coefficients, channel-major
+// (the r coefficients of red, then green, then blue; r = colour.restCount()), so a degree-0
+// colour writes no f_rest at all.
+void exportGaussianPly3dgs(const std::filesystem::path& path, const GaussianScene& scene, const SplatColour& colour);
 
 }  // namespace glint
