@@ -85,7 +85,8 @@ void addExportCommand(CLI::App& app) {
       "Write a Gaussian scene in another PLY layout. '3dgs' is the standard 3D Gaussian Splatting layout "
       "(x y z nx ny nz f_dc_0..2 f_rest_0..44 opacity scale_0..2 rot_0..3, colour as SH DC, no view "
       "dependence) that splat viewers open; normals, roughness and F0 are dropped. 'glint' is Glint's own "
-      "layout (diffuse colour, normal, roughness, F0), e.g. to import a 3DGS scene.");
+      "layout (diffuse colour, normal, roughness, F0), e.g. to import a 3DGS scene. 'spz' and 'compressed-ply' are "
+      "the compressed forms splat viewers share (docs/data-format.md, Compressed splats).");
   cmd->add_option("input", options->input,
                   "Gaussian scene .ply (Glint or 3DGS layout), or a training run folder containing scene.ply")
       ->required();

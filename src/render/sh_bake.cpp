@@ -35,21 +35,26 @@ std::vector<Vec3f> sampleDirections(const Vec3f& mean, uint64_t gaussian, const 
     Vec2d pixel;
     if (s.cameras[c].project(worldToCamera[c], Vec3d(mean), &pixel)) seenBy.push_back(int(c));
   }
-  std::vector<Vec3f> directions(size_t(s.directions));
-  Rng rng = Rng::forKeys({s.seed, gaussian, 0x5b});
-  for (int k = 0; k < s.directions; ++k) {
+  // The random streams of this Gaussian: viewpoint jitter, and sphere samples (their last
+  // keys only tell the two apart).
+  Rng rng = Rng::forKeys({s.seed, gaussian, 1});
+  const uint64_t sphereStream = hashKeys({s.seed, gaussian, 2});
+  const size_t count = size_t(s.directions);
+  std::vector<Vec3f> directions(count);
+  for (size_t k = 0; k < count; ++k) {
     if (seenBy.empty()) {
       // Stratified over the sphere (a (0,2)-net of sample indices).
-      directions[size_t(k)] = sampleUniformSphere(stratifiedSample2(hashKeys({s.seed, gaussian, 0x5c}), uint32_t(k)));
+      directions[k] = sampleUniformSphere(stratifiedSample2(sphereStream, uint32_t(k)));
       continue;
     }
-    // Every camera that sees the Gaussian in turn, each from a jittered viewpoint.
-    const Camera& camera = s.cameras[size_t(seenBy[size_t(k) % seenBy.size()])];
+    // The cameras that see the Gaussian in equal shares (every one when there are fewer
+    // than the samples, evenly spaced ones otherwise), each from a jittered viewpoint.
+    const Camera& camera = s.cameras[size_t(seenBy[k * seenBy.size() / count])];
     const Vec3d eye = camera.position();
     const double distance = length(Vec3d(mean) - eye);
     const Vec3f jitter = sampleUniformSphere(rng.uniform2()) * std::cbrt(rng.uniform());
     const Vec3d viewpoint = eye + Vec3d(jitter) * (kViewpointJitter * distance);
-    directions[size_t(k)] = Vec3f(normalize(Vec3d(mean) - viewpoint));
+    directions[k] = Vec3f(normalize(Vec3d(mean) - viewpoint));
   }
   return directions;
 }
