@@ -66,11 +66,11 @@ double seconds(std::chrono::steady_clock::time_point since) {
 
 int main(int argc, char** argv) {
   CLI::App app{"Baked SH reflections against Glint's path-traced renders"};
-  std::string runPath = "/work/val/runs/spheres_room_glint_densify10";
+  std::string runPath;
   std::string jsonPath = "sh_bake_bench.json";
   int referenceSpp = 64, directions = 64, maxViews = 0, onlyDegree = -1;
   double ridge = 0.005;
-  app.add_option("run", runPath, "Training run folder (scene.ply, config.json naming the dataset)")->capture_default_str();
+  app.add_option("run", runPath, "Training run folder (scene.ply, config.json naming the dataset)")->required();
   app.add_option("--spp", referenceSpp, "Samples per pixel of the glint render reference")->capture_default_str();
   app.add_option("--directions", directions, "Paths per Gaussian of the bake")->capture_default_str();
   app.add_option("--ridge", ridge, "Ridge weight of the bake's fit")->capture_default_str();
