@@ -54,9 +54,7 @@ uint32_t pack111011(const Vec3f& v, const Range (&r)[3]) {
 uint32_t packRotation(const Quatf& rotation) {
   Quatf u = rotation.normalized();
   const double q[4] = {u.w, u.x, u.y, u.z};
-  int largest = 0;
-  for (int i = 1; i < 4; ++i)
-    if (std::abs(q[i]) > std::abs(q[largest])) largest = i;
+  const int largest = largestMagnitudeIndex(q);
   const double sign = q[largest] < 0 ? -1.0 : 1.0;
   uint32_t packed = uint32_t(largest);
   for (int i = 0; i < 4; ++i)

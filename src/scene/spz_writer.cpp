@@ -53,9 +53,7 @@ int fractionalBitsFor(const fs::path& path, const GaussianScene& scene) {
 uint32_t smallestThree(const Quatf& rotation) {
   Quatf u = rotation.normalized();
   const double q[4] = {u.x, u.y, u.z, u.w};
-  int largest = 0;
-  for (int i = 1; i < 4; ++i)
-    if (std::abs(q[i]) > std::abs(q[largest])) largest = i;
+  const int largest = largestMagnitudeIndex(q);
   const bool flip = q[largest] < 0;
   uint32_t packed = uint32_t(largest);
   for (int i = 0; i < 4; ++i) {
