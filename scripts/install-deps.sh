@@ -8,7 +8,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config
-  libembree-dev libtbb-dev libopenexr-dev libtiff-dev libpng-dev libjpeg62-turbo-dev libstb-dev
+  libembree-dev libtbb-dev libopenexr-dev libtiff-dev libpng-dev libjpeg62-turbo-dev zlib1g-dev libstb-dev
   libtinygltf-dev nlohmann-json3-dev libcli11-dev libcpp-httplib-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium  # the viewer's end-to-end test drives it headless (tests/web)

@@ -45,6 +45,16 @@ Quat<T> quatFromAxisAngle(const Vec3<T>& axis, T radians) {
   return {std::cos(radians / 2), u.x * s, u.y * s, u.z * s};
 }
 
+// Index of the component of largest magnitude among four (the first on ties): the one
+// "smallest three" encodings of unit quaternions leave out and recover from the norm.
+template <typename T>
+int largestMagnitudeIndex(const T (&q)[4]) {
+  int largest = 0;
+  for (int i = 1; i < 4; ++i)
+    if (std::abs(q[i]) > std::abs(q[largest])) largest = i;
+  return largest;
+}
+
 using Quatf = Quat<float>;
 using Quatd = Quat<double>;
 

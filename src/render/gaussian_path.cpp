@@ -10,6 +10,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "math/frame.h"
+#include "math/morton.h"
 #include "math/owen_sobol.h"
 
 namespace glint {
@@ -40,16 +41,6 @@ bool continuePath(const TraceRay& ray, const RayResult& result, const PathSettin
 }
 
 namespace {
-
-// Spreads the low 10 bits of x to every third bit (3D Morton interleaving).
-uint32_t spreadBits3(uint32_t x) {
-  x &= 0x3ff;
-  x = (x | (x << 16)) & 0x030000ff;
-  x = (x | (x << 8)) & 0x0300f00f;
-  x = (x | (x << 4)) & 0x030c30c3;
-  x = (x | (x << 2)) & 0x09249249;
-  return x;
-}
 
 // Adds segment k's light to the path's sums.
 void addLight(PathResult* path, int k, const Rgb& light) {
@@ -182,7 +173,7 @@ void PathBatch::sortByOriginAndOctant() {
     uint32_t q[3];
     for (int a = 0; a < 3; ++a) q[a] = uint32_t(std::clamp((r.origin[a] - lo[a]) / extent[a], 0.0f, 1.0f) * 1023.0f);
     uint64_t octant = uint64_t(r.direction.x < 0) | uint64_t(r.direction.y < 0) << 1 | uint64_t(r.direction.z < 0) << 2;
-    sortKeys_[j] = {octant << 30 | spreadBits3(q[0]) | spreadBits3(q[1]) << 1 | spreadBits3(q[2]) << 2, uint32_t(j)};
+    sortKeys_[j] = {octant << 30 | mortonCode3(q[0], q[1], q[2]), uint32_t(j)};
   }
   std::sort(sortKeys_.begin(), sortKeys_.end());
   // Gathered into the next level's candidate arrays (unused until the next level is

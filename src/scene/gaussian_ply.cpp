@@ -20,8 +20,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// 3DGS stores SH up to degree 3.
-constexpr int kMaxShDegree = 3;
 constexpr const char* kGlintComment = "Glint Gaussian scene";
 
 std::string sourceName(const PlyTable& table) { return table.source.empty() ? "(PLY table)" : table.source; }
@@ -168,7 +166,7 @@ PlyLayout detectGaussianPlyLayout(const PlyTable& table) {
 std::string describeImport(const GaussianPlyImport& import) {
   if (import.layout != PlyLayout::ThreeDgs) return "";
   std::string line = "imported 3DGS layout: colour read as ";
-  if (import.colour.colour == SplatColour::Linear) {
+  if (import.colour.colour == SplatColourSpace::Linear) {
     line += "linear";
   } else {
     line += "display-referred (inverse filmic tonemap, exposure " + shortNumber(import.colour.exposure) + ")";
@@ -260,21 +258,26 @@ void exportGaussianPly3dgs(const fs::path& path, const GaussianScene& scene, con
               "exportGaussianPly3dgs: exposure must be positive");
   const size_t n = scene.size();
   const size_t restCount = size_t(3 * shRestPerChannel(options.shDegree));
-  GLINT_CHECK(!options.shRest || options.shRest->size() == n * restCount,
-              "exportGaussianPly3dgs: shRest needs 3 x shRestPerChannel(shDegree) values per Gaussian");
+  GLINT_CHECK(!options.baked || (options.baked->consistent(n) && options.baked->shDegree == options.shDegree &&
+                                  options.colour.colour == SplatColourSpace::Display),
+              "exportGaussianPly3dgs: baked colours of another scene, degree or colour encoding");
   PlyTable table;
   table.count = n;
   addParameter(table, scene, parameterOf(&GaussianScene::position));
   for (const char* name : {"nx", "ny", "nz"}) table.add(name, std::vector<float>(n, 0.0f));
   for (int k = 0; k < 3; ++k) {
     std::vector<float> column(n);
-    for (size_t i = 0; i < n; ++i) column[i] = encodeSplatColour(scene.diffuse[i][k], options.colour);
+    for (size_t i = 0; i < n; ++i)
+      column[i] = options.baked ? float((double(options.baked->base[i][k]) - 0.5) / kShC0)
+                                : encodeSplatColour(scene.diffuse[i][k], options.colour);
     table.add("f_dc_" + std::to_string(k), std::move(column));
   }
+  // Channel-major: the coefficients of red, then green, then blue.
+  const size_t perChannel = restCount / 3;
   for (size_t k = 0; k < restCount; ++k) {
     std::vector<float> column(n, 0.0f);
-    if (options.shRest)
-      for (size_t i = 0; i < n; ++i) column[i] = (*options.shRest)[i * restCount + k];
+    if (options.baked)
+      for (size_t i = 0; i < n; ++i) column[i] = options.baked->rest(i)[k % perChannel][int(k / perChannel)];
     table.add("f_rest_" + std::to_string(k), std::move(column));
   }
   // Opacity, scale and rotation are stored as in Glint's layout.

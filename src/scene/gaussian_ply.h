@@ -8,6 +8,7 @@
 
 #include "io/ply.h"
 #include "scene/gaussians.h"
+#include "scene/splat_colour.h"
 #include "scene/three_dgs_colour.h"
 
 namespace glint {
@@ -75,9 +76,11 @@ int shRestPerChannel(int degree);
 struct ThreeDgsExportOptions {
   SplatColourEncoding colour;  // display-referred (exposure 1) by default
   int shDegree = 0;            // 0..3: writes 3 x shRestPerChannel(shDegree) f_rest properties
-  // Per-Gaussian SH coefficients beyond DC, 3 x shRestPerChannel(shDegree) per Gaussian in
-  // the file's order (channel-major: R's coefficients, then G's, then B's); null writes zeros.
-  const std::vector<float>* shRest = nullptr;
+  // Colours baked with their view dependence (render/sh_bake.h), display-referred, of degree
+  // shDegree: f_dc = (base - 0.5) / kShC0 and f_rest their SH coefficients, channel-major
+  // (R's coefficients, then G's, then B's). Null: f_dc encodes the diffuse colour as
+  // `colour` says and f_rest are zeros.
+  const SplatColour* baked = nullptr;
 };
 
 // Writes the scene atomically in the standard 3DGS layout that viewers of the wider

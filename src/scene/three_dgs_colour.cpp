@@ -18,26 +18,26 @@ constexpr std::string_view kExposureWord = ", exposure ";
 
 }  // namespace
 
-const char* splatColourName(SplatColour colour) {
-  return colour == SplatColour::Display ? "display" : "linear";
+const char* splatColourName(SplatColourSpace colour) {
+  return colour == SplatColourSpace::Display ? "display" : "linear";
 }
 
 float encodeSplatColour(float diffuse, const SplatColourEncoding& encoding) {
   if (!std::isfinite(diffuse)) return diffuse;  // kept as is, for the writer to refuse by name
-  double shown = encoding.colour == SplatColour::Display ? double(tonemapFilmic(encoding.exposure * diffuse))
+  double shown = encoding.colour == SplatColourSpace::Display ? double(tonemapFilmic(encoding.exposure * diffuse))
                                                          : double(diffuse);
   return float((shown - 0.5) / kShC0);
 }
 
 float decodeSplatColour(float fdc, const SplatColourEncoding& encoding) {
   float shown = float(0.5 + kShC0 * double(fdc));
-  if (encoding.colour == SplatColour::Linear) return shown;
+  if (encoding.colour == SplatColourSpace::Linear) return shown;
   return untonemapFilmic(shown) / encoding.exposure;
 }
 
 std::string splatColourComment(const SplatColourEncoding& encoding) {
   std::string comment(kCommentPrefix);
-  if (encoding.colour == SplatColour::Linear) return comment + "linear (f_dc is the SH DC of the linear diffuse colour)";
+  if (encoding.colour == SplatColourSpace::Linear) return comment + "linear (f_dc is the SH DC of the linear diffuse colour)";
   char number[32];
   auto [end, ec] = std::to_chars(number, number + sizeof(number), encoding.exposure);  // shortest exact form
   GLINT_CHECK(ec == std::errc(), "formatting the exposure");
@@ -58,7 +58,7 @@ std::optional<SplatColourEncoding> splatColourFromComments(const std::vector<std
     };
     SplatColourEncoding encoding;
     if (rest.starts_with("linear")) {
-      encoding.colour = SplatColour::Linear;
+      encoding.colour = SplatColourSpace::Linear;
       return encoding;
     }
     if (!rest.starts_with("display") || !rest.substr(7).starts_with(kExposureWord)) throw malformed();

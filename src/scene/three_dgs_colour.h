@@ -15,7 +15,7 @@ namespace glint {
 inline constexpr double kShC0 = 0.28209479177387814;
 
 // What the colour 0.5 + kShC0 * f_dc of a 3DGS file means.
-enum class SplatColour {
+enum class SplatColourSpace {
   // Display-referred, as 3DGS viewers show it: Glint writes tonemapFilmic(exposure x
   // diffuse) and reads untonemapFilmic(colour) / exposure. Files from other tools are
   // read this way with exposure 1, so that Glint's 8-bit renders show their colours.
@@ -23,12 +23,12 @@ enum class SplatColour {
   Linear,  // Glint's linear diffuse as is (values above 1 clip in viewers)
 };
 
-const char* splatColourName(SplatColour colour);  // "display", "linear"
+const char* splatColourName(SplatColourSpace colour);  // "display", "linear"
 
 // How a file's colour is encoded: the mapping and, for Display, the linear multiplier
 // applied before the tonemap.
 struct SplatColourEncoding {
-  SplatColour colour = SplatColour::Display;
+  SplatColourSpace colour = SplatColourSpace::Display;
   float exposure = 1.0f;
 };
 

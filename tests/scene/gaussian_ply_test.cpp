@@ -236,7 +236,7 @@ TEST(GaussianPly, ThreeDgsExportIsDisplayReferredStandardAndLoadsBack) {
   GaussianPlyImport import;
   GaussianScene read = readGaussianPly(path, PlyLayout::Auto, &import);
   EXPECT_EQ(import.layout, PlyLayout::ThreeDgs);
-  EXPECT_EQ(import.colour.colour, SplatColour::Display);
+  EXPECT_EQ(import.colour.colour, SplatColourSpace::Display);
   EXPECT_TRUE(import.normalsSet && import.roughnessSet && import.f0Set);
   EXPECT_EQ(import.gaussiansWithShRest, 0u);
   expectSameGeometry(scene, read);
@@ -267,12 +267,12 @@ TEST(GaussianPly, ExportExposureAndLinearColourAreRecordedAndInverted) {
   for (size_t i = 0; i < scene.size(); ++i)
     for (int k = 0; k < 3; ++k) expectColourNear(read.diffuse[i][k], scene.diffuse[i][k], std::to_string(i));
 
-  options.colour = {SplatColour::Linear, 1.0f};
+  options.colour = {SplatColourSpace::Linear, 1.0f};
   exportGaussianPly3dgs(linear, scene, options);
   table = readPly(linear);
   EXPECT_NEAR(0.5 + kShC0 * table.column("f_dc_2")[7], scene.diffuse[7].z, 1e-6);
   read = readGaussianPly(linear, PlyLayout::Auto, &import);
-  EXPECT_EQ(import.colour.colour, SplatColour::Linear);
+  EXPECT_EQ(import.colour.colour, SplatColourSpace::Linear);
   for (size_t i = 0; i < scene.size(); ++i)
     for (int k = 0; k < 3; ++k) EXPECT_NEAR(read.diffuse[i][k], scene.diffuse[i][k], 1e-6) << i;
 }
@@ -295,19 +295,27 @@ TEST(GaussianPly, ShDegreeControlsTheRestCoefficientsAndTakesGivenValues) {
     EXPECT_EQ(import.gaussiansWithShRest, 0u);  // zeros: nothing dropped, no warning
     EXPECT_EQ(droppedShWarning(import, path.string()), "");
   }
-  // Given coefficients land in the 3DGS order: Gaussian i's value k is f_rest_k.
-  const size_t rest = 9;
-  std::vector<float> coefficients(scene.size() * rest);
-  for (size_t i = 0; i < coefficients.size(); ++i) coefficients[i] = 0.01f * float(i);
+  // Baked colours land in the 3DGS order: channel-major, f_rest_(3 c + k) is coefficient
+  // k + 1 of channel c at degree 1; f_dc encodes the baked base as is.
+  SplatColour baked;
+  baked.shDegree = 1;
+  baked.base.assign(scene.size(), Rgb(0.25f));
+  baked.sh.resize(scene.size() * baked.restCount());
+  for (size_t i = 0; i < baked.sh.size(); ++i) baked.sh[i] = Rgb(0.01f, 0.02f, 0.03f) * float(i + 1);
   ThreeDgsExportOptions options;
   options.shDegree = 1;
-  options.shRest = &coefficients;
+  options.baked = &baked;
   fs::path path = folder / "given.ply";
   exportGaussianPly3dgs(path, scene, options);
   PlyTable table = readPly(path);
-  for (size_t i = 0; i < scene.size(); ++i)
-    for (size_t k = 0; k < rest; ++k)
-      EXPECT_EQ(table.column("f_rest_" + std::to_string(k))[i], coefficients[i * rest + k]) << i << " " << k;
+  const size_t perChannel = baked.restCount();
+  for (size_t i = 0; i < scene.size(); ++i) {
+    EXPECT_FLOAT_EQ(table.column("f_dc_0")[i], float((0.25 - 0.5) / kShC0));
+    for (int c = 0; c < 3; ++c)
+      for (size_t k = 0; k < perChannel; ++k)
+        EXPECT_EQ(table.column("f_rest_" + std::to_string(size_t(c) * perChannel + k))[i], baked.rest(i)[k][c])
+            << i << " " << c << " " << k;
+  }
   GaussianPlyImport import;
   readGaussianPly(path, PlyLayout::Auto, &import);
   EXPECT_EQ(import.gaussiansWithShRest, 6u);  // every Gaussian has a non-zero coefficient

@@ -17,14 +17,14 @@ namespace {
 
 TEST(ThreeDgsColour, DisplayEncodingIsTheFilmicTonemapOfTheExposedColour) {
   for (float exposure : {1.0f, 0.25f, 3.0f}) {
-    SplatColourEncoding encoding{SplatColour::Display, exposure};
+    SplatColourEncoding encoding{SplatColourSpace::Display, exposure};
     for (float c : {0.0f, 0.001f, 0.05f, 0.3f, 1.0f, 4.0f}) {
       float fdc = encodeSplatColour(c, encoding);
       EXPECT_NEAR(0.5 + kShC0 * fdc, tonemapFilmic(exposure * c), 1e-6) << c;
       EXPECT_NEAR(decodeSplatColour(fdc, encoding), c, 1e-5 + 2e-4 * c) << c << " at exposure " << exposure;
     }
   }
-  SplatColourEncoding linear{SplatColour::Linear, 1.0f};
+  SplatColourEncoding linear{SplatColourSpace::Linear, 1.0f};
   EXPECT_NEAR(0.5 + kShC0 * encodeSplatColour(2.0f, linear), 2.0, 1e-6);
   EXPECT_NEAR(decodeSplatColour(encodeSplatColour(2.0f, linear), linear), 2.0f, 1e-6);
   // A display colour at or above 1 decodes to the inverse curve's cap, not infinity.
@@ -34,9 +34,9 @@ TEST(ThreeDgsColour, DisplayEncodingIsTheFilmicTonemapOfTheExposedColour) {
 }
 
 TEST(ThreeDgsColour, CommentRoundTripsAndDamagedOnesAreRefused) {
-  for (SplatColourEncoding encoding : {SplatColourEncoding{SplatColour::Display, 1.0f},
-                                       SplatColourEncoding{SplatColour::Display, 0.1f},
-                                       SplatColourEncoding{SplatColour::Linear, 1.0f}}) {
+  for (SplatColourEncoding encoding : {SplatColourEncoding{SplatColourSpace::Display, 1.0f},
+                                       SplatColourEncoding{SplatColourSpace::Display, 0.1f},
+                                       SplatColourEncoding{SplatColourSpace::Linear, 1.0f}}) {
     std::string comment = splatColourComment(encoding);
     EXPECT_TRUE(isSplatColourComment(comment)) << comment;
     auto read = splatColourFromComments({"another comment", comment}, "f.ply");

@@ -1,0 +1,119 @@
+// Per-Gaussian radiance sampling through the path tracer and the SH fit of it.
+#include "render/sh_bake.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "io/tonemap.h"
+#include "math/mat4.h"
+#include "math/owen_sobol.h"
+#include "math/rng.h"
+#include "math/sampling.h"
+#include "math/sh_fit.h"
+
+namespace glint {
+
+namespace {
+
+// Ray origins start this many standard deviations (the largest axis) before the mean: the
+// generalised Gaussian's response is negligible there for every kernel power we use.
+constexpr float kStartSigmas = 3.0f;
+// Viewpoints are jittered within this fraction of the camera's distance, so that the few
+// cameras that see a Gaussian still spread its samples over nearby directions.
+constexpr double kViewpointJitter = 0.05;
+// Rays whose blend covers less than this (1 - T_f) are too transparent to normalise by it.
+constexpr float kMinCoverage = 1e-3f;
+
+// The directions Gaussian i is sampled in, viewer towards the Gaussian.
+std::vector<Vec3f> sampleDirections(const Vec3f& mean, uint64_t gaussian, const ShBakeSettings& s,
+                                    const std::vector<Mat4>& worldToCamera) {
+  std::vector<int> seenBy;
+  for (size_t c = 0; c < s.cameras.size(); ++c) {
+    Vec2d pixel;
+    if (s.cameras[c].project(worldToCamera[c], Vec3d(mean), &pixel)) seenBy.push_back(int(c));
+  }
+  // The random streams of this Gaussian: viewpoint jitter, and sphere samples (their last
+  // keys only tell the two apart).
+  Rng rng = Rng::forKeys({s.seed, gaussian, 1});
+  const uint64_t sphereStream = hashKeys({s.seed, gaussian, 2});
+  const size_t count = size_t(s.directions);
+  std::vector<Vec3f> directions(count);
+  for (size_t k = 0; k < count; ++k) {
+    if (seenBy.empty()) {
+      // Stratified over the sphere (a (0,2)-net of sample indices).
+      directions[k] = sampleUniformSphere(stratifiedSample2(sphereStream, uint32_t(k)));
+      continue;
+    }
+    // The cameras that see the Gaussian in equal shares (every one when there are fewer
+    // than the samples, evenly spaced ones otherwise), each from a jittered viewpoint.
+    const Camera& camera = s.cameras[size_t(seenBy[k * seenBy.size() / count])];
+    const Vec3d eye = camera.position();
+    const double distance = length(Vec3d(mean) - eye);
+    const Vec3f jitter = sampleUniformSphere(rng.uniform2()) * std::cbrt(rng.uniform());
+    const Vec3d viewpoint = eye + Vec3d(jitter) * (kViewpointJitter * distance);
+    directions[k] = Vec3f(normalize(Vec3d(mean) - viewpoint));
+  }
+  return directions;
+}
+
+// Gaussian i's blending weight T_i alpha_i on a traced ray (0 when not hit).
+float blendingWeight(const HitList& hits, uint32_t i) {
+  float T = 1.0f, w = 0.0f;
+  for (const HitRecord& hit : hits.hits) {
+    if (hit.id == i) w += T * hit.alpha;
+    T *= 1.0f - hit.alpha;
+  }
+  return w;
+}
+
+}  // namespace
+
+SplatColour bakeReflections(const GaussianScene& scene, const GaussianTracer& tracer, const ShBakeSettings& s) {
+  GLINT_CHECK(s.degree >= 0 && s.degree <= kMaxShDegree && s.directions > 0, "bakeReflections: bad settings");
+  const size_t n = scene.size();
+  SplatColour colour;
+  colour.shDegree = s.degree;
+  colour.base.resize(n);
+  colour.sh.assign(n * colour.restCount(), Rgb(0.0f));
+  std::vector<Mat4> worldToCamera;
+  for (const Camera& camera : s.cameras) worldToCamera.push_back(camera.cameraToWorld.inverse());
+
+  ProgressBar progress("bake reflections", int64_t(n), "Gaussians");
+  parallelForChunks(int64_t(n), 16, [&](int64_t begin, int64_t end) {
+    std::vector<PathSegment> segments;
+    std::vector<Vec3d> rest(colour.restCount());
+    for (int64_t g = begin; g < end; ++g) {
+      const size_t i = size_t(g);
+      const Vec3f mean = scene.position[i];
+      const Vec3f sigma = scene.scale(i);
+      const float start = kStartSigmas * std::max({sigma.x, sigma.y, sigma.z}) + 1e-4f;
+      ShFit fit(s.degree);
+      const std::vector<Vec3f> directions = sampleDirections(mean, i, s, worldToCamera);
+      for (size_t k = 0; k < directions.size(); ++k) {
+        const Vec3f d = directions[k];
+        const TraceRay ray{mean - d * start, d};
+        const PathResult path = tracePath(tracer, ray, s.path, s.seed, /*view=*/i, /*pixel=*/k, 0, &segments);
+        const float coverage = 1.0f - path.first.transmittance;
+        const float w = blendingWeight(segments[0].hits, uint32_t(i));
+        if (coverage < kMinCoverage || !(w > 0)) continue;
+        const Rgb display = tonemapFilmic((path.first.diffuse + path.specular) * s.exposure) / coverage;
+        fit.add(Vec3d(d), Vec3d(display), double(w));
+      }
+      Vec3d constant;
+      if (!fit.solve(s.ridge, &constant, rest.data())) {
+        colour.base[i] = tonemapFilmic(scene.diffuse[i] * s.exposure);  // never seen: no data to fit
+        continue;
+      }
+      colour.base[i] = Rgb(constant);
+      for (size_t k = 0; k < rest.size(); ++k) colour.sh[i * colour.restCount() + k] = Rgb(rest[k]);
+    }
+    progress.advance(end - begin);
+  });
+  progress.finish();
+  return colour;
+}
+
+}  // namespace glint
