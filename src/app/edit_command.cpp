@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/commands.h"
+#include "app/relight_flags.h"
 #include "app/scene_source.h"
 #include "core/error.h"
 #include "edit/edit_file.h"
@@ -24,6 +25,7 @@ struct EditOptions {
   std::string output;
   bool force = false;
   size_t maxGaussians = kDefaultMaxGaussians;
+  RelightFlags relight;
 };
 
 void runEdit(const EditOptions& o) {
@@ -31,9 +33,22 @@ void runEdit(const EditOptions& o) {
     throw Error(o.output, "already exists; choose another -o file or pass --force to replace it");
   EditDocument document = readEditFile(o.edits);  // validate before loading a large scene
   SceneSource source = loadSceneSource(o.scene);
-  EditReport report = applyEdits(document, source.scene, o.maxGaussians);
+  GaussianScene unedited;
+  EditProvenance provenance;
+  if (o.relight.on()) unedited = source.scene, provenance = EditProvenance::identity(source.scene.size());
+  EditReport report = applyEdits(document, source.scene, o.maxGaussians, o.relight.on() ? &provenance : nullptr);
   std::fprintf(stderr, "glint edit: %s with %s\n%s", o.scene.c_str(), o.edits.c_str(),
                formatEditReport(report).c_str());
+  if (o.relight.on()) {  // traced as the scene renders: the run's tracer settings
+    const char* kind = "fast";
+    std::unique_ptr<GaussianTracer> before = makeGaussianTracer(kind), after = makeGaussianTracer(kind);
+    before->build(unedited, source.settings.trace);
+    after->build(source.scene, source.settings.trace);
+    std::fprintf(stderr, "glint edit: %s\n",
+                 relightAfterEdit(*before, unedited, *after, source.scene, provenance,
+                                  o.relight.settings(source.settings.path()))
+                     .c_str());
+  }
   writeGaussianPly(o.output, source.scene);
   std::fprintf(stderr, "glint edit: wrote %s (%zu Gaussians)\n", o.output.c_str(), source.scene.size());
 }
@@ -57,6 +72,7 @@ void addEditCommand(CLI::App& app) {
                   "refused before they allocate")
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
+  o->relight.add(cmd);
   cmd->callback([o]() { runEdit(*o); });
 }
 

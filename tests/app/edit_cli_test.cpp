@@ -14,6 +14,7 @@
 
 #include "app/run_glint.h"
 #include "io/temp_folder.h"
+#include "render/gaussian_layers.h"
 #include "scene/gaussian_ply.h"
 
 namespace glint {
@@ -167,6 +168,65 @@ TEST_F(EditCliTest, RenderAndEvalApplyEditsAndReportRefitAndRebuildCosts) {
   std::ifstream in(folder_ / "m.json");
   nlohmann::json metrics = nlohmann::json::parse(in);
   EXPECT_EQ(metrics["edits"], path("edits.json"));
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// --relight on `glint edit`: deleting a plate that shades the floor brightens the floor
+// under it, and moving it by zero changes no colour at all.
+TEST(EditRelightCli, DeletedPlateBrightensTheFloorAndANullMoveChangesNothing) {
+  test::TempFolder folder;
+  auto path = [&](const std::string& name) { return (folder / name).string(); };
+  GaussianScene scene;
+  test::LayerLook ceiling;
+  ceiling.diffuse = Rgb(2.0f);
+  ceiling.normal = Vec3f(0, 0, -1);
+  test::addLayer(&scene, 0, 0, 1.5f, 24, 24, 0.4f, ceiling);
+  const size_t floorBegin = scene.size();
+  test::LayerLook floor;
+  floor.diffuse = Rgb(0.3f);
+  test::addLayer(&scene, 0, 0, 0, 10, 10, 0.1f, floor);
+  const size_t floorEnd = scene.size();
+  test::LayerLook plate;
+  plate.normal = Vec3f(0, 0, -1);
+  test::addLayer(&scene, 0, 0, 0.4f, 6, 6, 0.05f, plate);
+  writeGaussianPly(folder / "scene.ply", scene);
+  const char* selection = R"("selections": {"plate": {"box": {"min": [-0.2, -0.2, 0.3], "max": [0.2, 0.2, 0.5]}}})";
+  std::ofstream(folder / "delete.json") << "{\"glint_edits\": 1, " << selection
+                                        << R"(, "operations": [{"op": "delete", "selection": "plate"}]})";
+  std::ofstream(folder / "still.json")
+      << "{\"glint_edits\": 1, " << selection
+      << R"(, "operations": [{"op": "translate", "selection": "plate", "offset": [0, 0, 0]}]})";
+
+  Outcome deleted = runGlint("edit " + path("scene.ply") + " " + path("delete.json") + " -o " + path("deleted.ply") +
+                             " --relight");
+  ASSERT_EQ(deleted.status, 0) << deleted.output;
+  EXPECT_NE(deleted.output.find("glint edit: relit "), std::string::npos) << deleted.output;
+  GaussianScene relit = readGaussianPly(path("deleted.ply"));
+  ASSERT_EQ(relit.size(), floorEnd);
+  // The floor Gaussian nearest the centre, under the plate, gains light; one in a far corner
+  // barely changes.
+  size_t centre = floorBegin, corner = floorBegin;
+  for (size_t i = floorBegin; i < floorEnd; ++i) {
+    if (length(scene.position[i]) < length(scene.position[centre])) centre = i;
+    if (length(scene.position[i]) > length(scene.position[corner])) corner = i;
+  }
+  EXPECT_GT(relit.diffuse[centre].x, 1.15f * scene.diffuse[centre].x);
+  EXPECT_NEAR(relit.diffuse[corner].x, scene.diffuse[corner].x, 0.05f * scene.diffuse[corner].x);
+  // The ceiling faces away from the plate's region: it keeps its colour exactly.
+  EXPECT_EQ(relit.diffuse[0], scene.diffuse[0]);
+
+  Outcome still = runGlint("edit " + path("scene.ply") + " " + path("still.json") + " -o " + path("still.ply") +
+                           " --relight");
+  ASSERT_EQ(still.status, 0) << still.output;
+  EXPECT_NE(still.output.find("relit 0 of the"), std::string::npos) << still.output;
+  GaussianScene same = readGaussianPly(path("still.ply"));
+  ASSERT_EQ(same.size(), scene.size());
+  for (size_t i = 0; i < scene.size(); ++i) EXPECT_EQ(same.diffuse[i], scene.diffuse[i]) << i;
 }
 
 }  // namespace
