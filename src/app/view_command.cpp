@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/relight_flags.h"
 #include "app/scene_source.h"
 #include "app/viewer/viewer_outputs.h"
 #include "app/viewer/viewer_setup.h"
@@ -22,6 +23,7 @@ struct ViewOptions {
   std::string dataset;
   ViewerFlags viewer;
   size_t maxGaussians = kDefaultMaxGaussians;
+  RelightFlags relight;
 };
 
 void runView(const ViewOptions& o) {
@@ -36,6 +38,7 @@ void runView(const ViewOptions& o) {
   ViewerOptions options = makeViewerOptions(o.viewer, dataset, source.scene, output);
   options.maxGaussians = o.maxGaussians;
   options.path = source.settings.renderPath();  // the page starts at the run's render bounces
+  if (o.relight.on()) options.relight = o.relight.settings(source.settings.path());
   std::fprintf(stderr, "glint view: %zu Gaussians at %dx%d; saving edits into %s\n", source.scene.size(),
                options.width, options.height, output.string().c_str());
   ViewerServer server(std::move(options), std::move(source.scene), source.settings.trace);
@@ -77,6 +80,7 @@ void addViewCommand(CLI::App& app) {
                   "scene kept (the viewer holds about 230 bytes a Gaussian shown, 390 while an edit rebuilds)")
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
+  o->relight.add(cmd);
   cmd->callback([o]() { runView(*o); });
 }
 
