@@ -181,19 +181,8 @@ namespace {
 TEST(EditRelightCli, DeletedPlateBrightensTheFloorAndANullMoveChangesNothing) {
   test::TempFolder folder;
   auto path = [&](const std::string& name) { return (folder / name).string(); };
-  GaussianScene scene;
-  test::LayerLook ceiling;
-  ceiling.diffuse = Rgb(2.0f);
-  ceiling.normal = Vec3f(0, 0, -1);
-  test::addLayer(&scene, 0, 0, 1.5f, 24, 24, 0.4f, ceiling);
-  const size_t floorBegin = scene.size();
-  test::LayerLook floor;
-  floor.diffuse = Rgb(0.3f);
-  test::addLayer(&scene, 0, 0, 0, 10, 10, 0.1f, floor);
-  const size_t floorEnd = scene.size();
-  test::LayerLook plate;
-  plate.normal = Vec3f(0, 0, -1);
-  test::addLayer(&scene, 0, 0, 0.4f, 6, 6, 0.05f, plate);
+  const test::PlateRoom room = test::plateRoom();
+  const GaussianScene& scene = room.scene;
   writeGaussianPly(folder / "scene.ply", scene);
   const char* selection = R"("selections": {"plate": {"box": {"min": [-0.2, -0.2, 0.3], "max": [0.2, 0.2, 0.5]}}})";
   std::ofstream(folder / "delete.json") << "{\"glint_edits\": 1, " << selection
@@ -207,14 +196,13 @@ TEST(EditRelightCli, DeletedPlateBrightensTheFloorAndANullMoveChangesNothing) {
   ASSERT_EQ(deleted.status, 0) << deleted.output;
   EXPECT_NE(deleted.output.find("glint edit: relit "), std::string::npos) << deleted.output;
   GaussianScene relit = readGaussianPly(path("deleted.ply"));
-  ASSERT_EQ(relit.size(), floorEnd);
+  ASSERT_EQ(relit.size(), room.floorEnd);
   // The floor Gaussian nearest the centre, under the plate, gains light; one in a far corner
   // barely changes.
-  size_t centre = floorBegin, corner = floorBegin;
-  for (size_t i = floorBegin; i < floorEnd; ++i) {
-    if (length(scene.position[i]) < length(scene.position[centre])) centre = i;
+  const size_t centre = room.centre;
+  size_t corner = room.floorBegin;
+  for (size_t i = room.floorBegin; i < room.floorEnd; ++i)
     if (length(scene.position[i]) > length(scene.position[corner])) corner = i;
-  }
   EXPECT_GT(relit.diffuse[centre].x, 1.15f * scene.diffuse[centre].x);
   EXPECT_NEAR(relit.diffuse[corner].x, scene.diffuse[corner].x, 0.05f * scene.diffuse[corner].x);
   // The ceiling faces away from the plate's region: it keeps its colour exactly.

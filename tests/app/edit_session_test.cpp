@@ -85,19 +85,8 @@ namespace {
 // With relighting, deleting a plate that shades a floor brightens the floor under it; undo
 // returns every colour to the pristine scene's exactly.
 TEST(EditSession, RelightsAfterEachEditAndUndoRestoresThePristineColours) {
-  GaussianScene pristine;
-  test::LayerLook ceiling;
-  ceiling.diffuse = Rgb(2.0f);
-  ceiling.normal = Vec3f(0, 0, -1);
-  test::addLayer(&pristine, 0, 0, 1.5f, 24, 24, 0.4f, ceiling);
-  const size_t floorBegin = pristine.size();
-  test::LayerLook floor;
-  floor.diffuse = Rgb(0.3f);
-  test::addLayer(&pristine, 0, 0, 0, 10, 10, 0.1f, floor);
-  const size_t floorEnd = pristine.size();
-  test::LayerLook plate;
-  plate.normal = Vec3f(0, 0, -1);
-  test::addLayer(&pristine, 0, 0, 0.4f, 6, 6, 0.05f, plate);
+  const test::PlateRoom room = test::plateRoom();
+  const GaussianScene& pristine = room.scene;
   EditSession session(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{});
   TracerUpdateContext context;
   context.probeCamera =
@@ -111,10 +100,8 @@ TEST(EditSession, RelightsAfterEachEditAndUndoRestoresThePristineColours) {
   ASSERT_TRUE(status.contains("relight")) << status;
   EXPECT_GE(status["relight_ms"].get<double>(), 0.0);
   std::shared_ptr<const TracedScene> shown = session.current();
-  ASSERT_EQ(shown->scene->size(), floorEnd);
-  size_t centre = floorBegin;
-  for (size_t i = floorBegin; i < floorEnd; ++i)
-    if (length(pristine.position[i]) < length(pristine.position[centre])) centre = i;
+  ASSERT_EQ(shown->scene->size(), room.floorEnd);
+  const size_t centre = room.centre;
   EXPECT_GT(shown->scene->diffuse[centre].x, 1.15f * pristine.diffuse[centre].x);
   // The shown tracer sees the relit colours (it was refitted after relighting).
   TraceRay down{pristine.position[centre] + Vec3f(0, 0, 0.3f), Vec3f(0, 0, -1), 0.0f};
