@@ -96,7 +96,8 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
                                std::span<const ChangedRegion> regions, const RelightSettings& settings,
                                RelightReport* report) {
   GLINT_CHECK(regions.size() <= size_t(kMaxRegions), "relightRatios: too many changed regions");
-  GLINT_CHECK(settings.rays >= 1 && settings.minRays >= 1 && settings.hemisphereRays >= 1 && settings.maxRatio >= 1,
+  GLINT_CHECK(settings.rays >= 1 && settings.minRays >= 1 && settings.hemisphereRays >= 1 && settings.quickRays >= 1 &&
+                  settings.maxRatio >= 1 && settings.minRelativeChange >= 0,
               "relightRatios: bad settings");
   std::vector<Rgb> ratios(receivers.size(), Rgb(1.0f));
   std::atomic<size_t> reached = 0, changed = 0, clampedCount = 0;
@@ -147,15 +148,27 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
       return progress.advance();
     }
 
-    // E_before = pi x mean radiance over cosine-distributed directions.
+    // E_before = pi x mean radiance over cosine-distributed directions: a first estimate,
+    // then the rest of the stratified sequence where the change is large enough to matter.
     const Framef frame = Framef::fromNormal(n);
     const uint64_t hemisphere = hashKeys({settings.seed, g, 1});
-    Rgb irradiance(0.0f);
-    for (int k = 0; k < settings.hemisphereRays; ++k)
-      irradiance += radiance(before, p, n, normalize(frame.toWorld(sampleCosineHemisphere(
-                                                  stratifiedSample2(hemisphere, uint32_t(k))))));
-    traced += uint64_t(settings.hemisphereRays);
-    irradiance = irradiance * (kPi / float(settings.hemisphereRays));
+    Rgb sum(0.0f);
+    auto addRays = [&](int begin, int end) {
+      for (int k = begin; k < end; ++k)
+        sum += radiance(before, p, n,
+                        normalize(frame.toWorld(sampleCosineHemisphere(stratifiedSample2(hemisphere, uint32_t(k))))));
+      traced += uint64_t(end - begin);
+    };
+    const int quick = std::min(settings.quickRays, settings.hemisphereRays);
+    addRays(0, quick);
+    const float quickLuminance = luminance(sum * (kPi / float(quick)));
+    const float largestChange = std::max({std::abs(change.x), std::abs(change.y), std::abs(change.z)});
+    if (largestChange < settings.minRelativeChange * quickLuminance) {
+      rays.fetch_add(traced, std::memory_order_relaxed);
+      return progress.advance();
+    }
+    addRays(quick, settings.hemisphereRays);
+    const Rgb irradiance = sum * (kPi / float(settings.hemisphereRays));
 
     bool clamped = false;
     ratios[size_t(i)] = irradianceRatio(irradiance, change, settings.maxRatio, &clamped);

@@ -34,8 +34,12 @@ struct RelightSettings {
   int rays = 64;
   int minRays = 4;
   // Cosine-distributed rays over the whole hemisphere for E_before (only at receivers
-  // whose irradiance changes).
+  // whose irradiance changes): first quickRays of them, and the rest only where the change
+  // is at least minRelativeChange of that first estimate; elsewhere the colour is kept (a
+  // change of 0.5% is below one level of an 8-bit image for all but the brightest colours).
   int hemisphereRays = 64;
+  int quickRays = 16;
+  float minRelativeChange = 0.005f;
   // The ratio per channel is clamped to [1 / maxRatio, maxRatio]: a receiver whose few rays
   // all met the edited object cannot turn black or blaze.
   float maxRatio = 4.0f;
