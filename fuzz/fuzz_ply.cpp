@@ -1,4 +1,5 @@
-// Fuzz harness for binary PLY: the generic table reader, Gaussian scenes and point clouds.
+// Fuzz harness for PLY (binary of either byte order, and ASCII): the generic table reader,
+// Gaussian scenes and point clouds.
 #include <cstddef>
 #include <cstdint>
 

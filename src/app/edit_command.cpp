@@ -1,14 +1,16 @@
 // `glint edit SCENE.ply|RUN EDITS.json -o OUT.ply`: bakes an edit file into a new Gaussian
 // scene (Glint's PLY layout), printing how many Gaussians each operation changed.
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "app/commands.h"
+#include "app/output_file.h"
 #include "app/relight_flags.h"
 #include "app/scene_source.h"
+#include "app/thread_flag.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "edit/edit_file.h"
 #include "edit/gaussian_edits.h"
 #include "scene/gaussian_ply.h"
@@ -17,22 +19,22 @@ namespace glint {
 
 namespace {
 
-namespace fs = std::filesystem;
-
 struct EditOptions {
   std::string scene;
+  std::string inputLayout = "auto";
   std::string edits;
   std::string output;
   bool force = false;
   size_t maxGaussians = kDefaultMaxGaussians;
+  int threads = 0;
   RelightFlags relight;
 };
 
 void runEdit(const EditOptions& o) {
-  if (fs::exists(o.output) && !o.force)
-    throw Error(o.output, "already exists; choose another -o file or pass --force to replace it");
+  ThreadLimit threads(o.threads);
+  refuseExistingOutput(o.output, o.force);
   EditDocument document = readEditFile(o.edits);  // validate before loading a large scene
-  SceneSource source = loadSceneSource(o.scene);
+  SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
   GaussianScene unedited;
   EditProvenance provenance;
   if (o.relight.on()) unedited = source.scene, provenance = EditProvenance::identity(source.scene.size());
@@ -64,6 +66,7 @@ void addEditCommand(CLI::App& app) {
       "edited scene as a new .ply in Glint's layout. Prints how many Gaussians each operation selected and warns "
       "about selections that hold none.");
   cmd->add_option("scene", o->scene, "Gaussian scene .ply, or a training run folder (its scene.ply)")->required();
+  addInputLayoutFlag(*cmd, o->inputLayout);
   cmd->add_option("edits", o->edits, "Edit file (JSON, \"glint_edits\": 1)")->required();
   cmd->add_option("-o,--output", o->output, "Output .ply file (written atomically)")->required();
   cmd->add_flag("--force", o->force, "Replace the output file if it exists");
@@ -72,6 +75,7 @@ void addEditCommand(CLI::App& app) {
                   "refused before they allocate")
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
+  addThreadsFlag(cmd, &o->threads);
   o->relight.add(cmd);
   cmd->callback([o]() { runEdit(*o); });
 }

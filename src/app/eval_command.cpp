@@ -13,9 +13,11 @@
 
 #include "app/cli_parsing.h"
 #include "app/commands.h"
+#include "app/dataset_flags.h"
 #include "app/rendered_buffers.h"
 #include "app/scene_edits.h"
 #include "app/scene_source.h"
+#include "app/thread_flag.h"
 #include "app/trace_flags.h"
 #include "core/atomic_file.h"
 #include "core/activity.h"
@@ -40,6 +42,7 @@ namespace {
 
 struct EvalOptions {
   std::string run;
+  std::string inputLayout = "auto";
   std::string dataset;
   std::string split = "test";
   std::string output;
@@ -52,6 +55,7 @@ struct EvalOptions {
   bool breakdown = false;
   TraceFlags trace;
   EditsFlag edits;
+  DatasetFlags reading;  // --downscale, --background
 };
 
 // RUN/eval/metrics.json unless -o names another file; a bare .ply has no run folder to
@@ -140,7 +144,7 @@ void runEval(const EvalOptions& o) {
   if (o.breakdown && (o.spp < 2 || o.spp % 2 != 0))
     throw Error("command line", "--breakdown renders two independent halves of the samples: --spp must be even and "
                 "at least 2 (got " + std::to_string(o.spp) + ")");
-  SceneSource source = loadSceneSource(o.run);
+  SceneSource source = loadSceneSource(o.run, parseInputLayout(o.inputLayout));
   fs::path output = metricsPath(o);
   const SceneRendering rendering = o.trace.resolve(source.settings);
   const TraceSettings& trace = rendering.trace;
@@ -148,7 +152,8 @@ void runEval(const EvalOptions& o) {
   if (datasetPath.empty())
     throw Error(o.run, "names no dataset to compare with (only a training run's config.json can): pass --dataset");
 
-  Dataset dataset = Dataset::open(datasetPath, /*requireBuffers=*/true, source.settings.holdout);
+  const DatasetReading reading = o.reading.resolve(source.settings, /*requireBuffers=*/true);
+  Dataset dataset = Dataset::open(datasetPath, reading);
   const DatasetSplit& split = dataset.split(o.split);
   if (split.views.empty()) throw Error(datasetPath.string(), "the " + o.split + " split has no views to evaluate");
 
@@ -208,6 +213,8 @@ void runEval(const EvalOptions& o) {
       {"scene", o.run},
       {"dataset", datasetPath.string()},
       {"split", o.split},
+      {"downscale", reading.downscale},
+      {"background", choiceName(reading.background)},
       {"views", split.views.size()},
       {"width", split.width},
       {"height", split.height},
@@ -263,6 +270,7 @@ void addEvalCommand(CLI::App& app) {
   cmd->add_option("run", o->run,
                   "Training run folder (scene.ply, config.json), or a Gaussian scene .ply (then -o is required)")
       ->required();
+  addInputLayoutFlag(*cmd, o->inputLayout);
   cmd->add_option("--dataset", o->dataset, "Dataset with the ground truth; default: the run's dataset");
   cmd->add_option("--split", o->split, "Split to evaluate")
       ->check(CLI::IsMember({"train", "test"}))
@@ -273,9 +281,7 @@ void addEvalCommand(CLI::App& app) {
       ->check(CLI::Range(1, 1 << 16))
       ->capture_default_str();
   cmd->add_option("--seed", o->seed, "Seed of the sub-pixel jitter (with --spp > 1)")->capture_default_str();
-  cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
+  addThreadsFlag(cmd, &o->threads);
   cmd->add_option("--region", o->region,
                   "X0,Y0,Z0,X1,Y1,Z1: also score the pixels whose true surface point lies in this world-space box "
                   "(diffuse and final PSNR per view and pooled), e.g. one object's reconstruction");
@@ -294,6 +300,7 @@ void addEvalCommand(CLI::App& app) {
                 "classes to <split>/pixel_kinds/");
   o->trace.add(cmd);
   o->edits.add(cmd);
+  o->reading.add(cmd, /*withBackground=*/true);
   cmd->add_flag("--save-images", o->saveImages,
                 "Also write the rendered buffers as EXR next to the metrics file, under <split>/ (RUN/eval/test/...)");
   cmd->callback([o]() { runEval(*o); });

@@ -1,12 +1,17 @@
 // Entry point of the `glint` command line program: dispatches to subcommands and turns
 // errors into one clear message and a non-zero exit.
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <exception>
+#include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "app/nearest_name.h"
 #include "core/activity.h"
 #include "core/error.h"
 
@@ -27,23 +32,37 @@ int main(int argc, char** argv) {
   glint::addExportCommand(app);
   glint::addEditCommand(app);
   glint::addViewCommand(app);
+  // Bare `glint` did nothing it was asked to: the command list, and a failing status so that
+  // a script that lost its arguments stops.
   if (argc == 1) {
-    std::fputs(app.help().c_str(), stdout);
-    return 0;
+    std::fputs(app.help().c_str(), stderr);
+    return 1;
   }
   // Name an unknown command outright; CLI11 alone would only say that one is required.
   std::string names;
-  bool known = false;
+  std::vector<std::string> commands;
   for (const CLI::App* sub : app.get_subcommands({})) {
     names += (names.empty() ? "" : ", ") + sub->get_name();
-    known = known || sub->get_name() == argv[1];
+    commands.push_back(sub->get_name());
   }
-  if (argv[1][0] != '-' && !known) {
-    std::fprintf(stderr, "glint: error: unknown command '%s' (commands: %s; see glint --help)\n", argv[1], names.c_str());
+  if (argv[1][0] != '-' && std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
+    std::optional<std::string> near = glint::nearestName(argv[1], commands);
+    std::fprintf(stderr, "glint: error: unknown command '%s'%s (commands: %s; see glint --help)\n", argv[1],
+                 near ? ("; did you mean '" + *near + "'?").c_str() : "", names.c_str());
     return 1;
   }
   try {
     app.parse(argc, argv);
+  } catch (const CLI::ExtrasError& e) {
+    // An unknown flag: name the nearest one the command has (CLI11 lists the extras only).
+    for (const CLI::App* sub : app.get_subcommands())
+      for (const std::string& extra : sub->remaining())
+        if (extra.size() > 1 && extra[0] == '-' && !std::isdigit((unsigned char)extra[1])) {
+          std::fprintf(stderr, "glint %s: error: %s\n", sub->get_name().c_str(),
+                       glint::unknownFlagMessage(*sub, extra).c_str());
+          return 1;
+        }
+    return app.exit(e);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const glint::Error& e) {

@@ -7,13 +7,16 @@
 
 #include "app/cli_parsing.h"
 #include "app/commands.h"
+#include "app/dataset_flags.h"
 #include "app/rendered_buffers.h"
 #include "app/scene_edits.h"
 #include "app/scene_source.h"
+#include "app/thread_flag.h"
 #include "app/trace_flags.h"
 #include "app/video_encoder.h"
 #include "core/activity.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "core/progress.h"
 #include "io/image.h"
 #include "raytrace/gaussian_tracer.h"
@@ -32,6 +35,7 @@ namespace {
 
 struct RenderOptions {
   std::string scene;
+  std::string inputLayout = "auto";
   std::string dataset;
   std::string split = "test";
   std::string output;
@@ -51,6 +55,8 @@ struct RenderOptions {
   bool noVideo = false;
   std::string debugPixel;  // "x,y": print that pixel's paths instead of rendering
   int debugView = 0;
+  int threads = 0;
+  DatasetFlags reading;  // --downscale
 };
 
 // Prints every segment of a pixel's paths: where it starts and goes, its throughput, what
@@ -140,7 +146,8 @@ void renderCameraPath(const RenderOptions& o, const GaussianTracer& tracer, cons
 
 void runRender(const RenderOptions& o) {
   if (o.output.empty() && o.debugPixel.empty()) throw Error("glint render", "needs an output folder: pass -o OUT");
-  SceneSource source = loadSceneSource(o.scene);
+  ThreadLimit threads(o.threads);
+  SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
   GaussianScene& scene = source.scene;
   const SceneRendering rendering = o.trace.resolve(source.settings);
   const TraceSettings& trace = rendering.trace;
@@ -154,7 +161,7 @@ void runRender(const RenderOptions& o) {
     pathKind = cameraPathFromName(o.path);
     if (!o.debugPixel.empty()) throw Error("--path", "renders frames; it cannot be combined with --debug-pixel");
   }
-  Dataset dataset = Dataset::open(datasetPath, /*requireBuffers=*/false, source.settings.holdout);
+  Dataset dataset = Dataset::open(datasetPath, o.reading.resolve(source.settings, /*requireBuffers=*/false));
   // dataset-test walks through the test cameras whatever --split says.
   const DatasetSplit& split = dataset.split(pathKind == CameraPathKind::DatasetTest ? "test" : o.split);
   // Each view renders at its own size and intrinsics, or every one resized to --res.
@@ -246,6 +253,7 @@ void addRenderCommand(CLI::App& app) {
                   "Gaussian scene (.ply in Glint's or the 3DGS layout), or a training run folder (scene.ply, and "
                   "config.json for the dataset and the trace and path settings it was trained with)")
       ->required();
+  addInputLayoutFlag(*cmd, o->inputLayout);
   cmd->add_option("--dataset", o->dataset,
                   "Dataset whose cameras to use (only transforms_*.json is needed); default: the run's dataset");
   cmd->add_option("--split", o->split, "Camera split")->check(CLI::IsMember({"train", "test"}))->capture_default_str();
@@ -257,6 +265,7 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--seed", o->seed, "Seed of the sub-pixel jitter")->capture_default_str();
   o->trace.add(cmd);
   o->edits.add(cmd);
+  o->reading.add(cmd, /*withBackground=*/false);
   cmd->add_option("--debug-pixel", o->debugPixel,
                   "X,Y: print the paths of this pixel of --view (segments, throughputs, blended values, hits), "
                   "traced exactly as in the full render, and write nothing");
@@ -282,6 +291,7 @@ void addRenderCommand(CLI::App& app) {
   cmd->add_option("--fps", o->fps, "Frames per second of the --path video")->check(CLI::Range(1, 240))->capture_default_str();
   cmd->add_flag("--no-video", o->noVideo, "With --path, write the frames only (no MP4)");
   cmd->add_flag("--force", o->force, "Write into a non-empty output folder");
+  addThreadsFlag(cmd, &o->threads);
   cmd->add_option("--format", o->format, "exr: linear float buffers; png: 8-bit, encoded as datasets store them "
                                          "(radiance through the filmic tonemap, as the viewer shows it; depth stays EXR)")
       ->check(CLI::IsMember({"exr", "png"}))

@@ -94,13 +94,15 @@ fs::path datasetFolder(const ReportOptions& o, const fs::path& configFile, const
   return config->dataset;
 }
 
-// The ground truth and our rendering of one view's radiance passes.
+// The ground truth and our rendering of one view's radiance passes (those the dataset has).
 ReportView loadViewImages(const Dataset& dataset, const DatasetSplit& split, size_t v, const fs::path& imagesFolder,
                           const ViewMetrics& metrics, const std::string& run) {
   ReportView view{split.views[v].filePath, {}};
   const std::pair<const char*, Buffer> passes[] = {
       {"diffuse", Buffer::Diffuse}, {"specular", Buffer::Specular}, {"final", Buffer::Render}};
   for (const auto& [name, buffer] : passes) {
+    // A dataset of final images only (NeRF-synthetic, a capture) has no truth for the others.
+    if (!dataset.findBufferFile(split.views[v], buffer)) continue;
     fs::path oursFile = renderedBufferPath(imagesFolder, split.views[v].filePath, buffer);
     requireInput(oursFile, "run `glint eval " + run + " --save-images` first (it writes the rendered views)");
     ReportPass pass{name, dataset.loadBuffer(split, v, buffer), readImage(oursFile), {}};
@@ -113,6 +115,7 @@ ReportView loadViewImages(const Dataset& dataset, const DatasetSplit& split, siz
     view.passes.push_back(std::move(pass));
   }
   for (Buffer buffer : {Buffer::Normal, Buffer::Depth, Buffer::Roughness, Buffer::F0}) {
+    if (!dataset.findBufferFile(split.views[v], buffer)) continue;  // as above
     fs::path oursFile = renderedBufferPath(imagesFolder, split.views[v].filePath, buffer);
     requireInput(oursFile, "run `glint eval " + run + " --save-images` first (it writes the rendered views)");
     Image truth = dataset.loadBuffer(split, v, buffer), ours = readImage(oursFile);
@@ -240,8 +243,15 @@ void runReport(const ReportOptions& o) {
                  metricsFile.string().c_str(), o.run.c_str());
 
   const fs::path datasetPath = datasetFolder(o, configFile, config);
-  Dataset dataset =
-      Dataset::open(datasetPath, /*requireBuffers=*/true, config ? config->holdout : Dataset::kDefaultHoldout);
+  // Read as the evaluation read it: the run's settings, and the --downscale and --background
+  // that metrics.json records.
+  DatasetReading reading = config ? config->datasetReading(/*requireBuffers=*/true) : DatasetReading{};
+  if (metrics.all.contains("downscale") && metrics.all["downscale"].is_number_integer())
+    reading.downscale = std::clamp(metrics.all["downscale"].get<int>(), 1, kMaxDownscale);
+  if (metrics.all.contains("background") && metrics.all["background"].is_string())
+    reading.background = choiceFromName<AlphaBackground>(metrics.all["background"].get<std::string>())
+                             .value_or(reading.background);
+  Dataset dataset = Dataset::open(datasetPath, reading);
   const DatasetSplit& split = dataset.split(metrics.split);
   if (std::string mismatch = viewsMismatch(metrics, split, datasetPath); !mismatch.empty())
     throw Error(metricsFile.string(), mismatch + "; was it evaluated on another dataset?");

@@ -3,11 +3,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <string>
 
 #include "core/activity.h"
 #include "core/error.h"
-#include "scene/gaussian_ply.h"
 #include "train/run_folder.h"
 
 namespace glint {
@@ -22,9 +22,19 @@ bool hasPlyExtension(const fs::path& p) {
   return ext == ".ply";
 }
 
+// Reads the scene file and tells the user what a 3DGS import assumed.
+void readScene(const fs::path& file, PlyLayout layout, SceneSource& source) {
+  source.sceneFile = file;
+  source.scene = readGaussianPly(file, layout, &source.import);
+  std::string description = describeImport(source.import);
+  if (!description.empty()) std::fprintf(stderr, "glint: %s: %s\n", file.string().c_str(), description.c_str());
+  std::string warning = droppedShWarning(source.import, file.string());
+  if (!warning.empty()) std::fprintf(stderr, "glint: %s\n", warning.c_str());
+}
+
 }  // namespace
 
-SceneSource loadSceneSource(const fs::path& p) {
+SceneSource loadSceneSource(const fs::path& p, PlyLayout layout) {
   ActivityScope activity("reading the scene " + p.string());
   SceneSource source;
   if (fs::is_directory(p)) {
@@ -32,14 +42,32 @@ SceneSource loadSceneSource(const fs::path& p) {
     if (!fs::is_regular_file(run.sceneFile())) throw Error(p.string(), "is not a training run: no scene.ply");
     // The settings first: a bad config.json is refused before a large scene is read.
     if (run.hasConfig()) source.settings = run.readConfig();
-    source.scene = readGaussianPly(run.sceneFile());
+    readScene(run.sceneFile(), layout, source);
     return source;
   }
   if (!fs::exists(p))
     throw Error(p.string(), "does not exist (expected a Gaussian scene .ply or a training run folder)");
   if (!hasPlyExtension(p)) throw Error(p.string(), "is neither a Gaussian scene .ply nor a training run folder");
-  source.scene = readGaussianPly(p);
+  readScene(p, layout, source);
   return source;
+}
+
+void addInputLayoutFlag(CLI::App& command, std::string& layout) {
+  command
+      .add_option("--input-layout", layout,
+                  "How to read the scene .ply: auto (from its header: Glint's comment or material properties "
+                  "mean glint, f_rest_*/nx ny nz or Glint's 3DGS export comment mean 3dgs; a file with both or "
+                  "neither is refused), glint (f_dc is linear diffuse colour) or 3dgs (f_dc is the SH DC of a "
+                  "display-referred colour; missing materials become a rough dielectric)")
+      ->check(CLI::IsMember({"auto", "glint", "3dgs"}))
+      ->capture_default_str();
+}
+
+PlyLayout parseInputLayout(const std::string& name) {
+  if (name == "glint") return PlyLayout::Glint;
+  if (name == "3dgs") return PlyLayout::ThreeDgs;
+  GLINT_CHECK(name == "auto", "unchecked --input-layout '" + name + "'");
+  return PlyLayout::Auto;
 }
 
 }  // namespace glint

@@ -3,7 +3,9 @@
 
 #include "app/cli_parsing.h"
 #include "app/commands.h"
+#include "app/thread_flag.h"
 #include "core/error.h"
+#include "core/parallel.h"
 #include "eval/contact_sheet.h"
 #include "io/image.h"
 
@@ -17,9 +19,11 @@ struct SheetOptions {
   std::string split = "train";
   std::string views;
   int rows = 3;
+  int threads = 0;
 };
 
 void runSheet(const SheetOptions& o) {
+  ThreadLimit threads(o.threads);
   Dataset dataset = Dataset::open(o.dataset);
   const DatasetSplit& split = dataset.split(o.split);
   std::vector<size_t> views;
@@ -53,6 +57,7 @@ void addSheetCommand(CLI::App& app) {
   cmd->add_option("--rows", options->rows, "Number of evenly spread views when --views is not given")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
+  addThreadsFlag(cmd, &options->threads);
   cmd->callback([options]() { runSheet(*options); });
 }
 

@@ -6,6 +6,7 @@
 
 #include "app/cli_parsing.h"
 #include "app/commands.h"
+#include "app/thread_flag.h"
 #include "core/activity.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -227,9 +228,7 @@ void addSynthCommand(CLI::App& app) {
                   "and spheres by the centre of their bounds, material operations change their glTF materials. "
                   "Cameras stay those of the unedited scene")
       ->check(CLI::ExistingFile);
-  cmd->add_option("--threads", options->threads, "Worker threads (0 = all cores)")
-      ->check(CLI::Range(0, 1024))
-      ->capture_default_str();
+  addThreadsFlag(cmd, &options->threads);
   cmd->add_flag("--force", options->force, "Overwrite an existing dataset in the output folder");
   cmd->add_option("--layout", options->layout,
                   "transforms: the synthetic layout (docs/data-format.md). capture: a capture folder "

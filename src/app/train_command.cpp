@@ -10,6 +10,8 @@
 #include <memory>
 
 #include "app/commands.h"
+#include "app/dataset_flags.h"
+#include "app/thread_flag.h"
 #include "app/viewer/viewer_setup.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -33,7 +35,9 @@ struct TrainOptions {
   std::string baseline;    // the words of --baseline and --init (train/config_choices.h)
   std::string initSource;
   bool view = false;       // serve the viewer page showing the scene as it trains
+  bool keepServing = false;  // ... and go on serving the final scene after training
   ViewerFlags viewer;
+  DatasetFlags reading;    // --downscale, --background
   double viewEvery = 2.0;  // seconds between the snapshots the viewer shows
   TrainConfig config;  // defaults, overridden by --config, then by explicit flags
 };
@@ -52,6 +56,27 @@ std::string formatCount(double n) {
   return buf;
 }
 
+// The RGB-only baseline: colours fitted to the final images, no G-buffer losses, no reflections.
+void useRgbBaseline(TrainConfig* config) {
+  config->baseline = Baseline::Rgb;
+  config->bounces = 0;
+  config->loss = LossWeights{.diffuse = config->loss.diffuse, .depth = 0, .normal = 0, .roughness = 0, .f0 = 0,
+                             .specular = 0};
+}
+
+// True when a synthetic dataset's first training view has its final image and nothing else
+// (the NeRF-synthetic layout): no diffuse, specular or G-buffers for the method to train on.
+// A real capture's photographs train the method, with its sparse points for the geometry
+// (docs/capture-format.md).
+bool hasFinalImagesOnly(const TrainConfig& config) {
+  const Dataset dataset = Dataset::open(config.dataset, config.datasetReading(/*requireBuffers=*/true));
+  const DatasetSplit& train = dataset.split("train");
+  if (dataset.capture() && !dataset.capture()->alphaBackground && !dataset.capture()->priorTransforms) return false;
+  for (Buffer b : kAllBuffers)
+    if (b != Buffer::Render && dataset.findBufferFile(train.views[0], b)) return false;
+  return true;
+}
+
 // The config of a new run: the defaults, then --config, then the flags given.
 TrainConfig newRunConfig(const TrainOptions& o, const CLI::App& cmd) {
   TrainConfig config = o.configFile.empty() ? TrainConfig() : readTrainConfig(o.configFile);
@@ -66,15 +91,23 @@ TrainConfig newRunConfig(const TrainOptions& o, const CLI::App& cmd) {
   if (given("--eval-every")) config.evalEvery = o.config.evalEvery;
   if (given("--save-every")) config.saveEvery = o.config.saveEvery;
   if (given("--init")) config.initSource = *choiceFromName<InitChoice>(o.initSource);  // IsMember checked it
-  if (given("--baseline") && choiceFromName<Baseline>(o.baseline) == Baseline::Rgb) {
-    if (given("--bounces") && o.config.bounces != 0)
-      throw Error("command line", "--baseline rgb trains no reflections: leave out --bounces");
-    config.baseline = Baseline::Rgb;
-    config.bounces = 0;
-    config.loss = LossWeights{.diffuse = config.loss.diffuse, .depth = 0, .normal = 0, .roughness = 0, .f0 = 0,
-                              .specular = 0};
-  }
+  o.reading.applyTo(&config);
   config.dataset = fs::absolute(o.dataset).lexically_normal().string();
+  // Opening the dataset here refuses a broken one before the run folder is made. One with
+  // final images only trains the RGB-only baseline unless --baseline says otherwise: the
+  // method has nothing to separate reflections with.
+  const bool finalImagesOnly = hasFinalImagesOnly(config);
+  const bool autoRgb = !given("--baseline") && config.baseline == Baseline::None && finalImagesOnly;
+  if (autoRgb || (given("--baseline") && choiceFromName<Baseline>(o.baseline) == Baseline::Rgb)) {
+    if (given("--bounces") && o.config.bounces != 0)
+      throw Error("command line", autoRgb ? o.dataset + " has final images only, which train the RGB-only baseline "
+                                                        "(no reflections): leave out --bounces, or pass --baseline none"
+                                          : "--baseline rgb trains no reflections: leave out --bounces");
+    useRgbBaseline(&config);
+    if (autoRgb)
+      std::fprintf(stderr, "glint train: %s has final images only (no diffuse, specular or G-buffers): training "
+                   "the RGB-only baseline, as --baseline rgb\n", o.dataset.c_str());
+  }
   config.validate("command line");
   return config;
 }
@@ -121,7 +154,7 @@ class TrainPrinter : public TrainingObserver {
       std::fprintf(stderr, "glint train: the dataset has no %s buffers: training without their losses\n",
                    s.list(false).c_str());
     progress_ = std::make_unique<ProgressBar>("train", config_.iters, "steps");
-    progress_->advance(trainer.stepCount());
+    progress_->resumeAt(trainer.stepCount());  // the rate and ETA count this session's steps only
   }
 
   void stepped(const StepReport& r, const std::optional<TestScore>& score) override {
@@ -157,6 +190,8 @@ class TrainPrinter : public TrainingObserver {
     if (progress_) progress_->finish();
   }
   ViewerServer* viewer() { return viewer_.get(); }
+  // Whether the loop got as far as its first step (the dataset loaded, the scene set up).
+  bool hasStarted() const { return progress_ != nullptr; }
 
  private:
   const TrainOptions& o_;
@@ -183,13 +218,30 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
     if (!o.dataset.empty() &&
         fs::absolute(o.dataset).lexically_normal() != fs::path(config.dataset).lexically_normal())
       throw Error(run.root().string(), "was trained on " + config.dataset + ", not " + o.dataset);
-  } else {
+  }
+  // A new run that fails before its first step (a broken dataset, a bad setting) takes back
+  // what it wrote, so that the retry is not refused; only from a folder that held nothing
+  // else, and the folder itself only if this start made it.
+  bool undoFailedStart = false, madeFolder = false;
+  if (!o.session.resume) {
     config = newRunConfig(o, cmd);
+    madeFolder = !fs::exists(run.root());
+    undoFailedStart = madeFolder || (fs::is_directory(run.root()) && fs::is_empty(run.root())) ||
+                      run.isUnfinishedStart();
+    if (run.isUnfinishedStart())
+      std::fprintf(stderr, "glint train: %s holds a start that never saved a checkpoint; starting afresh (its "
+                   "config.json and log.csv are replaced)\n", run.root().string().c_str());
     run.create(config, o.force);
   }
 
   TrainPrinter printer(o, config, run);
-  TrainingOutcome outcome = trainRun(run, config, o.session, printer);
+  TrainingOutcome outcome;
+  try {
+    outcome = trainRun(run, config, o.session, printer);
+  } catch (...) {
+    if (undoFailedStart && !printer.hasStarted()) run.removeFailedStart(madeFolder);
+    throw;
+  }
   printer.finish();
   if (outcome.stopped) {
     std::fprintf(stderr, "glint train: interrupted; saved step %lld to %s (continue with --resume)\n",
@@ -198,10 +250,13 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
   }
   std::fprintf(stderr, "glint train: done; %zu Gaussians in %s\n", outcome.gaussians,
                run.sceneFile().string().c_str());
-  if (printer.viewer()) {
+  if (printer.viewer() && o.keepServing) {
     std::fprintf(stderr, "glint train: still serving the final scene at %s (Ctrl-C stops)\n",
                  printer.viewer()->url().c_str());
     waitForInterrupt();
+  } else if (printer.viewer()) {
+    printer.viewer()->stop();
+    std::fprintf(stderr, "glint train: the viewer has stopped (--keep-serving keeps it serving the final scene)\n");
   }
 }
 
@@ -231,11 +286,9 @@ void addTrainCommand(CLI::App& app) {
                   "For a capture with predicted buffers use scripts/real-capture-train.json (the paper's setting: no "
                   "depth loss, specular weight 0.01), which measured 2.7 dB better than the defaults on COLMAP cameras")
       ->check(CLI::ExistingFile);
+  o->reading.add(cmd, /*withBackground=*/true);
   cmd->add_option("--seed", o->config.seed, "Seed of the ray batches")->default_val(defaults.seed);
-  cmd->add_option("--threads", o->config.threads, "Worker threads (0 = all cores); a run is reproducible for a "
-                                                  "given seed and thread count")
-      ->check(CLI::Range(kThreadsRange.min, kThreadsRange.max))
-      ->default_val(defaults.threads);
+  addThreadsFlag(cmd, &o->config.threads, "a run is reproducible for a given seed and thread count");
   cmd->add_option("--bounces", o->config.bounces, "Reflected segments trained with L_r after the warm-up "
                                                   "(reflection_warmup steps); 0 = first segment only")
       ->check(CLI::Range(kBouncesRange.min, kBouncesRange.max))
@@ -243,9 +296,9 @@ void addTrainCommand(CLI::App& app) {
   cmd->add_option("--baseline", o->baseline,
                   "rgb: the ray-traced RGB-only baseline, for comparison: the same tracer and schedule, the colours "
                   "fitted to the render buffer alone (no G-buffer losses, no reflections); its diffuse pass is its "
-                  "output. none: the method")
-      ->check(CLI::IsMember(choiceNames<Baseline>()))
-      ->default_val(choiceName(defaults.baseline));
+                  "output; it needs the final images only. none: the method. Default: rgb for a dataset with final "
+                  "images only (NeRF-synthetic), else none")
+      ->check(CLI::IsMember(choiceNames<Baseline>()));
   cmd->add_option("--batch-rays", o->config.batchRays, "Rays per step")
       ->check(CLI::Range(kBatchRaysRange.min, kBatchRaysRange.max))
       ->default_val(defaults.batchRays);
@@ -271,8 +324,9 @@ void addTrainCommand(CLI::App& app) {
       ->default_val(choiceName(defaults.initSource));
   cmd->add_option("--tracer", o->session.tracer, "Gaussian tracer (fast, embree-k16, reference)")
       ->default_val(o->session.tracer);
-  cmd->add_flag("--view", o->view, "Serve the viewer page (as glint view, without editing) showing the scene as it "
-                                   "trains; the URL is printed");
+  CLI::Option* viewFlag = cmd->add_flag("--view", o->view,
+                                        "Serve the viewer page (as glint view, without editing) showing the scene as "
+                                        "it trains; the URL is printed");
   cmd->add_option("--view-port", o->viewer.port, "Port of --view (0 = any free port)")
       ->check(CLI::Range(0, 65535))
       ->capture_default_str();
@@ -282,6 +336,10 @@ void addTrainCommand(CLI::App& app) {
   cmd->add_option("--view-every", o->viewEvery, "Seconds between the snapshots --view shows")
       ->check(CLI::Range(0.1, 3600.0))
       ->capture_default_str();
+  cmd->add_flag("--keep-serving", o->keepServing,
+                "With --view: go on serving the final scene after training, until Ctrl-C (without it the viewer "
+                "stops when training ends)")
+      ->needs(viewFlag);
   cmd->add_flag("--resume", o->session.resume, "Continue the run in -o from its checkpoint, exactly as if never stopped");
   cmd->add_flag("--force", o->force, "Start a new run in a non-empty -o folder (its files are overwritten)");
   cmd->callback([o, cmd]() {

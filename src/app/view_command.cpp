@@ -8,9 +8,11 @@
 #include "app/commands.h"
 #include "app/relight_flags.h"
 #include "app/scene_source.h"
+#include "app/thread_flag.h"
 #include "app/viewer/viewer_outputs.h"
 #include "app/viewer/viewer_setup.h"
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace glint {
 
@@ -20,17 +22,21 @@ namespace fs = std::filesystem;
 
 struct ViewOptions {
   std::string scene;
+  std::string inputLayout = "auto";
   std::string dataset;
   ViewerFlags viewer;
   size_t maxGaussians = kDefaultMaxGaussians;
+  int threads = 0;
   RelightFlags relight;
 };
 
 void runView(const ViewOptions& o) {
-  SceneSource source = loadSceneSource(o.scene);
+  ThreadLimit threads(o.threads);
+  SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
   fs::path datasetPath = o.dataset.empty() ? fs::path(source.settings.dataset) : fs::path(o.dataset);
   std::optional<Dataset> dataset;
-  if (!datasetPath.empty()) dataset = Dataset::open(datasetPath, /*requireBuffers=*/false, source.settings.holdout);
+  if (!datasetPath.empty())
+    dataset = Dataset::open(datasetPath, source.settings.datasetReading(/*requireBuffers=*/false));
   // Saved edits and exports go into a viewer/ folder beside what was opened (the run folder, or
   // the .ply's folder): never over a file of the run (viewer_outputs.h).
   fs::path opened = fs::is_directory(o.scene) ? fs::path(o.scene) : fs::absolute(o.scene).parent_path();
@@ -62,6 +68,7 @@ void addViewCommand(CLI::App& app) {
               "(or beside the .ply). The printed URL carries a per-launch token that requests changing the viewer "
               "must send; requests naming another host or coming from another site's page are refused.");
   cmd->add_option("scene", o->scene, "Gaussian scene (.ply) or training run folder")->required();
+  addInputLayoutFlag(*cmd, o->inputLayout);
   cmd->add_option("--dataset", o->dataset, "Dataset whose cameras to offer (default: the run's dataset)");
   cmd->add_option("--port", o->viewer.port, "Port to listen on (0 = any free port, printed)")
       ->check(CLI::Range(0, 65535))
@@ -80,6 +87,7 @@ void addViewCommand(CLI::App& app) {
                   "scene kept (the viewer holds about 230 bytes a Gaussian shown, 390 while an edit rebuilds)")
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
+  addThreadsFlag(cmd, &o->threads, "the viewer renders with them");
   o->relight.add(cmd);
   cmd->callback([o]() { runView(*o); });
 }

@@ -3,6 +3,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -76,6 +77,13 @@ void ProgressBar::advance(int64_t n) {
   draw(false);
 }
 
+void ProgressBar::resumeAt(int64_t done) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  doneBefore_ = done;
+  done_.store(done, std::memory_order_relaxed);
+  start_ = std::chrono::steady_clock::now();
+}
+
 void ProgressBar::finish() {
   std::lock_guard<std::mutex> lock(mutex_);
   if (finished_) return;
@@ -87,7 +95,7 @@ void ProgressBar::draw(bool final) {
   int64_t done = std::min(done_.load(std::memory_order_relaxed), total_);
   double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   double fraction = total_ > 0 ? double(done) / double(total_) : 1.0;
-  double rate = elapsed > 0 ? double(done) / elapsed : 0.0;
+  double rate = elapsed > 0 ? double(std::max<int64_t>(done - doneBefore_, 0)) / elapsed : 0.0;
   double remaining = rate > 0 ? double(total_ - done) / rate : NAN;
 
   std::string bar(kBarWidth, ' ');

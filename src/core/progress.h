@@ -19,6 +19,10 @@ class ProgressBar {
 
   // Adds n finished units; redraws at most a few times per second.
   void advance(int64_t n = 1);
+  // Starts the count at `done` units finished before this bar (a resumed job): they show in
+  // the count and the fraction, but the rate and the remaining time count only the units
+  // done since. Call before the first advance().
+  void resumeAt(int64_t done);
   // Draws the final state and ends the line. Called by the destructor if not before.
   void finish();
   // Extra text shown after the bar (e.g. current loss); thread-safe.
@@ -39,6 +43,7 @@ class ProgressBar {
   std::string status_;
   int64_t total_;
   std::atomic<int64_t> done_{0};
+  int64_t doneBefore_ = 0;  // resumeAt's units, left out of the rate
   std::chrono::steady_clock::time_point start_;
   // Atomic: advance() reads it without the lock while the thread that draws updates it.
   std::atomic<std::chrono::steady_clock::time_point> lastDraw_;

@@ -34,6 +34,12 @@ const char* imageFormatExtension(ImageFormat format) {
   return "";
 }
 
+Image readImageWithAlpha(const fs::path& path) {
+  if (imageFormatFromPath(path) != ImageFormat::Png) return readImage(path);
+  if (!fs::is_regular_file(path)) return readImage(path);  // its message for a missing file
+  return detail::readPng(path.string(), /*keepAlpha=*/true);
+}
+
 Image readImage(const fs::path& path) {
   ImageFormat format = imageFormatFromPath(path);
   std::string name = path.string();

@@ -53,6 +53,9 @@ const char* imageFormatExtension(ImageFormat format);  // ".exr", ".tiff", ".png
 // them. Throws Error naming the file and the problem (missing, truncated, unsupported
 // layout, ...).
 Image readImage(const std::filesystem::path& path);
+// readImage, except that a PNG with alpha comes back as RGBA (4 channels; a grey one as RGB
+// plus alpha): for images whose alpha is coverage, composited by the caller.
+Image readImageWithAlpha(const std::filesystem::path& path);
 
 // The bytes of an 8-bit PNG of the image (values clamped to [0,1] and rounded, as
 // writeImage does), encoded in memory: for embedding in a page as a data: URI. The image

@@ -16,10 +16,11 @@ namespace glint::detail {
 constexpr size_t kMaxImagePixels = size_t(1) << 32;
 
 // Readers take the path for error messages and open it themselves; they return an image
-// with 1 or 3 channels and throw Error naming the file.
+// with 1 or 3 channels (readPng with keepAlpha: 3, or 4 when the file has alpha) and throw
+// Error naming the file.
 Image readExr(const std::string& path);
 Image readTiff(const std::string& path);
-Image readPng(const std::string& path);
+Image readPng(const std::string& path, bool keepAlpha = false);
 Image readJpeg(const std::string& path);
 
 // Writers write to filePath (a temporary file) but name displayPath in errors. The image

@@ -1,4 +1,4 @@
-// PNG reading (8/16-bit grey, RGB, palette; alpha dropped) and 8/16-bit writing, to a file
+// PNG reading (8/16-bit grey, RGB, palette; alpha dropped or, on request, kept as RGBA) and 8/16-bit writing, to a file
 // or to memory, through libpng.
 #include <png.h>
 
@@ -29,7 +29,8 @@ struct PngJob {
   std::string error;
   // Read: filled by decodePng. Write: filled by the caller.
   png_uint_32 width = 0, height = 0;
-  int channels = 0;  // after transforms: 1 grey, 3 RGB (write: also 4 RGBA)
+  int channels = 0;  // after transforms: 1 grey, 3 RGB, 4 RGBA when keepAlpha (write: also 4 RGBA)
+  bool keepAlpha = false;  // read: RGBA (grey expanded to RGB) instead of dropping alpha
   int bitDepth = 8;  // read: 8 or 16 after transforms; write: as asked
   size_t maxBytes = 0;  // read: the most decoded bytes the file can justify (maxDecodedBytes)
   std::vector<png_byte> data;
@@ -73,9 +74,13 @@ bool decodePng(PngJob& job) {
   png_init_io(png, job.file);
   png_read_info(png, info);
 
-  // Normalise every layout to 8- or 16-bit grey or RGB without alpha.
+  // Normalise every layout to 8- or 16-bit grey or RGB without alpha, or to RGB(A) when
+  // the caller wants the alpha.
   png_set_expand(png);  // palette -> RGB, grey < 8 bits -> 8 bits, tRNS -> alpha
-  png_set_strip_alpha(png);
+  if (job.keepAlpha)
+    png_set_gray_to_rgb(png);
+  else
+    png_set_strip_alpha(png);
   png_set_interlace_handling(png);
   png_read_update_info(png, info);
 
@@ -83,7 +88,8 @@ bool decodePng(PngJob& job) {
   job.height = png_get_image_height(png, info);
   job.channels = png_get_channels(png, info);
   job.bitDepth = png_get_bit_depth(png, info);
-  if ((job.channels != 1 && job.channels != 3) || (job.bitDepth != 8 && job.bitDepth != 16)) {
+  const bool layoutOk = job.keepAlpha ? job.channels == 3 || job.channels == 4 : job.channels == 1 || job.channels == 3;
+  if (!layoutOk || (job.bitDepth != 8 && job.bitDepth != 16)) {
     png_error(png, "unexpected layout after conversion");
   }
   if (job.width == 0 || job.height == 0 ||
@@ -147,8 +153,9 @@ bool encodePng(PngJob& job) {
 
 }  // namespace
 
-Image readPng(const std::string& path) {
+Image readPng(const std::string& path, bool keepAlpha) {
   PngJob job;
+  job.keepAlpha = keepAlpha;
   job.file = std::fopen(path.c_str(), "rb");
   if (!job.file) throw Error(path, std::string("cannot open for reading: ") + std::strerror(errno));
   png_byte signature[8] = {};

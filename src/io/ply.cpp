@@ -1,10 +1,9 @@
-// Binary little-endian PLY: header parsing, streaming the wanted element into float columns,
-// and writing one element with per-column types.
+// PLY tables: streaming the wanted element of a binary file (either byte order) into float
+// columns, handing ASCII files to io/ply_ascii.cpp, and writing one element with per-column types.
 #include "io/ply.h"
 
 #include <algorithm>
 #include <bit>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -15,56 +14,20 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/printable_text.h"
+#include "io/ply_ascii.h"
+#include "io/ply_header.h"
 
 namespace glint {
 
 namespace fs = std::filesystem;
 
-// Values are copied to and from the file with memcpy, which is only right on little-endian hosts.
+// Values are copied to and from the file with memcpy, which is only right on little-endian
+// hosts (big-endian files are byte-swapped first).
 static_assert(std::endian::native == std::endian::little, "PLY I/O assumes a little-endian host");
 
 namespace {
 
-struct PlyProperty {
-  std::string name;
-  PlyType type = PlyType::Float32;  // of the value, or of the list items
-  bool isList = false;
-  PlyType countType = PlyType::UInt8;  // lists only
-};
-
-struct PlyElement {
-  std::string name;
-  uint64_t count = 0;
-  std::vector<PlyProperty> properties;
-
-  bool hasLists() const {
-    return std::any_of(properties.begin(), properties.end(), [](const PlyProperty& p) { return p.isList; });
-  }
-  size_t rowSize() const {  // fixed-size rows only
-    size_t size = 0;
-    for (const PlyProperty& p : properties) size += plyTypeSize(p.type);
-    return size;
-  }
-};
-
-bool parsePlyType(const std::string& word, PlyType& type) {
-  static const std::pair<const char*, PlyType> kNames[] = {
-      {"char", PlyType::Int8},     {"int8", PlyType::Int8},       {"uchar", PlyType::UInt8},
-      {"uint8", PlyType::UInt8},   {"short", PlyType::Int16},     {"int16", PlyType::Int16},
-      {"ushort", PlyType::UInt16}, {"uint16", PlyType::UInt16},   {"int", PlyType::Int32},
-      {"int32", PlyType::Int32},   {"uint", PlyType::UInt32},     {"uint32", PlyType::UInt32},
-      {"float", PlyType::Float32}, {"float32", PlyType::Float32}, {"double", PlyType::Float64},
-      {"float64", PlyType::Float64}};
-  for (const auto& [name, value] : kNames) {
-    if (word == name) {
-      type = value;
-      return true;
-    }
-  }
-  return false;
-}
-
-double decodeValue(const uint8_t* p, PlyType type) {
+double decodeHostValue(const uint8_t* p, PlyType type) {
   switch (type) {
     case PlyType::Int8: { int8_t v; std::memcpy(&v, p, 1); return v; }
     case PlyType::UInt8: return *p;
@@ -76,6 +39,15 @@ double decodeValue(const uint8_t* p, PlyType type) {
     case PlyType::Float64: { double v; std::memcpy(&v, p, 8); return v; }
   }
   return 0.0;
+}
+
+// A value in the file's byte order: a big-endian value is reversed into host order first.
+double decodeValue(const uint8_t* p, PlyType type, bool bigEndian) {
+  if (!bigEndian) return decodeHostValue(p, type);
+  uint8_t swapped[8];
+  const size_t size = std::min<size_t>(plyTypeSize(type), sizeof(swapped));  // the bound tells GCC it fits
+  for (size_t k = 0; k < size; ++k) swapped[k] = p[size - 1 - k];
+  return decodeHostValue(swapped, type);
 }
 
 // Rounds and clamps to integer types so that e.g. a colour of 255.4 is stored as 255.
@@ -101,74 +73,6 @@ void encodeValue(double v, PlyType type, uint8_t* out) {
     case PlyType::Float32: return encodeAs<float>(v, out);
     case PlyType::Float64: return encodeAs<double>(v, out);
   }
-}
-
-// Parses the header up to and including "end_header"; leaves in at the first data byte.
-std::vector<PlyElement> parseHeader(std::istream& in, const std::string& path) {
-  auto fail = [&](const std::string& problem) -> Error { return Error(path, problem); };
-  std::string line;
-  if (!std::getline(in, line) || (line != "ply" && line != "ply\r")) throw fail("not a PLY file (no 'ply' magic line)");
-  std::vector<PlyElement> elements;
-  bool sawFormat = false;
-  for (int lineNumber = 2;; ++lineNumber) {
-    if (!std::getline(in, line)) throw fail("PLY header has no end_header line");
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    std::istringstream words(line);
-    std::string keyword;
-    words >> keyword;
-    // Quoted escaped: the "header" of a binary file that is not PLY is arbitrary bytes.
-    std::string where = " (header line " + std::to_string(lineNumber) + ": '" + printableText(line) + "')";
-    if (keyword == "end_header") break;
-    if (keyword.empty() || keyword == "comment" || keyword == "obj_info") continue;
-    if (keyword == "format") {
-      std::string format, version;
-      words >> format >> version;
-      if (format == "ascii" || format == "binary_big_endian") {
-        throw fail((format == "ascii" ? "ASCII" : "big-endian binary") + std::string(" PLY is not supported: found 'format ") +
-                   format + "', expected 'format binary_little_endian 1.0'");
-      }
-      if (format != "binary_little_endian" || version != "1.0") throw fail("unsupported PLY format" + where);
-      sawFormat = true;
-    } else if (keyword == "element") {
-      PlyElement element;
-      std::string count;
-      words >> element.name >> count;
-      auto [end, ec] = std::from_chars(count.data(), count.data() + count.size(), element.count);
-      if (element.name.empty() || ec != std::errc() || end != count.data() + count.size()) {
-        throw fail("malformed element line" + where);
-      }
-      elements.push_back(std::move(element));
-    } else if (keyword == "property") {
-      if (elements.empty()) throw fail("property before any element" + where);
-      PlyProperty property;
-      std::string type;
-      words >> type;
-      if (type == "list") {
-        std::string countType, itemType;
-        words >> countType >> itemType;
-        property.isList = true;
-        if (!parsePlyType(countType, property.countType) || !parsePlyType(itemType, property.type)) {
-          throw fail("unknown PLY list type" + where);
-        }
-        if (property.countType == PlyType::Float32 || property.countType == PlyType::Float64) {
-          throw fail("PLY list count must be an integer type" + where);
-        }
-      } else if (!parsePlyType(type, property.type)) {
-        throw fail("unknown PLY property type '" + printableText(type) + "'" + where);
-      }
-      words >> property.name;
-      if (property.name.empty()) throw fail("property without a name" + where);
-      for (const PlyProperty& other : elements.back().properties) {
-        if (other.name == property.name)
-          throw fail("duplicate property '" + printableText(property.name) + "'" + where);
-      }
-      elements.back().properties.push_back(std::move(property));
-    } else {
-      throw fail("unknown PLY header keyword '" + printableText(keyword) + "'" + where);
-    }
-  }
-  if (!sawFormat) throw fail("PLY header has no format line");
-  return elements;
 }
 
 // Buffered sequential access to the data section, tracking the absolute file position.
@@ -220,15 +124,15 @@ class DataReader {
 };
 
 // Skips one list property's items; false if the file ends first.
-bool skipList(DataReader& reader, const PlyProperty& property, const std::string& path) {
+bool skipList(DataReader& reader, const PlyProperty& property, bool bigEndian, const std::string& path) {
   const uint8_t* p = reader.take(plyTypeSize(property.countType));
   if (!p) return false;
-  double count = decodeValue(p, property.countType);
+  double count = decodeValue(p, property.countType, bigEndian);
   if (count < 0) throw Error(path, "list property '" + printableText(property.name) + "' has a negative length");
   return reader.skip(uint64_t(count) * plyTypeSize(property.type));
 }
 
-void skipElement(DataReader& reader, const PlyElement& element, const std::string& path) {
+void skipElement(DataReader& reader, const PlyElement& element, bool bigEndian, const std::string& path) {
   auto truncated = [&] {
     return Error(path, "truncated: file ends inside element '" + printableText(element.name) + "'");
   };
@@ -240,7 +144,7 @@ void skipElement(DataReader& reader, const PlyElement& element, const std::strin
   }
   for (uint64_t row = 0; row < element.count; ++row) {
     for (const PlyProperty& property : element.properties) {
-      bool ok = property.isList ? skipList(reader, property, path) : reader.skip(plyTypeSize(property.type));
+      bool ok = property.isList ? skipList(reader, property, bigEndian, path) : reader.skip(plyTypeSize(property.type));
       if (!ok) throw truncated();
     }
   }
@@ -302,13 +206,74 @@ void PlyTable::add(std::string name, std::vector<float> values, PlyType type) {
   columns.push_back(std::move(values));
 }
 
+void storePlyValue(PlyTable& table, size_t column, size_t row, double value) {
+  float f = float(value);
+  if (!std::isfinite(f)) {
+    std::string what = std::isnan(value) ? "NaN" : std::isinf(value) ? "infinite" : "outside the float range";
+    throw Error(table.source, "property '" + printableText(table.names[column]) + "' of " + table.element + " " +
+                                  std::to_string(row) + " is " + what);
+  }
+  table.columns[column][row] = f;
+}
+
+namespace {
+
+// The rows of the target element of a binary file; the reader stands at its first byte.
+void readBinaryRows(DataReader& reader, const PlyElement& target, bool bigEndian, PlyTable& table) {
+  const std::string& name = table.source;
+  const std::string& elementName = table.element;
+  bool fixedRows = !target.hasLists();
+  uint64_t rowSize = fixedRows ? target.rowSize() : 0;
+  if (fixedRows && rowSize > 0 && target.count > reader.remaining() / rowSize) {
+    throw Error(name, "truncated: expected " + std::to_string(target.count * rowSize) + " bytes of " + elementName +
+                          " data, found " + std::to_string(reader.remaining()));
+  }
+  // Rows with lists take at least one byte each: check before allocating the columns.
+  if (!fixedRows && target.count > reader.remaining()) {
+    throw Error(name, "truncated: " + std::to_string(target.count) + " " + elementName + " rows declared but only " +
+                          std::to_string(reader.remaining()) + " bytes of data follow");
+  }
+  // Where each scalar column sits in a fixed-size row.
+  std::vector<size_t> offsets;
+  size_t offset = 0;
+  for (const PlyProperty& property : target.properties) {
+    if (!property.isList) offsets.push_back(offset);
+    offset += plyTypeSize(property.type);
+  }
+  for (auto& column : table.columns) column.resize(table.count);
+
+  for (size_t row = 0; row < table.count && (rowSize > 0 || !fixedRows); ++row) {
+    if (fixedRows) {
+      const uint8_t* p = reader.take(size_t(rowSize));  // size checked above
+      for (size_t c = 0; c < offsets.size(); ++c)
+        storePlyValue(table, c, row, decodeValue(p + offsets[c], table.types[c], bigEndian));
+      continue;
+    }
+    size_t c = 0;
+    for (const PlyProperty& property : target.properties) {
+      bool ok = true;
+      if (property.isList) {
+        ok = skipList(reader, property, bigEndian, name);
+      } else if (const uint8_t* p = reader.take(plyTypeSize(property.type))) {
+        storePlyValue(table, c++, row, decodeValue(p, property.type, bigEndian));
+      } else {
+        ok = false;
+      }
+      if (!ok) throw Error(name, "truncated: file ends inside " + elementName + " " + std::to_string(row));
+    }
+  }
+}
+
+}  // namespace
+
 PlyTable readPly(const fs::path& path, const std::string& elementName) {
   std::string name = path.string();
   std::error_code ec;
   uint64_t fileSize = fs::file_size(path, ec);
   std::ifstream in(path, std::ios::binary);
   if (ec || !in) throw Error(name, fs::exists(path) ? "cannot open for reading" : "file not found");
-  std::vector<PlyElement> elements = parseHeader(in, name);
+  PlyHeader header = parsePlyHeader(in, name);
+  const std::vector<PlyElement>& elements = header.elements;
 
   auto target = std::find_if(elements.begin(), elements.end(), [&](const PlyElement& e) { return e.name == elementName; });
   if (target == elements.end()) throw Error(name, "PLY file has no element '" + elementName + "'");
@@ -318,65 +283,29 @@ PlyTable readPly(const fs::path& path, const std::string& elementName) {
     in.clear();
     in.seekg(0, std::ios::end);
   }
-  DataReader reader(in, fileSize);
-  for (auto it = elements.begin(); it != target; ++it) skipElement(reader, *it, name);
 
-  // Set up one column per scalar property, remembering where it sits in a fixed-size row.
+  // One column per scalar property, in the file's order; the readers size and fill them.
   PlyTable table;
   table.element = elementName;
   table.source = name;
   table.count = size_t(target->count);
-  bool fixedRows = !target->hasLists();
-  uint64_t rowSize = fixedRows ? target->rowSize() : 0;
-  if (fixedRows && rowSize > 0 && target->count > reader.remaining() / rowSize) {
-    throw Error(name, "truncated: expected " + std::to_string(target->count * rowSize) + " bytes of " + elementName +
-                          " data, found " + std::to_string(reader.remaining()));
-  }
-  // Rows with lists take at least one byte each: check before allocating the columns.
-  if (!fixedRows && target->count > reader.remaining()) {
-    throw Error(name, "truncated: " + std::to_string(target->count) + " " + elementName + " rows declared but only " +
-                          std::to_string(reader.remaining()) + " bytes of data follow");
-  }
-  std::vector<size_t> offsets;
-  size_t offset = 0;
+  table.comments = header.comments;
   for (const PlyProperty& property : target->properties) {
-    if (!property.isList) {
-      table.names.push_back(property.name);
-      table.types.push_back(property.type);
-      table.columns.emplace_back(table.count);
-      offsets.push_back(offset);
-    }
-    offset += plyTypeSize(property.type);
+    if (property.isList) continue;
+    table.names.push_back(property.name);
+    table.types.push_back(property.type);
+    table.columns.emplace_back();
   }
 
-  auto store = [&](size_t column, size_t row, double value) {
-    float f = float(value);
-    if (!std::isfinite(f)) {
-      std::string what = std::isnan(value) ? "NaN" : std::isinf(value) ? "infinite" : "outside the float range";
-      throw Error(name, "property '" + printableText(table.names[column]) + "' of " + elementName + " " +
-                            std::to_string(row) + " is " + what);
-    }
-    table.columns[column][row] = f;
-  };
-  for (size_t row = 0; row < table.count && (rowSize > 0 || !fixedRows); ++row) {
-    if (fixedRows) {
-      const uint8_t* p = reader.take(size_t(rowSize));  // size checked above
-      for (size_t c = 0; c < offsets.size(); ++c) store(c, row, decodeValue(p + offsets[c], table.types[c]));
-      continue;
-    }
-    size_t c = 0;
-    for (const PlyProperty& property : target->properties) {
-      bool ok = true;
-      if (property.isList) {
-        ok = skipList(reader, property, name);
-      } else if (const uint8_t* p = reader.take(plyTypeSize(property.type))) {
-        store(c++, row, decodeValue(p, property.type));
-      } else {
-        ok = false;
-      }
-      if (!ok) throw Error(name, "truncated: file ends inside " + elementName + " " + std::to_string(row));
-    }
+  if (header.format == PlyFormat::Ascii) {
+    uint64_t dataBytes = fileSize - std::min<uint64_t>(fileSize, uint64_t(in.tellg()));
+    readAsciiPlyData(in, dataBytes, header, size_t(target - elements.begin()), table);
+    return table;
   }
+  const bool bigEndian = header.format == PlyFormat::BinaryBigEndian;
+  DataReader reader(in, fileSize);
+  for (auto it = elements.begin(); it != target; ++it) skipElement(reader, *it, bigEndian, name);
+  readBinaryRows(reader, *target, bigEndian, table);
   return table;
 }
 

@@ -1,4 +1,4 @@
-// Generic binary PLY tables: one element's scalar properties as named float columns.
+// Generic PLY tables: one element's scalar properties as named float columns.
 #pragma once
 
 #include <cstddef>
@@ -25,6 +25,7 @@ struct PlyTable {
   std::vector<PlyType> types;
   std::vector<std::vector<float>> columns;
   std::string source;  // the file it was read from, for error messages (empty if built in memory)
+  std::vector<std::string> comments;  // the header's "comment" lines (text after the keyword), when read
 
   // Index of the named column, or -1.
   int find(std::string_view name) const;
@@ -37,16 +38,18 @@ struct PlyTable {
   void add(std::string name, std::vector<float> values, PlyType type = PlyType::Float32);
 };
 
-// Reads the element elementName of a binary little-endian PLY file. Other elements (before
-// or after) and list properties are skipped. Throws Error naming the file for other formats,
-// unknown types, a missing element, truncated data, or NaN/infinite values.
+// Reads the element elementName of a PLY file: binary little-endian, binary big-endian or
+// ASCII (values as a whitespace-separated stream). Other elements (before or after) and list
+// properties are skipped. Throws Error naming the file for an unknown format or type, a
+// missing element, truncated data, a malformed ASCII value, or NaN/infinite values.
 PlyTable readPly(const std::filesystem::path& path, const std::string& elementName = "vertex");
 
 struct PlyWriteOptions {
   std::vector<std::string> comments;  // written as "comment ..." header lines
 };
 
-// Writes table atomically as binary little-endian PLY with one element. Float columns are
+// Writes table atomically as binary little-endian PLY with one element (table.comments are
+// not written: options.comments are). Float columns are
 // written as is; integer columns are rounded and clamped to their type's range. Throws Error
 // naming the file if a value is NaN or infinite (readPly would reject the file).
 void writePly(const std::filesystem::path& path, const PlyTable& table, const PlyWriteOptions& options = {});

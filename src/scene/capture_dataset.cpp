@@ -15,6 +15,7 @@
 #include "scene/buffer_codec.h"
 #include "scene/camera_conventions.h"
 #include "scene/dataset.h"
+#include "scene/nerf_synthetic.h"
 
 namespace glint {
 
@@ -263,7 +264,8 @@ Image loadCaptureBuffer(const fs::path& root, const CaptureSource& source, const
   GLINT_CHECK(!relative.empty(), "loadCaptureBuffer needs a view that has the buffer");
   const fs::path path = root / relative;
   const CaptureDecoding& d = source.decoding;
-  Image image = readImage(path);
+  const bool radiance = buffer == Buffer::Render || buffer == Buffer::Diffuse || buffer == Buffer::Specular;
+  Image image = radiance && source.alphaBackground ? readImageWithAlpha(path) : readImage(path);
   const Camera& camera = view.camera;
   if (image.width != camera.width || image.height != camera.height)
     throw Error(path.string(), "image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
@@ -271,10 +273,14 @@ Image loadCaptureBuffer(const fs::path& root, const CaptureSource& source, const
                                    std::to_string(camera.height));
   const bool metalness = buffer == Buffer::F0 && fs::path(relative).filename().string().rfind("metalness_", 0) == 0;
   const int channels = metalness ? 1 : bufferChannels(buffer);
+  Image alpha;  // kept for compositing over the background, when the source has one
   if (image.channels == 4 && channels == 3) {  // alpha is coverage; predictors write RGBA PNGs
     Image rgb(image.width, image.height, 3);
-    for (size_t p = 0; p < size_t(image.width) * size_t(image.height); ++p)
+    if (source.alphaBackground) alpha = Image(image.width, image.height, 1);
+    for (size_t p = 0; p < size_t(image.width) * size_t(image.height); ++p) {
       for (int c = 0; c < 3; ++c) rgb.pixels[p * 3 + size_t(c)] = image.pixels[p * 4 + size_t(c)];
+      if (!alpha.empty()) alpha.pixels[p] = image.pixels[p * 4 + 3];
+    }
     image = std::move(rgb);
   }
   if (image.channels != channels)
@@ -291,6 +297,8 @@ Image loadCaptureBuffer(const fs::path& root, const CaptureSource& source, const
         const bool photo = !source.priorTransforms && relative.rfind("priors/", 0) != 0;
         image = decodeRadiance(std::move(image), photo ? d.photoTransfer : d.priorTransfer, d.clampMax);
       }
+      // After decoding: coverage mixes light, which adds in linear values, not in sRGB codes.
+      if (!alpha.empty()) image = compositeOverBackground(image, alpha, *source.alphaBackground);
       break;
     case Buffer::Normal: {
       image = display ? decodeNormalMap(image) : renormalizeNormals(image);

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,11 @@ struct CaptureSource {
   // The paper's layout for synthetic scenes with predicted buffers (transforms files and
   // SPLIT/<buffer>/<buffer>_ID.png beside a COLMAP model): its render images are priors too.
   bool priorTransforms = false;
+  // The NeRF-synthetic layout (scene/nerf_synthetic.h): RGBA final images, composited over
+  // this linear colour where their alpha leaves them uncovered.
+  std::optional<Rgb> alphaBackground;
+  // The transforms files that hold the splits, for `glint info` ("" when split by holdout).
+  std::string splitFiles;
 
   // The per-view depth fits made while loading, for reports (thread-safe).
   void recordDepthFit(const std::string& view, const DepthFit& fit) const;

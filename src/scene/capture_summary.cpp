@@ -113,7 +113,7 @@ std::string normalSpaceCheck(const Dataset& dataset) {
 
 std::string describeCapture(const fs::path& root, int holdout, bool* clean) {
   std::ostringstream out;
-  out << "capture " << root.string() << "\n\n";
+  out << (isNerfSyntheticFolder(root) ? "dataset " : "capture ") << root.string() << "\n\n";
   std::optional<Dataset> opened;
   try {
     opened = Dataset::open(root, true, holdout);
@@ -127,11 +127,15 @@ std::string describeCapture(const fs::path& root, int holdout, bool* clean) {
   const CaptureDecoding& d = source.decoding;
   out << source.description << "\n";
   out << "cameras"
-      << (source.priorTransforms ? std::string(" (transforms_train.json, transforms_test.json)")
-                                 : " (every " + std::to_string(holdout) + "th image from the first is a test view)")
+      << (!source.splitFiles.empty() ? " (" + source.splitFiles + ")"
+          : source.priorTransforms   ? std::string(" (transforms_train.json, transforms_test.json)")
+                                     : " (every " + std::to_string(holdout) + "th image from the first is a test view)")
       << "\n"
       << cameraLine(dataset.train()) << cameraLine(dataset.test());
-  out << "decoding (capture.json): photo_transfer " << transferName(d.photoTransfer) << ", prior_transfer "
+  if (source.alphaBackground)  // the NeRF-synthetic layout has no capture.json
+    out << "decoding: 8-bit images sRGB-decoded, alpha composited in linear values\n\n";
+  else
+    out << "decoding (capture.json): photo_transfer " << transferName(d.photoTransfer) << ", prior_transfer "
       << transferName(d.priorTransfer) << ", clamp_max " << d.clampMax << ", normals "
       << (d.worldNormals ? "world" : std::string("camera (") + cameraAxesName(d.normalAxes) + " axes)") << ", depth "
       << depthName(d.depth) << ", roughness " << (d.roughness == RoughnessKind::Alpha ? "alpha" : "perceptual")

@@ -1,5 +1,5 @@
-// `glint info` for a real capture: cameras, buffers present, depth fits, the normal space the
-// data shows, and every problem found by loading each buffer of each view.
+// `glint info` for a real capture (and the NeRF-synthetic layout): cameras, buffers present,
+// depth fits, the normal space the data shows, and every problem found loading each buffer.
 #pragma once
 
 #include <filesystem>

@@ -7,6 +7,7 @@
 #include "core/error.h"
 #include "io/transforms_json.h"
 #include "scene/buffer_codec.h"
+#include "scene/downscale.h"
 
 namespace glint {
 
@@ -18,10 +19,10 @@ fs::path transformsPath(const fs::path& root, const std::string& split) {
   return root / ("transforms_" + split + ".json");
 }
 
+// A split whose transforms file is absent stays empty: a dataset may hold one split only.
 DatasetSplit openSplit(const fs::path& root, const std::string& name, bool requireBuffers) {
   fs::path path = transformsPath(root, name);
-  if (!fs::exists(path))
-    throw Error(path.string(), "file not found (a dataset needs transforms_train.json and transforms_test.json)");
+  if (!fs::exists(path)) return DatasetSplit{name, 0, 0, {}};
   TransformsFile transforms = readTransformsJson(path);
   if (transforms.frames.empty()) throw Error(path.string(), "frames is empty: a split needs at least one view");
 
@@ -53,43 +54,97 @@ const Camera& DatasetSplit::camera(size_t index) const {
 }
 
 Dataset Dataset::open(const fs::path& root, bool requireBuffers, int holdout) {
+  DatasetReading reading;
+  reading.requireBuffers = requireBuffers;
+  reading.holdout = holdout;
+  return open(root, reading);
+}
+
+Dataset Dataset::open(const fs::path& root, const DatasetReading& reading) {
   Dataset dataset;
   dataset.root_ = root;
   if (!fs::is_directory(root)) throw Error(root.string(), "is not a folder (a dataset is a folder)");
-  if (isCaptureFolder(root)) {
-    auto source = std::make_shared<CaptureSource>();
-    openCapture(root, holdout, &dataset.train_, &dataset.test_, source.get());
-    dataset.capture_ = std::move(source);
-    return dataset;
-  }
-  dataset.train_ = openSplit(root, "train", requireBuffers);
-  dataset.test_ = openSplit(root, "test", requireBuffers);
-  if (isPriorTransformsFolder(root)) {
-    // The paper's synthetic scenes with predicted buffers: sizes from the render images,
-    // buffers decoded like a capture's priors.
-    auto source = std::make_shared<CaptureSource>();
-    attachPriorTransforms(root, &dataset.train_, &dataset.test_, source.get());
-    for (DatasetSplit* split : {&dataset.train_, &dataset.test_}) {
-      Image first = readImage(root / split->views[0].files[int(Buffer::Render)]);
-      setSplitSize(split, first.width, first.height);
-    }
-    dataset.capture_ = std::move(source);
-    return dataset;
-  }
-  // The first view's render image sets the split's size; loadBuffer holds every other
-  // buffer to it. Without requireBuffers a split whose images are absent keeps no size.
-  for (DatasetSplit* split : {&dataset.train_, &dataset.test_}) {
-    if (!requireBuffers && !dataset.findBufferFile(split->views[0], Buffer::Render)) continue;
-    Image first = dataset.loadBuffer(*split, 0, Buffer::Render);
-    setSplitSize(split, first.width, first.height);
+  dataset.openLayout(reading);
+  if (reading.downscale > 1) {
+    dataset.downscale_ = reading.downscale;
+    dataset.downscaleSplits();
   }
   return dataset;
 }
 
+void Dataset::openLayout(const DatasetReading& reading) {
+  const fs::path& root = root_;
+  if (isCaptureFolder(root)) {
+    auto source = std::make_shared<CaptureSource>();
+    openCapture(root, reading.holdout, &train_, &test_, source.get());
+    capture_ = std::move(source);
+    return;
+  }
+  if (!fs::exists(transformsPath(root, "train")) && !fs::exists(transformsPath(root, "test")) &&
+      !fs::exists(transformsPath(root, "val")))
+    throw Error(transformsPath(root, "train").string(),
+                "file not found (a dataset needs transforms_train.json, transforms_test.json or both; or a capture's "
+                "COLMAP model or transforms.json)");
+  if (isNerfSyntheticFolder(root)) {
+    auto source = std::make_shared<CaptureSource>();
+    openNerfSynthetic(root, reading.background, reading.requireBuffers, &train_, &test_, source.get());
+    capture_ = std::move(source);
+    return;
+  }
+  train_ = openSplit(root, "train", reading.requireBuffers);
+  test_ = openSplit(root, "test", reading.requireBuffers);
+  if (isPriorTransformsFolder(root)) {
+    // The paper's synthetic scenes with predicted buffers: sizes from the render images,
+    // buffers decoded like a capture's priors.
+    auto source = std::make_shared<CaptureSource>();
+    attachPriorTransforms(root, &train_, &test_, source.get());
+    for (DatasetSplit* split : {&train_, &test_}) {
+      if (split->views.empty()) continue;
+      Image first = readImage(root / split->views[0].files[int(Buffer::Render)]);
+      setSplitSize(split, first.width, first.height);
+    }
+    capture_ = std::move(source);
+    return;
+  }
+  // The first view's render image sets the split's size; loadBuffer holds every other
+  // buffer to it. Without requireBuffers a split whose images are absent keeps no size.
+  for (DatasetSplit* split : {&train_, &test_}) {
+    if (split->views.empty()) continue;
+    if (!reading.requireBuffers && !findBufferFile(split->views[0], Buffer::Render)) continue;
+    Image first = loadBuffer(*split, 0, Buffer::Render);
+    setSplitSize(split, first.width, first.height);
+  }
+}
+
+void Dataset::downscaleSplits() {
+  fullTrain_ = train_, fullTest_ = test_;
+  const int n = downscale_;
+  for (DatasetSplit* split : {&train_, &test_}) {
+    for (DatasetView& view : split->views) {
+      const Camera& c = view.camera;
+      if (split->width <= 0) break;  // cameras only, of no size yet: resized by their user
+      if (c.width < n || c.height < n)
+        throw Error(root_.string(), "--downscale " + std::to_string(n) + " is larger than the " +
+                                        std::to_string(c.width) + "x" + std::to_string(c.height) + " image of view " +
+                                        view.filePath);
+      view.camera = downscaleCamera(c, n);
+    }
+    if (split->width > 0) split->width /= n, split->height /= n;
+  }
+}
+
 const DatasetSplit& Dataset::split(const std::string& name) const {
-  if (name == "train") return train_;
-  if (name == "test") return test_;
-  throw Error(root_.string(), "unknown split \"" + name + "\" (expected train or test)");
+  if (name != "train" && name != "test")
+    throw Error(root_.string(), "unknown split \"" + name + "\" (expected train or test)");
+  const DatasetSplit& s = name == "train" ? train_ : test_;
+  // A capture's splits come from its holdout; the transforms layouts' from their files.
+  const bool splitByFiles = !capture_ || capture_->alphaBackground || capture_->priorTransforms;
+  const bool valCounts = name == "test" && capture_ && capture_->alphaBackground;  // NeRF-synthetic's val
+  if (s.views.empty() && splitByFiles)
+    throw Error(transformsPath(root_, name).string(),
+                std::string("file not found") + (valCounts ? " (nor transforms_val.json)" : "") +
+                    ": this dataset holds the " + (name == "train" ? "test" : "train") + " split only");
+  return s;
 }
 
 std::optional<fs::path> Dataset::findBufferFile(const DatasetView& view, Buffer buffer) const {
@@ -101,9 +156,19 @@ std::optional<fs::path> Dataset::findBufferFile(const DatasetView& view, Buffer 
 }
 
 Image Dataset::loadBuffer(const DatasetSplit& split, size_t index, Buffer buffer) const {
+  if (downscale_ == 1) return loadFullResolution(split, index, buffer);
+  // The file is checked against the full-resolution camera, then shrunk like the camera was.
+  const DatasetSplit& full = split.name == "train" ? fullTrain_ : fullTest_;
+  return downscaleBuffer(loadFullResolution(full, index, buffer), buffer, downscale_);
+}
+
+Image Dataset::loadFullResolution(const DatasetSplit& split, size_t index, Buffer buffer) const {
   GLINT_CHECK(index < split.views.size(), "view index out of range");
   const DatasetView& view = split.views[index];
   if (capture_) {
+    if (view.files[int(buffer)].empty() && capture_->alphaBackground)
+      throw Error(root_.string(), "is in the NeRF-synthetic layout, whose views hold final images only: view " +
+                                      view.filePath + " has no " + bufferName(buffer) + " buffer");
     if (view.files[int(buffer)].empty())
       throw Error((root_ / "priors" / bufferName(buffer)).string(),
                   "has no " + std::string(bufferName(buffer)) + " buffer for view " + view.filePath);

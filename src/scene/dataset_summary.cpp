@@ -253,7 +253,10 @@ std::string describeDataset(const fs::path& root, bool* clean) {
   for (const SplitInfo& split : splits)
     cameras.rows.push_back(split.transforms ? cameraRow(split)
                                             : std::vector<std::string>{split.name, "-", "-", "-", "-", "-",
-                                                                       "transforms file unreadable (see problems)"});
+                                                                       fs::exists(root / ("transforms_" + split.name +
+                                                                                          ".json"))
+                                                                           ? "transforms file unreadable (see problems)"
+                                                                           : "no transforms file: no such split"});
   out << "cameras\n" << formatTable(cameras);
 
   for (const SplitInfo& split : splits)

@@ -140,7 +140,11 @@ std::vector<DatasetProblem> validateDataset(const fs::path& root) {
     problems.push_back({root.string(), fs::exists(root) ? "is not a folder" : "folder not found"});
     return problems;
   }
-  for (const char* split : {"train", "test"}) validateSplit(root, split, problems);
+  // A dataset may hold one split only; it must hold one.
+  const bool hasTrain = fs::exists(root / "transforms_train.json"), hasTest = fs::exists(root / "transforms_test.json");
+  for (const char* split : {"train", "test"})
+    if ((std::string(split) == "train" ? hasTrain : hasTest) || (!hasTrain && !hasTest))
+      validateSplit(root, split, problems);
   fs::path cloud = root / "point_cloud_dense.ply";
   if (fs::exists(cloud)) validatePointCloud(cloud, problems);
   return problems;

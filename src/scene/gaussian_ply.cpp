@@ -1,13 +1,18 @@
-// Gaussian scene PLY layouts: mapping named PLY columns to GaussianScene arrays and back,
-// through the parameter table's property names (scene/gaussian_parameters.h).
+// Gaussian scene PLY layouts: telling them apart, and mapping named PLY columns to
+// GaussianScene arrays and back through the parameter table's property names
+// (scene/gaussian_parameters.h).
 #include "scene/gaussian_ply.h"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
 #include "scene/gaussian_parameters.h"
+#include "scene/imported_materials.h"
 
 namespace glint {
 
@@ -15,8 +20,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// 3DGS stores SH up to degree 3: 15 coefficients beyond the DC term per colour channel.
-constexpr int kShRestCount = 45;
+// 3DGS stores SH up to degree 3.
+constexpr int kMaxShDegree = 3;
+constexpr const char* kGlintComment = "Glint Gaussian scene";
 
 std::string sourceName(const PlyTable& table) { return table.source.empty() ? "(PLY table)" : table.source; }
 
@@ -52,6 +58,78 @@ std::vector<const std::vector<float>*> columnGroup(const PlyTable& table, const 
   return columns;
 }
 
+bool startsWith(const std::string& text, const char* prefix) { return text.rfind(prefix, 0) == 0; }
+
+bool hasCommentStartingWith(const PlyTable& table, const char* prefix) {
+  return std::any_of(table.comments.begin(), table.comments.end(),
+                     [&](const std::string& c) { return startsWith(c, prefix); });
+}
+
+// The first property only 3DGS writes (f_rest_*, nx, ny, nz), or empty.
+std::string first3dgsOnlyProperty(const PlyTable& table) {
+  for (const std::string& name : table.names) {
+    if (startsWith(name, "f_rest_") || name == "nx" || name == "ny" || name == "nz") return name;
+  }
+  return "";
+}
+
+// The first of Glint's material properties (normal, roughness, F0), or empty.
+std::string firstGlintMaterialProperty(const PlyTable& table) {
+  std::string found;
+  forEachParameterInPlyOrder([&](const auto& p) {
+    if (p.plyRequired) return;
+    for (const char* name : p.plyNames)
+      if (found.empty() && table.has(name)) found = name;
+  });
+  return found;
+}
+
+// The number of f_rest_* properties.
+int countShRest(const PlyTable& table) {
+  return int(std::count_if(table.names.begin(), table.names.end(),
+                           [](const std::string& name) { return startsWith(name, "f_rest_"); }));
+}
+
+// The lowest SH degree whose coefficients hold count f_rest properties (at most 3).
+int shDegreeOf(int count) {
+  int degree = 0;
+  while (degree < kMaxShDegree && 3 * shRestPerChannel(degree) < count) ++degree;
+  return degree;
+}
+
+// A number as %g writes it: "0.9", "2.5", "1".
+std::string shortNumber(float value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", double(value));
+  return text;
+}
+
+// Gaussians with a non-zero f_rest_* value.
+size_t countNonZeroShRest(const PlyTable& table) {
+  std::vector<bool> nonZero(table.count, false);
+  for (size_t c = 0; c < table.names.size(); ++c) {
+    if (!startsWith(table.names[c], "f_rest_")) continue;
+    for (size_t i = 0; i < table.count; ++i) nonZero[i] = nonZero[i] || table.columns[c][i] != 0.0f;
+  }
+  return size_t(std::count(nonZero.begin(), nonZero.end(), true));
+}
+
+// Gives a 3DGS scene the materials its file lacks and decodes its colour.
+void importThreeDgs(const PlyTable& table, bool hasNormals, bool hasRoughness, bool hasF0, GaussianScene& scene,
+                    GaussianPlyImport& info) {
+  info.colour = splatColourFromComments(table.comments, sourceName(table)).value_or(SplatColourEncoding{});
+  for (Rgb& c : scene.diffuse)
+    for (int k = 0; k < 3; ++k) c[k] = decodeSplatColour(c[k], info.colour);
+  if (!hasNormals) setShortestAxisNormals(scene, medianPosition(scene));
+  if (!hasRoughness) std::fill(scene.roughness.begin(), scene.roughness.end(), kImportedRoughness);
+  if (!hasF0) std::fill(scene.f0.begin(), scene.f0.end(), Rgb(kImportedF0));
+  info.normalsSet = !hasNormals;
+  info.roughnessSet = !hasRoughness;
+  info.f0Set = !hasF0;
+  info.shDegree = shDegreeOf(countShRest(table));
+  info.gaussiansWithShRest = countNonZeroShRest(table);
+}
+
 }  // namespace
 
 const char* plyLayoutName(PlyLayout layout) {
@@ -63,22 +141,63 @@ const char* plyLayoutName(PlyLayout layout) {
   return "";
 }
 
+int shRestPerChannel(int degree) { return (degree + 1) * (degree + 1) - 1; }
+
 PlyLayout detectGaussianPlyLayout(const PlyTable& table) {
-  bool has3dgsOnly = table.has("f_rest_0") || table.has("nx");
-  // Glint's optional groups (normal, roughness, F0) are what only Glint writes.
-  bool hasGlintOnly = false;
-  forEachParameter([&](const auto& p) { hasGlintOnly = hasGlintOnly || (!p.plyRequired && table.has(p.plyNames[0])); });
-  return has3dgsOnly && !hasGlintOnly ? PlyLayout::ThreeDgs : PlyLayout::Glint;
+  auto ambiguous = [&](const std::string& why) {
+    return Error(sourceName(table), "cannot tell whether f_dc_0..2 is Glint's linear colour or 3DGS's SH "
+                                    "coefficient: " + why + "; pass --input-layout glint or --input-layout 3dgs");
+  };
+  // What Glint wrote says so in a comment.
+  bool glintComment = hasCommentStartingWith(table, kGlintComment);
+  bool exportComment = std::any_of(table.comments.begin(), table.comments.end(), isSplatColourComment);
+  if (glintComment && exportComment) throw ambiguous("the header carries both Glint's scene and 3DGS export comments");
+  if (glintComment) return PlyLayout::Glint;
+  if (exportComment) return PlyLayout::ThreeDgs;
+  // Otherwise the properties only one layout writes.
+  std::string glintOnly = firstGlintMaterialProperty(table);
+  std::string splatOnly = first3dgsOnlyProperty(table);
+  if (!glintOnly.empty() && !splatOnly.empty())
+    throw ambiguous("it has both Glint's '" + glintOnly + "' and 3DGS's '" + splatOnly + "'");
+  if (!glintOnly.empty()) return PlyLayout::Glint;
+  if (!splatOnly.empty()) return PlyLayout::ThreeDgs;
+  throw ambiguous("it has only the properties both layouts share (x y z f_dc_0..2 opacity scale_0..2 rot_0..3), "
+                  "no material, f_rest or nx ny nz properties and no Glint comment");
 }
 
-GaussianScene gaussianSceneFromPly(const PlyTable& table, PlyLayout layout) {
-  if (layout == PlyLayout::Auto) layout = detectGaussianPlyLayout(table);
+std::string describeImport(const GaussianPlyImport& import) {
+  if (import.layout != PlyLayout::ThreeDgs) return "";
+  std::string line = "imported 3DGS layout: colour read as ";
+  if (import.colour.colour == SplatColour::Linear) {
+    line += "linear";
+  } else {
+    line += "display-referred (inverse filmic tonemap, exposure " + shortNumber(import.colour.exposure) + ")";
+  }
+  if (!import.normalsSet && !import.roughnessSet && !import.f0Set) return line + "; materials from the file";
+  std::vector<std::string> set;
+  if (import.roughnessSet) set.push_back("roughness " + shortNumber(kImportedRoughness));
+  if (import.f0Set) set.push_back("F0 " + shortNumber(kImportedF0));
+  if (import.normalsSet)
+    set.push_back("normals along each Gaussian's shortest axis, facing away from the median position");
+  line += "; materials set to a rough dielectric (";
+  for (size_t i = 0; i < set.size(); ++i) line += (i > 0 ? ", " : "") + set[i];
+  return line + ")";
+}
 
+std::string droppedShWarning(const GaussianPlyImport& import, const std::string& file) {
+  if (import.gaussiansWithShRest == 0) return "";
+  return "warning: " + file + ": " + std::to_string(import.gaussiansWithShRest) +
+         " Gaussians have non-zero f_rest coefficients (SH degree " + std::to_string(import.shDegree) +
+         "); Glint keeps only the DC colour, so their view-dependent colour is dropped";
+}
+
+GaussianScene gaussianSceneFromPly(const PlyTable& table, PlyLayout layout, GaussianPlyImport* import) {
   // Look every column up first, in the file's order, so that a missing property is
-  // reported before any work.
+  // reported before any work (and before the layout is judged).
   std::array<std::vector<const std::vector<float>*>, kGaussianParameterCount> columns;
   forEachParameterInPlyOrder(
       [&](const auto& p) { columns[p.index] = columnGroup(table, p.plyNames, p.plyRequired); });
+  if (layout == PlyLayout::Auto) layout = detectGaussianPlyLayout(table);
 
   GaussianScene scene;
   scene.resize(table.count);  // absent optional groups keep their neutral values
@@ -95,18 +214,19 @@ GaussianScene gaussianSceneFromPly(const PlyTable& table, PlyLayout layout) {
       throw Error(sourceName(table), "vertex " + std::to_string(i) + " has a zero rotation quaternion (rot_0..3 are all 0)");
     }
   }
+  GaussianPlyImport info;
+  info.layout = layout;
   if (layout == PlyLayout::ThreeDgs) {
-    for (Rgb& c : scene.diffuse)
-      for (int k = 0; k < 3; ++k) c[k] = float(0.5 + kShC0 * double(c[k]));
+    auto present = [&](auto member) { return !columns[parameterOf(member).index].empty(); };
+    importThreeDgs(table, present(&GaussianScene::normal), present(&GaussianScene::roughness),
+                   present(&GaussianScene::f0), scene, info);
   }
+  if (import) *import = info;
   return scene;
 }
 
-GaussianScene readGaussianPly(const fs::path& path, PlyLayout layout, PlyLayout* detected) {
-  PlyTable table = readPly(path, "vertex");
-  if (layout == PlyLayout::Auto) layout = detectGaussianPlyLayout(table);
-  if (detected) *detected = layout;
-  return gaussianSceneFromPly(table, layout);
+GaussianScene readGaussianPly(const fs::path& path, PlyLayout layout, GaussianPlyImport* import) {
+  return gaussianSceneFromPly(readPly(path, "vertex"), layout, import);
 }
 
 namespace {
@@ -130,27 +250,39 @@ void writeGaussianPly(const fs::path& path, const GaussianScene& scene) {
   table.count = scene.size();
   forEachParameterInPlyOrder([&](const auto& p) { addParameter(table, scene, p); });
   // The comment tells a reader of the header that f_dc is not spherical harmonics.
-  writePly(path, table, {{"Glint Gaussian scene: f_dc_0..2 is linear diffuse colour (not SH)"}});
+  writePly(path, table, {{std::string(kGlintComment) + ": f_dc_0..2 is linear diffuse colour (not SH)"}});
 }
 
-void exportGaussianPly3dgs(const fs::path& path, const GaussianScene& scene) {
+void exportGaussianPly3dgs(const fs::path& path, const GaussianScene& scene, const ThreeDgsExportOptions& options) {
   GLINT_CHECK(scene.consistent(), "exportGaussianPly3dgs: the scene's arrays have different sizes");
-  size_t n = scene.size();
+  GLINT_CHECK(options.shDegree >= 0 && options.shDegree <= kMaxShDegree, "exportGaussianPly3dgs: SH degree out of range");
+  GLINT_CHECK(options.colour.exposure > 0.0f && std::isfinite(options.colour.exposure),
+              "exportGaussianPly3dgs: exposure must be positive");
+  const size_t n = scene.size();
+  const size_t restCount = size_t(3 * shRestPerChannel(options.shDegree));
+  GLINT_CHECK(!options.shRest || options.shRest->size() == n * restCount,
+              "exportGaussianPly3dgs: shRest needs 3 x shRestPerChannel(shDegree) values per Gaussian");
   PlyTable table;
   table.count = n;
   addParameter(table, scene, parameterOf(&GaussianScene::position));
   for (const char* name : {"nx", "ny", "nz"}) table.add(name, std::vector<float>(n, 0.0f));
   for (int k = 0; k < 3; ++k) {
     std::vector<float> column(n);
-    for (size_t i = 0; i < n; ++i) column[i] = float((double(scene.diffuse[i][k]) - 0.5) / kShC0);
+    for (size_t i = 0; i < n; ++i) column[i] = encodeSplatColour(scene.diffuse[i][k], options.colour);
     table.add("f_dc_" + std::to_string(k), std::move(column));
   }
-  for (int k = 0; k < kShRestCount; ++k) table.add("f_rest_" + std::to_string(k), std::vector<float>(n, 0.0f));
+  for (size_t k = 0; k < restCount; ++k) {
+    std::vector<float> column(n, 0.0f);
+    if (options.shRest)
+      for (size_t i = 0; i < n; ++i) column[i] = (*options.shRest)[i * restCount + k];
+    table.add("f_rest_" + std::to_string(k), std::move(column));
+  }
   // Opacity, scale and rotation are stored as in Glint's layout.
   addParameter(table, scene, parameterOf(&GaussianScene::opacityLogit));
   addParameter(table, scene, parameterOf(&GaussianScene::logScale));
   addParameter(table, scene, parameterOf(&GaussianScene::rotation));
-  writePly(path, table);
+  // The comment says how f_dc encodes the colour, so that Glint reads its own export back exactly.
+  writePly(path, table, {{splatColourComment(options.colour)}});
 }
 
 }  // namespace glint

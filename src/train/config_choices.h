@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "scene/nerf_synthetic.h"
 #include "train/camera_culling.h"
 
 namespace glint {
@@ -41,6 +42,12 @@ template <>
 struct ChoiceNames<CullRegion> {
   static constexpr std::array<std::pair<CullRegion, const char*>, 2> kNames{
       {{CullRegion::SphereInView, "in-view"}, {CullRegion::WholeSphere, "whole-sphere"}}};
+};
+
+template <>
+struct ChoiceNames<AlphaBackground> {
+  static constexpr std::array<std::pair<AlphaBackground, const char*>, 2> kNames{
+      {{AlphaBackground::White, "white"}, {AlphaBackground::Black, "black"}}};
 };
 
 template <typename E>

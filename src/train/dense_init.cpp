@@ -11,6 +11,7 @@
 #include "core/parallel.h"
 #include "io/point_cloud.h"
 #include "scene/buffers.h"
+#include "train/camera_volume_init.h"
 #include "train/nearest_neighbours.h"
 #include "train/scene_extent.h"
 
@@ -249,7 +250,10 @@ DenseInit initFromSparsePoints(const Dataset& dataset, const DenseInitSettings& 
 DenseInit denseInitialisation(const Dataset& dataset, const DenseInitSettings& settings) {
   if (!settings.forceDepthBuffers && dataset.pointCloudPath()) return initFromPointCloud(dataset, settings);
   const bool hasDepth = dataset.findBufferFile(dataset.train().views.at(0), Buffer::Depth).has_value();
-  if (!hasDepth && dataset.capture()) return initFromSparsePoints(dataset, settings);
+  if (!hasDepth && dataset.capture() && !dataset.capture()->points.empty())
+    return initFromSparsePoints(dataset, settings);
+  // --init depth on a dataset without depth goes on to the error naming the missing buffers.
+  if (!hasDepth && !settings.forceDepthBuffers) return initInCameraVolume(dataset, settings);
   return initFromDepthBuffers(dataset, settings);
 }
 

@@ -38,7 +38,8 @@ struct DenseInitSettings {
   bool forceDepthBuffers = false;  // ignore point_cloud_dense.ply even when present
 };
 
-enum class InitSource { DepthBuffers, PointCloud };
+// CameraVolume: random points where the cameras look (train/camera_volume_init.h).
+enum class InitSource { DepthBuffers, PointCloud, CameraVolume };
 
 struct DenseInitStats {
   InitSource source = InitSource::DepthBuffers;
@@ -48,6 +49,7 @@ struct DenseInitStats {
   int64_t voxelsKept = 0;         // depth buffers only: voxels with enough samples, one Gaussian each
   float voxelSize = 0.0f;         // depth buffers only
   float sceneExtent = 0.0f;
+  int64_t shellGaussians = 0;     // camera volume only: the background shell
 };
 
 struct DenseInit {
@@ -62,7 +64,8 @@ struct ColouredPoints {
 };
 
 // Uses point_cloud_dense.ply when present (unless settings.forceDepthBuffers), else the
-// training depth buffers, else (a capture without depth) the sparse points.
+// training depth buffers, else (a capture without depth) the sparse points, else (final
+// images only) random points in the cameras' view volume.
 DenseInit denseInitialisation(const Dataset& dataset, const DenseInitSettings& settings = {});
 // The two sources on their own. Throw Error naming the file for unusable input (no
 // surface pixels at all, an empty or colourless or non-finite point cloud).

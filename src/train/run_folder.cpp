@@ -1,4 +1,4 @@
-// Reading a run's config.json and starting a new run folder.
+// Reading a run's config.json, starting a new run folder, and undoing a failed start.
 #include "train/run_folder.h"
 
 #include "core/atomic_file.h"
@@ -12,7 +12,7 @@ TrainConfig RunFolder::readConfig() const { return readTrainConfig(configFile())
 
 void RunFolder::create(const TrainConfig& config, bool force) const {
   if (fs::exists(root_) && !fs::is_directory(root_)) throw Error(root_.string(), "exists and is not a folder");
-  if (fs::exists(root_) && !fs::is_empty(root_) && !force)
+  if (fs::exists(root_) && !fs::is_empty(root_) && !force && !isUnfinishedStart())
     throw Error(root_.string(), hasConfig()
                                     ? "holds a training run; continue it with --resume, choose another -o folder, "
                                       "or pass --force to start over (its files are overwritten)"
@@ -20,6 +20,17 @@ void RunFolder::create(const TrainConfig& config, bool force) const {
                                       "--force to write into it");
   fs::create_directories(root_);
   writeTextAtomically(configFile(), toJson(config).dump(2) + "\n");
+}
+
+void RunFolder::removeFailedStart(bool madeByThisStart) const {
+  if (hasCheckpoint() || fs::exists(sceneFile())) return;
+  std::error_code ignored;  // best effort: the error being reported matters more
+  fs::remove(configFile(), ignored);
+  fs::remove(logFile(), ignored);
+  const fs::path checkpointFolder = checkpointFile().parent_path();
+  if (fs::is_directory(checkpointFolder, ignored) && fs::is_empty(checkpointFolder, ignored))
+    fs::remove(checkpointFolder, ignored);
+  if (madeByThisStart && fs::is_empty(root_, ignored)) fs::remove(root_, ignored);
 }
 
 }  // namespace glint

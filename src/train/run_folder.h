@@ -23,6 +23,9 @@ class RunFolder {
 
   bool hasConfig() const { return std::filesystem::exists(configFile()); }
   bool hasCheckpoint() const { return std::filesystem::exists(checkpointFile()); }
+  // A start that never got as far as a checkpoint or a scene (it failed, or was killed while
+  // loading): config.json and perhaps log.csv, nothing worth keeping.
+  bool isUnfinishedStart() const { return hasConfig() && !hasCheckpoint() && !std::filesystem::exists(sceneFile()); }
 
   // config.json: the defaults with every setting of the file applied and checked by
   // TrainConfig::validate, so every command refuses a bad file with the same message,
@@ -30,8 +33,14 @@ class RunFolder {
   TrainConfig readConfig() const;
 
   // Makes the folder for a new run and writes config.json. A folder that exists must be
-  // empty unless `force` (then its files are overwritten); throws Error otherwise.
+  // empty or hold an unfinished start (which is started afresh) unless `force` (then its
+  // files are overwritten); throws Error otherwise.
   void create(const TrainConfig& config, bool force) const;
+
+  // Undoes a start that failed before its first step: removes the files a start writes
+  // (config.json, log.csv, an empty checkpoint/) and then the folder itself if it was
+  // `madeByThisStart` and is left empty. Never touches a checkpoint, a scene or any other file.
+  void removeFailedStart(bool madeByThisStart) const;
 
  private:
   std::filesystem::path root_;

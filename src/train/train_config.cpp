@@ -55,6 +55,8 @@ template <typename Config, typename F>
 void forEachField(Config& c, F&& f) {
   f("", "dataset", c.dataset);
   f("", "holdout", c.holdout);
+  f("", "background", c.background);
+  f("", "downscale", c.downscale);
   f("", "iters", c.iters);
   f("", "seed", c.seed);
   f("", "threads", c.threads);
@@ -246,6 +248,7 @@ void TrainConfig::validate(const std::string& source) const {
   };
   inRange(iters, kItersRange, "iters");
   inRange(holdout, kHoldoutRange, "holdout");
+  inRange(downscale, kDownscaleRange, "downscale");
   inRange(batchRays, kBatchRaysRange, "batch_rays");
   inRange(batchViews, kBatchViewsRange, "batch_views");
   inRange(evalEvery, kEveryStepsRange, "eval_every");

@@ -11,6 +11,8 @@
 
 #include "raytrace/trace_settings.h"
 #include "render/gaussian_path.h"
+#include "scene/dataset.h"
+#include "scene/downscale.h"
 #include "scene/learning_rates.h"
 #include "train/config_choices.h"
 #include "train/dense_init.h"
@@ -68,6 +70,7 @@ struct IntRange {
 inline constexpr IntRange kItersRange{1, 100'000'000};
 inline constexpr IntRange kThreadsRange{0, 1024};
 inline constexpr IntRange kHoldoutRange{2, 1000};
+inline constexpr IntRange kDownscaleRange{1, kMaxDownscale};
 inline constexpr IntRange kBouncesRange{0, 8};
 // `glint render` and `glint eval --bounces` may follow longer paths than training does.
 inline constexpr IntRange kRenderBouncesRange{0, 64};
@@ -83,6 +86,9 @@ struct TrainConfig {
   std::string dataset;  // absolute path of the dataset
   // A capture without a split of its own: every holdout-th image is a test view (LLFF's 8).
   int holdout = 8;
+  // Behind the NeRF-synthetic layout's transparent pixels (scene/nerf_synthetic.h).
+  AlphaBackground background = AlphaBackground::White;
+  int downscale = 1;  // every view at 1/N resolution (scene/downscale.h)
   int iters = 8000;
   uint64_t seed = 0;
   int threads = 0;   // 0 = all cores
@@ -120,6 +126,11 @@ struct TrainConfig {
   // estimate altogether is what the paper warns against: on builtin:spheres the depth L1
   // at step 500 rose from 0.031 to 0.055. "exact_tail": true restores the exact T_f.
   TraceSettings trace;
+
+  // How the run reads its dataset: eval, render and report read it as training did.
+  DatasetReading datasetReading(bool requireBuffers) const {
+    return {.requireBuffers = requireBuffers, .holdout = holdout, .background = background, .downscale = downscale};
+  }
 
   // The path settings of rendering and of the reflection loss: how the run renders.
   PathSettings path() const {

@@ -83,7 +83,15 @@ GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config, Tr
                                                                 : denseInitialisation(dataset, settings);
   const DenseInitStats& st = init.stats;
   char message[320];
-  if (st.source == InitSource::PointCloud)
+  if (st.source == InitSource::CameraVolume)
+    std::snprintf(message, sizeof(message),
+                  "initialised %zu Gaussians at random in the volume the cameras look at (no depth buffers or points)"
+                  "%s",
+                  init.scene.size(),
+                  st.shellGaussians > 0 ? (", " + std::to_string(st.shellGaussians) + " of them a shell in the "
+                                           "background colour").c_str()
+                                        : "");
+  else if (st.source == InitSource::PointCloud)
     std::snprintf(message, sizeof(message), "initialised %zu Gaussians from point_cloud_dense.ply (%lld points)",
                   init.scene.size(), (long long)st.pointsUnprojected);
   else
@@ -134,14 +142,14 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
   ActivityScope activity("preparing the training run " + run.root().string());
   ThreadLimit threads(config.threads);
   activity.describe("loading the dataset " + config.dataset);
-  Dataset dataset = Dataset::open(config.dataset, /*requireBuffers=*/true, config.holdout);
+  Dataset dataset = Dataset::open(config.dataset, config.datasetReading(/*requireBuffers=*/true));
   if (dataset.capture()) {
     // A normal map in another space than declared would train every normal wrong.
     std::istringstream check(normalSpaceCheck(dataset));
     for (std::string line; std::getline(check, line);)
       if (line.rfind("warning:", 0) == 0) std::fprintf(stderr, "glint train: %s\n", line.c_str());
   }
-  TrainingViews views = TrainingViews::load(dataset, dataset.train(),
+  TrainingViews views = TrainingViews::load(dataset, dataset.split("train"),  // split(): names a missing file
                                             config.baseline == Baseline::Rgb ? ColourTarget::Render
                                                                              : ColourTarget::Diffuse);
   std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);

@@ -14,8 +14,11 @@ struct Outcome {
   std::string output;  // stdout and stderr together
 };
 
-inline Outcome runGlint(const std::string& args) {
-  std::string command = std::string(GLINT_BINARY) + " " + args + " 2>&1";
+// With timeoutSeconds > 0 the program is stopped after that long (coreutils' timeout:
+// status 124), for tests of commands that could otherwise hang.
+inline Outcome runGlint(const std::string& args, int timeoutSeconds = 0) {
+  std::string command = (timeoutSeconds > 0 ? "timeout " + std::to_string(timeoutSeconds) + " " : std::string()) +
+                        std::string(GLINT_BINARY) + " " + args + " 2>&1";
   Outcome run;
   FILE* pipe = popen(command.c_str(), "r");
   if (!pipe) return run;

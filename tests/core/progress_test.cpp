@@ -3,10 +3,12 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <optional>
 #include <string>
+#include <thread>
 
 #include "core/parallel.h"
 
@@ -118,6 +120,31 @@ TEST(ProgressBar, EmptyTotalIsComplete) {
   std::string out = ::testing::internal::GetCapturedStderr();
   EXPECT_NE(out.find("100%"), std::string::npos) << out;
   EXPECT_NE(out.find("0/0"), std::string::npos) << out;
+}
+
+
+// A resumed job's earlier units count toward the fraction but not the rate: 4 units in
+// about 0.2 s after resuming at 996 is about 20 units/s, not 5000 (and the rate's
+// unit count is what a resumed `glint train` shows).
+TEST(ProgressBar, RateAfterResumeCountsOnlyTheNewUnits) {
+  ScopedQuiet quiet(false);
+  ::testing::internal::CaptureStderr();
+  {
+    ProgressBar bar("resumed", 1000, "steps");
+    bar.resumeAt(996);
+    std::this_thread::sleep_for(std::chrono::milliseconds(200));
+    bar.advance(4);
+  }
+  std::string out = ::testing::internal::GetCapturedStderr();
+  EXPECT_NE(out.find("1000/1000 steps"), std::string::npos) << out;
+  const size_t rate = out.find(" steps/s");
+  ASSERT_NE(rate, std::string::npos) << out;
+  const size_t from = out.rfind(' ', rate - 1) + 1;
+  const std::string number = out.substr(from, rate - from);
+  ASSERT_EQ(number.find_first_not_of("0123456789."), std::string::npos) << "a k or M rate: " << out;
+  const double perSecond = std::stod(number);
+  EXPECT_LT(perSecond, 25.0) << out;  // 996 + 4 units in 0.2 s would be 5000
+  EXPECT_GT(perSecond, 1.0) << out;
 }
 
 }  // namespace

@@ -1,11 +1,16 @@
-// Generic PLY tables: typed round trips, skipping of lists and other elements, and clear errors.
+// Generic PLY tables: typed round trips, skipping of lists and other elements, the ASCII and
+// big-endian formats, and clear errors.
 #include "io/ply.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
+#include <cstring>
 #include <limits>
+#include <string>
+#include <vector>
 
 #include "common/expect_error.h"
 #include "core/error.h"
@@ -32,8 +37,8 @@ struct RawPly {
 };
 
 
-TEST(Ply, RoundTripKeepsEveryTypeAndValue) {
-  TempFolder folder;
+// A table with a column of every type, and awkward values.
+PlyTable everyTypeTable() {
   PlyTable table;
   table.add("x", {1.5f, -2.25f, 1.0e30f});
   table.add("d", {0.1f, -1e-30f, 3.0f}, PlyType::Float64);
@@ -43,6 +48,12 @@ TEST(Ply, RoundTripKeepsEveryTypeAndValue) {
   table.add("us", {0.0f, 1234.0f, 65535.0f}, PlyType::UInt16);
   table.add("i", {-100000.0f, 0.0f, 16777216.0f}, PlyType::Int32);
   table.add("ui", {0.0f, 7.0f, 4000000000.0f}, PlyType::UInt32);
+  return table;
+}
+
+TEST(Ply, RoundTripKeepsEveryTypeAndValue) {
+  TempFolder folder;
+  PlyTable table = everyTypeTable();
   auto path = folder / "table.ply";
   writePly(path, table, {{"written by ply_test", "second comment"}});
 
@@ -143,17 +154,133 @@ TEST(Ply, SkipsListsAndOtherElements) {
   expectErrorNaming([&] { readPly(path, "normals"); }, path, {"no element 'normals'"});
 }
 
-TEST(Ply, RejectsAsciiAndBigEndian) {
-  TempFolder folder;
-  auto ascii = folder / "ascii.ply";
-  test::writeBytes(ascii, "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1.0\n");
-  expectErrorNaming([&] { readPly(ascii); }, ascii, {"ASCII", "format ascii", "binary_little_endian"});
+// The header lines of everyTypeTable's vertex element, after a face element of one row.
+std::string everyTypeHeader(const std::string& format) {
+  std::string header = "ply\nformat " + format + " 1.0\ncomment written by ply_test\ncomment second comment\n" +
+                       "element face 1\nproperty list uchar int vertex_indices\nelement vertex 3\n";
+  PlyTable table = everyTypeTable();
+  for (size_t c = 0; c < table.names.size(); ++c)
+    header += std::string("property ") + plyTypeName(table.types[c]) + " " + table.names[c] + "\n";
+  return header + "end_header\n";
+}
 
+// Appends a value in big-endian byte order.
+template <typename T>
+void putBigEndian(std::string& body, T value) {
+  char bytes[sizeof(T)];
+  std::memcpy(bytes, &value, sizeof(T));
+  for (size_t k = sizeof(T); k-- > 0;) body.push_back(bytes[k]);
+}
+
+void expectSameTable(const PlyTable& read, const PlyTable& expected) {
+  EXPECT_EQ(read.count, expected.count);
+  EXPECT_EQ(read.names, expected.names);
+  EXPECT_EQ(read.types, expected.types);
+  EXPECT_EQ(read.columns, expected.columns);
+  EXPECT_EQ(read.comments, expected.comments);
+}
+
+TEST(Ply, AsciiAndBigEndianGiveTheSameTableAsLittleEndian) {
+  TempFolder folder;
+  const PlyTable table = everyTypeTable();
+  auto little = folder / "little.ply";
+  writePly(little, table, {{"written by ply_test", "second comment"}});
+  PlyTable expected = readPly(little);
+  EXPECT_EQ(expected.comments, (std::vector<std::string>{"written by ply_test", "second comment"}));
+
+  // Big-endian, with a face element (a list) to skip first.
+  std::string body;
+  putBigEndian(body, uint8_t(3));
+  for (int32_t index : {0, 1, 2}) putBigEndian(body, index);
+  for (size_t row = 0; row < 3; ++row) {
+    putBigEndian(body, table.columns[0][row]);
+    putBigEndian(body, double(table.columns[1][row]));
+    putBigEndian(body, int8_t(table.columns[2][row]));
+    putBigEndian(body, uint8_t(table.columns[3][row]));
+    putBigEndian(body, int16_t(table.columns[4][row]));
+    putBigEndian(body, uint16_t(table.columns[5][row]));
+    putBigEndian(body, int32_t(table.columns[6][row]));
+    putBigEndian(body, uint32_t(table.columns[7][row]));
+  }
   auto big = folder / "big.ply";
-  RawPly ply;
-  ply.header = "ply\nformat binary_big_endian 1.0\nelement vertex 1\nproperty float x\nend_header\n";
-  ply.put(1.0f).save(big);
-  expectErrorNaming([&] { readPly(big); }, big, {"big-endian", "format binary_big_endian"});
+  test::writeBytes(big, everyTypeHeader("binary_big_endian") + body);
+  expectSameTable(readPly(big), expected);
+
+  // ASCII: floats printed to round-trip, rows split over lines as writers do, a '+' sign.
+  std::string text = "3 0 1 2\n";
+  for (size_t row = 0; row < 3; ++row) {
+    char line[256];
+    std::snprintf(line, sizeof(line), "%.9g %.17g %d %d %d %d %d %.0f\n", double(table.columns[0][row]),
+                  double(table.columns[1][row]), int(table.columns[2][row]), int(table.columns[3][row]),
+                  int(table.columns[4][row]), int(table.columns[5][row]), int(table.columns[6][row]),
+                  double(table.columns[7][row]));
+    text += line;
+  }
+  text.replace(text.find("\n1.5 "), 5, "\n+1.5 ");
+  auto ascii = folder / "ascii.ply";
+  test::writeBytes(ascii, everyTypeHeader("ascii") + text);
+  expectSameTable(readPly(ascii), expected);
+  // The face element, read from each format.
+  EXPECT_EQ(readPly(ascii, "face").count, 1u);
+  EXPECT_EQ(readPly(big, "face").count, 1u);
+}
+
+TEST(Ply, AsciiKeepsEveryCheck) {
+  TempFolder folder;
+  const std::string header = "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty uchar red\nend_header\n";
+  struct Case {
+    const char* name;
+    std::string text;
+    std::vector<std::string> details;
+  };
+  for (const Case& c : {
+           Case{"word.ply", header + "1 2\nabc 3\n", {"'x'", "vertex 1", "'abc'", "float"}},
+           Case{"fraction.ply", header + "1 2.5\n0 0\n", {"'red'", "vertex 0", "'2.5'", "uchar"}},
+           Case{"range.ply", header + "1 2\n0 256\n", {"'red'", "vertex 1", "'256'"}},
+           Case{"nan.ply", header + "1 2\nnan 3\n", {"'x'", "vertex 1", "NaN"}},
+           Case{"inf.ply", header + "-inf 2\n0 3\n", {"'x'", "vertex 0", "infinite"}},
+           Case{"huge.ply", header + "1e300 2\n0 3\n", {"'x'", "vertex 0", "outside the float range"}},
+           Case{"short.ply", header + "1 2\n3\n", {"truncated", "vertex 1"}},
+           Case{"count.ply", "ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nend_header\n1\n",
+                {"truncated", "1000000000000 vertex rows"}},
+           Case{"list.ply",
+                "ply\nformat ascii 1.0\nelement face 1\nproperty list char int v\nelement vertex 1\n"
+                "property float x\nend_header\n-1 0\n5\n",
+                {"'v'", "negative length"}},
+           Case{"face.ply",
+                "ply\nformat ascii 1.0\nelement face 2\nproperty list uchar int v\nelement vertex 1\n"
+                "property float x\nend_header\n2 0 1\n3 0\n",
+                {"truncated", "element 'face'"}},
+       }) {
+    auto path = folder / c.name;
+    test::writeBytes(path, c.text);
+    for (const std::string& detail : c.details) expectErrorNaming([&] { readPly(path); }, path, detail);
+  }
+  // Elements without properties hold nothing, however many rows they declare.
+  auto empty = folder / "empty_rows.ply";
+  test::writeBytes(empty, "ply\nformat ascii 1.0\nelement marker 1000000000000\nelement vertex 1000000000000\n"
+                          "end_header\n");
+  EXPECT_EQ(readPly(empty).count, 1000000000000u);
+  // Lists inside the wanted element are skipped, as in binary files.
+  auto lists = folder / "lists.ply";
+  test::writeBytes(lists, "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty list uchar float extra\n"
+                          "property ushort z\nend_header\n1.5 2 9 9 7\n-2.5 0 8\n");
+  PlyTable table = readPly(lists);
+  EXPECT_EQ(table.names, (std::vector<std::string>{"x", "z"}));
+  EXPECT_EQ(table.column("x"), (std::vector<float>{1.5f, -2.5f}));
+  EXPECT_EQ(table.column("z"), (std::vector<float>{7.0f, 8.0f}));
+}
+
+TEST(Ply, BigEndianTruncationIsRefused) {
+  TempFolder folder;
+  auto big = folder / "big_cut.ply";
+  std::string body;
+  putBigEndian(body, 1.0f);
+  test::writeBytes(big, "ply\nformat binary_big_endian 1.0\nelement vertex 2\nproperty float x\nend_header\n" + body);
+  expectErrorNaming([&] { readPly(big); }, big, {"truncated: expected 8 bytes of vertex data, found 4"});
+  auto other = folder / "other_format.ply";
+  test::writeBytes(other, "ply\nformat binary_middle_endian 1.0\nelement vertex 0\nend_header\n");
+  expectErrorNaming([&] { readPly(other); }, other, {"unsupported PLY format"});
 }
 
 TEST(Ply, RejectsTruncatedData) {

@@ -83,8 +83,13 @@ void editImage(const fs::path& path, const std::function<void(Image&)>& edit) {
 }
 
 const Malformed kMalformed[] = {
-    {"MissingTestTransforms", [](const fs::path& r) { fs::remove(r / "transforms_test.json"); },
-     "transforms_test.json", "not found", RejectedBy::Open},
+    // One split alone is a dataset (it renders and evaluates that split); none is not.
+    {"MissingBothTransforms",
+     [](const fs::path& r) {
+       fs::remove(r / "transforms_train.json");
+       fs::remove(r / "transforms_test.json");
+     },
+     "transforms_", "not found", RejectedBy::Open},
     {"JsonSyntaxError",
      [](const fs::path& r) {
        std::string text = readTextFile(r / "transforms_train.json");

@@ -1,0 +1,78 @@
+// The command line's habits end to end: bare `glint` fails with the command list, unknown
+// flags and commands name the nearest known one, every computing command takes --threads,
+// and `train --view` stops serving when training ends unless --keep-serving.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "app/run_glint.h"
+#include "io/temp_folder.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+using test::Outcome;
+using test::runGlint;
+
+class CliHabitsTest : public ::testing::Test {
+ protected:
+  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+  test::TempFolder folder_;
+};
+
+TEST_F(CliHabitsTest, BareGlintListsTheCommandsAndFails) {
+  Outcome bare = runGlint("");
+  EXPECT_NE(bare.status, 0);
+  for (const char* command : {"synth", "train", "render", "eval", "view"})
+    EXPECT_NE(bare.output.find(command), std::string::npos) << command << "\n" << bare.output;
+}
+
+TEST_F(CliHabitsTest, AnUnknownFlagOrCommandNamesTheNearestOne) {
+  Outcome flag = runGlint("train " + path("D") + " -o " + path("R") + " --iter 5");
+  EXPECT_NE(flag.status, 0);
+  EXPECT_NE(flag.output.find("unknown flag --iter; did you mean --iters?"), std::string::npos) << flag.output;
+  EXPECT_FALSE(fs::exists(path("R")));
+
+  Outcome render = runGlint("render scene.ply --sp 4");
+  EXPECT_NE(render.status, 0);
+  EXPECT_NE(render.output.find("did you mean --spp?"), std::string::npos) << render.output;
+
+  Outcome command = runGlint("trian D -o R");
+  EXPECT_NE(command.status, 0);
+  EXPECT_NE(command.output.find("did you mean 'train'?"), std::string::npos) << command.output;
+}
+
+TEST_F(CliHabitsTest, EveryComputingCommandTakesThreads) {
+  for (const char* command : {"synth", "info", "sheet", "train", "render", "eval", "edit", "view"}) {
+    Outcome help = runGlint(std::string(command) + " --help");
+    EXPECT_EQ(help.status, 0) << command;
+    EXPECT_NE(help.output.find("--threads"), std::string::npos) << command << "\n" << help.output;
+  }
+  // The range is checked (render had no --threads before).
+  Outcome tooMany = runGlint("render x.ply --threads 5000");
+  EXPECT_NE(tooMany.status, 0);
+  EXPECT_NE(tooMany.output.find("--threads"), std::string::npos) << tooMany.output;
+}
+
+TEST_F(CliHabitsTest, TrainViewStopsServingWhenTrainingEndsUnlessKeepServing) {
+  Outcome synth = runGlint("synth builtin:spheres -o " + path("D") + " --train 2 --test 1 --res 16x12 --spp 2");
+  ASSERT_EQ(synth.status, 0) << synth.output;
+  Outcome alone = runGlint("train " + path("D") + " -o " + path("K") + " --keep-serving");
+  EXPECT_NE(alone.status, 0);
+  EXPECT_NE(alone.output.find("--view"), std::string::npos) << alone.output;
+
+  // Without --keep-serving the command returns once trained; the timeout ends it (status
+  // 124) if it goes on serving.
+  Outcome viewed = runGlint("train " + path("D") + " -o " + path("R") +
+                                " --iters 3 --batch-rays 64 --threads 2 --eval-views 0 --view --view-port 0",
+                            60);
+  EXPECT_EQ(viewed.status, 0) << viewed.output;
+  const std::string& output = viewed.output;
+  EXPECT_NE(output.find("viewer at http"), std::string::npos) << output;
+  EXPECT_NE(output.find("the viewer has stopped"), std::string::npos) << output;
+}
+
+}  // namespace
+}  // namespace glint

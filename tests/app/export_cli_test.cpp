@@ -1,0 +1,189 @@
+// `glint export` and 3DGS import end to end: refusal without --force, far-field removal and
+// cropping with their counts, display-referred colour and SH degree, and --input-layout on
+// every command that loads a scene.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "app/run_glint.h"
+#include "io/ply.h"
+#include "io/temp_folder.h"
+#include "io/tonemap.h"
+#include "scene/dataset.h"
+#include "scene/gaussian_ply.h"
+#include "train/scene_extent.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+using test::Outcome;
+using test::runGlint;
+
+// A scratch folder for one test, and the path of a file in it as a command-line argument.
+class ExportCliTest : public ::testing::Test {
+ protected:
+  std::string path(const std::string& name) const { return (folder_ / name).string(); }
+  fs::path root() const { return folder_.path(); }
+
+  test::TempFolder folder_;
+};
+
+// n Gaussians at the given positions, with colours from dark to bright.
+GaussianScene sceneAt(const std::vector<Vec3f>& positions) {
+  GaussianScene scene;
+  scene.resize(positions.size());
+  for (size_t i = 0; i < positions.size(); ++i) {
+    scene.position[i] = positions[i];
+    scene.logScale[i] = {-3.0f, -4.0f, -5.0f};
+    scene.diffuse[i] = Rgb(0.02f + 0.5f * float(i), 0.1f, 2.0f);
+    scene.normal[i] = {0.0f, 0.0f, 1.0f};
+    scene.roughness[i] = 0.3f;
+  }
+  return scene;
+}
+
+TEST_F(ExportCliTest, AnExistingOutputIsReplacedOnlyWithForce) {
+  writeGaussianPly(path("scene.ply"), sceneAt({{0, 0, 0}, {1, 0, 0}}));
+  const std::string command = "export " + path("scene.ply") + " -o " + path("out.ply");
+  ASSERT_EQ(runGlint(command).status, 0);
+  std::string before = test::readBytes(path("out.ply"));
+
+  Outcome again = runGlint(command + " --sh-degree 3");
+  EXPECT_NE(again.status, 0);
+  EXPECT_NE(again.output.find("out.ply: already exists"), std::string::npos) << again.output;
+  EXPECT_NE(again.output.find("--force"), std::string::npos) << again.output;
+  EXPECT_EQ(test::readBytes(path("out.ply")), before);
+
+  Outcome forced = runGlint(command + " --sh-degree 3 --force");
+  ASSERT_EQ(forced.status, 0) << forced.output;
+  EXPECT_TRUE(readPly(path("out.ply")).has("f_rest_44"));
+}
+
+TEST_F(ExportCliTest, ColourShDegreeAndExposureReachTheFile) {
+  GaussianScene scene = sceneAt({{0, 0, 0}, {1, 0, 0}, {0, 2, 0}});
+  writeGaussianPly(path("scene.ply"), scene);
+  Outcome run = runGlint("export " + path("scene.ply") + " -o " + path("display.ply") + " --exposure 2 --sh-degree 2");
+  ASSERT_EQ(run.status, 0) << run.output;
+  PlyTable table = readPly(path("display.ply"));
+  EXPECT_TRUE(table.has("f_rest_23"));
+  EXPECT_FALSE(table.has("f_rest_24"));
+  for (size_t i = 0; i < scene.size(); ++i)
+    EXPECT_NEAR(0.5 + kShC0 * table.column("f_dc_0")[i], tonemapFilmic(2.0f * scene.diffuse[i].x), 1e-6) << i;
+
+  run = runGlint("export " + path("scene.ply") + " -o " + path("linear.ply") + " --colour linear");
+  ASSERT_EQ(run.status, 0) << run.output;
+  table = readPly(path("linear.ply"));
+  EXPECT_FALSE(table.has("f_rest_0"));
+  EXPECT_NEAR(0.5 + kShC0 * table.column("f_dc_2")[1], 2.0, 1e-6);  // above 1: linear is not clipped
+
+  // Glint's own layout has no colour encoding or SH to choose.
+  run = runGlint("export " + path("scene.ply") + " --format glint -o " + path("glint.ply") + " --sh-degree 1");
+  EXPECT_NE(run.status, 0);
+  EXPECT_NE(run.output.find("--format 3dgs only"), std::string::npos) << run.output;
+  EXPECT_NE(runGlint("export " + path("scene.ply") + " -o " + path("x.ply") + " --sh-degree 4").status, 0);
+  EXPECT_NE(runGlint("export " + path("scene.ply") + " -o " + path("x.ply") + " --exposure 0").status, 0);
+  EXPECT_FALSE(fs::exists(path("x.ply")));
+}
+
+TEST_F(ExportCliTest, FarFieldIsDroppedAroundTheTrainingCamerasAndCropKeepsABox) {
+  ASSERT_EQ(runGlint("synth builtin:spheres -o " + path("D") + " --train 3 --test 1 --res 8x6 --spp 1").status, 0);
+  SceneSphere cameras = sceneSphere(Dataset::open(path("D"), false).split("train"));
+  ASSERT_GT(cameras.radius, 0.0f);
+  // Distances from the cameras' centre in units of S: 0, 1, 4.9 inside the default cut of
+  // 5 S; 5.2, 12 and 30 outside it.
+  std::vector<Vec3f> positions;
+  for (float distance : {0.0f, 1.0f, 4.9f, 5.2f, 12.0f, 30.0f})
+    positions.push_back(Vec3f(cameras.centre + Vec3d(0.0, 0.0, double(distance * cameras.radius))));
+  writeGaussianPly(path("scene.ply"), sceneAt(positions));
+
+  // A bare .ply names no cameras: everything is kept, and the output says why.
+  Outcome bare = runGlint("export " + path("scene.ply") + " -o " + path("bare.ply"));
+  ASSERT_EQ(bare.status, 0) << bare.output;
+  EXPECT_NE(bare.output.find("far-field Gaussians kept"), std::string::npos) << bare.output;
+  EXPECT_EQ(readPly(path("bare.ply")).count, 6u);
+
+  Outcome dropped = runGlint("export " + path("scene.ply") + " -o " + path("near.ply") + " --dataset " + path("D"));
+  ASSERT_EQ(dropped.status, 0) << dropped.output;
+  EXPECT_NE(dropped.output.find("dropped 3 far-field Gaussians"), std::string::npos) << dropped.output;
+  EXPECT_EQ(readPly(path("near.ply")).count, 3u);
+
+  // A run folder's config.json names the dataset; --keep-far-field keeps all, and the
+  // Glint layout keeps them unless asked.
+  fs::create_directories(root() / "run");
+  fs::copy_file(path("scene.ply"), root() / "run" / "scene.ply");
+  std::ofstream(root() / "run" / "config.json") << R"({"dataset": ")" << path("D") << R"("})";
+  EXPECT_EQ(runGlint("export " + path("run") + " -o " + path("run_near.ply")).status, 0);
+  EXPECT_EQ(readPly(path("run_near.ply")).count, 3u);
+  EXPECT_EQ(runGlint("export " + path("run") + " -o " + path("run_all.ply") + " --keep-far-field").status, 0);
+  EXPECT_EQ(readPly(path("run_all.ply")).count, 6u);
+  EXPECT_EQ(runGlint("export " + path("run") + " --format glint -o " + path("glint_all.ply")).status, 0);
+  EXPECT_EQ(readPly(path("glint_all.ply")).count, 6u);
+  EXPECT_EQ(runGlint("export " + path("run") + " --format glint --drop-far-field --far-field-radius 10 -o " +
+                     path("glint_10.ply")).status, 0);
+  EXPECT_EQ(readPly(path("glint_10.ply")).count, 4u);
+
+  // --crop keeps the Gaussians whose centre lies in the box, and says how many went.
+  const Vec3d c = cameras.centre;
+  const double r = cameras.radius;
+  char box[256];
+  std::snprintf(box, sizeof(box), "%.6f,%.6f,%.6f,%.6f,%.6f,%.6f", c.x - 1, c.y - 1, c.z - 0.5 * r, c.x + 1, c.y + 1,
+                c.z + 13 * r);
+  Outcome cropped = runGlint("export " + path("scene.ply") + " -o " + path("crop.ply") + " --crop " + box);
+  ASSERT_EQ(cropped.status, 0) << cropped.output;
+  EXPECT_NE(cropped.output.find("dropped 1 Gaussians outside the --crop box"), std::string::npos) << cropped.output;
+  EXPECT_EQ(readPly(path("crop.ply")).count, 5u);
+  Outcome badBox = runGlint("export " + path("scene.ply") + " -o " + path("bad.ply") + " --crop 1,2,3");
+  EXPECT_NE(badBox.status, 0);
+  EXPECT_NE(badBox.output.find("--crop"), std::string::npos) << badBox.output;
+}
+
+// A 3DGS file as `splat-transform -H 0` writes it: the properties both layouts share.
+void writeCoreOnly3dgs(const fs::path& file) {
+  PlyTable table;
+  table.add("x", {0.0f, 0.2f});
+  table.add("y", {0.6f, 0.7f});
+  table.add("z", {0.0f, 0.1f});
+  for (const char* name : {"f_dc_0", "f_dc_1", "f_dc_2"}) table.add(name, {0.4f, -0.3f});
+  table.add("opacity", {2.0f, 2.0f});
+  for (const char* name : {"scale_0", "scale_1", "scale_2"}) table.add(name, {-2.0f, -2.5f});
+  table.add("rot_0", {1.0f, 1.0f});
+  for (const char* name : {"rot_1", "rot_2", "rot_3"}) table.add(name, {0.0f, 0.0f});
+  writePly(file, table);
+}
+
+TEST_F(ExportCliTest, EveryCommandThatLoadsASceneTakesTheInputLayout) {
+  for (const char* command : {"render", "view", "edit", "eval", "export"}) {
+    Outcome help = runGlint(std::string(command) + " --help");
+    EXPECT_NE(help.output.find("--input-layout"), std::string::npos) << command;
+  }
+  writeCoreOnly3dgs(path("h0.ply"));
+  std::ofstream(path("edits.json")) << R"({"glint_edits": 1, "operations": []})";
+  // Ambiguous: refused, naming the file and the flag, by every command before other work.
+  for (const std::string& args :
+       {"edit " + path("h0.ply") + " " + path("edits.json") + " -o " + path("edited.ply"),
+        "render " + path("h0.ply") + " -o " + path("frames") + " --dataset " + path("none"),
+        "eval " + path("h0.ply") + " -o " + path("metrics.json") + " --dataset " + path("none"),
+        "export " + path("h0.ply") + " -o " + path("out.ply")}) {
+    Outcome run = runGlint(args);
+    EXPECT_NE(run.status, 0) << args;
+    EXPECT_NE(run.output.find("h0.ply"), std::string::npos) << args << "\n" << run.output;
+    EXPECT_NE(run.output.find("--input-layout"), std::string::npos) << args << "\n" << run.output;
+  }
+  // Given the layout, it loads with the imported materials, and says so.
+  Outcome edit = runGlint("edit " + path("h0.ply") + " " + path("edits.json") + " -o " + path("edited.ply") +
+                          " --input-layout 3dgs");
+  ASSERT_EQ(edit.status, 0) << edit.output;
+  EXPECT_NE(edit.output.find("imported 3DGS layout"), std::string::npos) << edit.output;
+  EXPECT_NE(edit.output.find("materials set to a rough dielectric"), std::string::npos) << edit.output;
+  GaussianScene edited = readGaussianPly(path("edited.ply"));
+  ASSERT_EQ(edited.size(), 2u);
+  EXPECT_EQ(edited.roughness[0], 0.9f);
+  EXPECT_NEAR(tonemapFilmic(edited.diffuse[0].x), 0.5 + kShC0 * 0.4, 5e-5);
+}
+
+}  // namespace
+}  // namespace glint
