@@ -15,14 +15,18 @@ namespace glint {
 
 class RelightFlags {
  public:
-  // Declares --relight, --relight-rays and --relight-max-ratio on cmd.
+  // Declares --relight / --no-relight (on by default), --relight-rays and
+  // --relight-max-ratio on cmd.
   void add(CLI::App* cmd);
   bool on() const { return on_; }
   // The settings of the flags, with the ray offsets of the scene's reflected rays.
   RelightSettings settings(const PathSettings& path) const;
 
  private:
-  bool on_ = false;
+  // On by default: on builtin:spheres it lowered the final-image drop of a move from 2.83 to
+  // 1.56 dB, of a duplication from 1.69 to 1.20 and of a deletion from 4.22 to 2.27 (README,
+  // "Edits that move shadows").
+  bool on_ = true;
   RelightSettings settings_;
 };
 

@@ -176,8 +176,9 @@ TEST_F(EditCliTest, RenderAndEvalApplyEditsAndReportRefitAndRebuildCosts) {
 namespace glint {
 namespace {
 
-// --relight on `glint edit`: deleting a plate that shades the floor brightens the floor
-// under it, and moving it by zero changes no colour at all.
+// Relighting on `glint edit` (the default): deleting a plate that shades the floor brightens
+// the floor under it, moving it by zero changes no colour at all, and --no-relight keeps
+// every colour.
 TEST(EditRelightCli, DeletedPlateBrightensTheFloorAndANullMoveChangesNothing) {
   test::TempFolder folder;
   auto path = [&](const std::string& name) { return (folder / name).string(); };
@@ -191,8 +192,8 @@ TEST(EditRelightCli, DeletedPlateBrightensTheFloorAndANullMoveChangesNothing) {
       << "{\"glint_edits\": 1, " << selection
       << R"(, "operations": [{"op": "translate", "selection": "plate", "offset": [0, 0, 0]}]})";
 
-  Outcome deleted = runGlint("edit " + path("scene.ply") + " " + path("delete.json") + " -o " + path("deleted.ply") +
-                             " --relight");
+  // Relighting is on by default.
+  Outcome deleted = runGlint("edit " + path("scene.ply") + " " + path("delete.json") + " -o " + path("deleted.ply"));
   ASSERT_EQ(deleted.status, 0) << deleted.output;
   EXPECT_NE(deleted.output.find("glint edit: relit "), std::string::npos) << deleted.output;
   GaussianScene relit = readGaussianPly(path("deleted.ply"));
@@ -215,6 +216,15 @@ TEST(EditRelightCli, DeletedPlateBrightensTheFloorAndANullMoveChangesNothing) {
   GaussianScene same = readGaussianPly(path("still.ply"));
   ASSERT_EQ(same.size(), scene.size());
   for (size_t i = 0; i < scene.size(); ++i) EXPECT_EQ(same.diffuse[i], scene.diffuse[i]) << i;
+
+  // --no-relight keeps every trained colour, also under a deletion.
+  Outcome kept = runGlint("edit " + path("scene.ply") + " " + path("delete.json") + " -o " + path("kept.ply") +
+                          " --no-relight");
+  ASSERT_EQ(kept.status, 0) << kept.output;
+  EXPECT_EQ(kept.output.find("relit"), std::string::npos) << kept.output;
+  GaussianScene unrelit = readGaussianPly(path("kept.ply"));
+  ASSERT_EQ(unrelit.size(), room.floorEnd);
+  for (size_t i = 0; i < unrelit.size(); ++i) EXPECT_EQ(unrelit.diffuse[i], scene.diffuse[i]) << i;
 }
 
 }  // namespace
