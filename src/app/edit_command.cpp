@@ -6,6 +6,7 @@
 
 #include "app/commands.h"
 #include "app/output_file.h"
+#include "app/relight_flags.h"
 #include "app/scene_source.h"
 #include "app/thread_flag.h"
 #include "core/error.h"
@@ -26,6 +27,7 @@ struct EditOptions {
   bool force = false;
   size_t maxGaussians = kDefaultMaxGaussians;
   int threads = 0;
+  RelightFlags relight;
 };
 
 void runEdit(const EditOptions& o) {
@@ -33,9 +35,22 @@ void runEdit(const EditOptions& o) {
   refuseExistingOutput(o.output, o.force);
   EditDocument document = readEditFile(o.edits);  // validate before loading a large scene
   SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
-  EditReport report = applyEdits(document, source.scene, o.maxGaussians);
+  GaussianScene unedited;
+  EditProvenance provenance;
+  if (o.relight.on()) unedited = source.scene, provenance = EditProvenance::identity(source.scene.size());
+  EditReport report = applyEdits(document, source.scene, o.maxGaussians, o.relight.on() ? &provenance : nullptr);
   std::fprintf(stderr, "glint edit: %s with %s\n%s", o.scene.c_str(), o.edits.c_str(),
                formatEditReport(report).c_str());
+  if (o.relight.on()) {  // traced as the scene renders: the run's tracer settings
+    const char* kind = "fast";
+    std::unique_ptr<GaussianTracer> before = makeGaussianTracer(kind), after = makeGaussianTracer(kind);
+    before->build(unedited, source.settings.trace);
+    after->build(source.scene, source.settings.trace);
+    std::fprintf(stderr, "glint edit: %s\n",
+                 relightAfterEdit(*before, unedited, *after, source.scene, provenance,
+                                  o.relight.settings(source.settings.path()))
+                     .c_str());
+  }
   writeGaussianPly(o.output, source.scene);
   std::fprintf(stderr, "glint edit: wrote %s (%zu Gaussians)\n", o.output.c_str(), source.scene.size());
 }
@@ -61,6 +76,7 @@ void addEditCommand(CLI::App& app) {
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
   addThreadsFlag(cmd, &o->threads);
+  o->relight.add(cmd);
   cmd->callback([o]() { runEdit(*o); });
 }
 

@@ -161,7 +161,8 @@ void runEval(const EvalOptions& o) {
   double workRays = double(split.views.size()) * split.width * split.height *
                     (double(o.spp) * (1 + rendering.path.bounces) + (o.spp > 1 ? 1 : 0));
   std::unique_ptr<GaussianTracer> tracer =
-      o.edits.prepareTracer(source.scene, trace, rendering.tracer, split.camera(0), workRays, "glint eval");
+      o.edits.prepareTracer(source.scene, trace, rendering.path, rendering.tracer, split.camera(0), workRays,
+                            "glint eval");
   std::fprintf(stderr, "glint eval: %zu Gaussians, %s tracer; %zu %s views at %dx%d, %d spp\n", source.scene.size(),
                tracer->name(), split.views.size(), o.split.c_str(), split.width, split.height, o.spp);
 

@@ -194,7 +194,7 @@ void runRender(const RenderOptions& o) {
   }
   if (pathKind) workRays *= double(path.size()) / double(split.views.size());
   std::unique_ptr<GaussianTracer> tracer =
-      o.edits.prepareTracer(scene, trace, rendering.tracer, first, workRays, "glint render");
+      o.edits.prepareTracer(scene, trace, rendering.path, rendering.tracer, first, workRays, "glint render");
   double buildSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::fprintf(stderr,
                "glint render: %zu Gaussians, %s tracer ready in %.3f s (p = %g, alpha_min = %g, "

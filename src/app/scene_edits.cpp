@@ -18,11 +18,13 @@ void EditsFlag::add(CLI::App* cmd) {
                   "refused before they allocate")
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
+  relight_.add(cmd);
 }
 
 std::unique_ptr<GaussianTracer> EditsFlag::prepareTracer(GaussianScene& scene, const TraceSettings& settings,
-                                                         const std::string& kind, const Camera& probeCamera,
-                                                         double workRays, const char* command) const {
+                                                         const PathSettings& path, const std::string& kind,
+                                                         const Camera& probeCamera, double workRays,
+                                                         const char* command) const {
   std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(kind);
   if (!given()) {
     tracer->build(scene, settings);
@@ -30,11 +32,24 @@ std::unique_ptr<GaussianTracer> EditsFlag::prepareTracer(GaussianScene& scene, c
   }
   EditDocument document = readEditFile(path_);  // before any work: a bad file fails fast
   tracer->build(scene, settings);
-  EditReport report = applyEdits(document, scene, maxGaussians_);
+  // Relighting traces the unedited scene too: it keeps a copy with a tracer of its own.
+  GaussianScene unedited;
+  EditProvenance provenance;
+  if (relight_.on()) unedited = scene, provenance = EditProvenance::identity(scene.size());
+  EditReport report = applyEdits(document, scene, maxGaussians_, relight_.on() ? &provenance : nullptr);
   std::fprintf(stderr, "%s: edits from %s\n%s", command, path_.c_str(), formatEditReport(report).c_str());
   UpdatedTracer updated =
       updateTracerAfterEdit(std::move(tracer), scene, settings, kind, !report.countChanged(), probeCamera, workRays);
   std::fprintf(stderr, "%s: after the edits: %s\n", command, describeTracerUpdate(updated.times).c_str());
+  if (relight_.on()) {
+    std::unique_ptr<GaussianTracer> uneditedTracer = makeGaussianTracer(kind);
+    uneditedTracer->build(unedited, settings);
+    std::fprintf(stderr, "%s: %s\n", command,
+                 relightAfterEdit(*uneditedTracer, unedited, *updated.tracer, scene, provenance,
+                                  relight_.settings(path))
+                     .c_str());
+    updated.tracer->refit();  // tracers may keep copies of the colours
+  }
   return std::move(updated.tracer);
 }
 

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/relight_flags.h"
 #include "edit/gaussian_edits.h"
 #include "raytrace/gaussian_tracer.h"
 #include "scene/camera.h"
@@ -22,15 +23,18 @@ class EditsFlag {
 
   // Builds a tracer of `kind` for `scene`. With --edits: validates the file, builds on the
   // unedited scene, applies the edits in place, prints the per-operation counts and warnings,
-  // then refits or rebuilds (tracer_update.h), printing both costs. `workRays` estimates
+  // then refits or rebuilds (tracer_update.h), printing both costs. With --relight, the
+  // diffuse colours of the Gaussians the edit left in place then follow the change of their
+  // irradiance (relight_flags.h), traced with `path`'s ray offsets. `workRays` estimates
   // the rays the command will trace; `command` prefixes the messages.
   std::unique_ptr<GaussianTracer> prepareTracer(GaussianScene& scene, const TraceSettings& settings,
-                                                const std::string& kind, const Camera& probeCamera, double workRays,
-                                                const char* command) const;
+                                                const PathSettings& path, const std::string& kind,
+                                                const Camera& probeCamera, double workRays, const char* command) const;
 
  private:
   std::string path_;
   size_t maxGaussians_ = kDefaultMaxGaussians;
+  RelightFlags relight_;
 };
 
 }  // namespace glint

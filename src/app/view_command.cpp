@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/relight_flags.h"
 #include "app/scene_source.h"
 #include "app/thread_flag.h"
 #include "app/viewer/viewer_outputs.h"
@@ -26,6 +27,7 @@ struct ViewOptions {
   ViewerFlags viewer;
   size_t maxGaussians = kDefaultMaxGaussians;
   int threads = 0;
+  RelightFlags relight;
 };
 
 void runView(const ViewOptions& o) {
@@ -42,6 +44,7 @@ void runView(const ViewOptions& o) {
   ViewerOptions options = makeViewerOptions(o.viewer, dataset, source.scene, output);
   options.maxGaussians = o.maxGaussians;
   options.path = source.settings.renderPath();  // the page starts at the run's render bounces
+  if (o.relight.on()) options.relight = o.relight.settings(source.settings.path());
   std::fprintf(stderr, "glint view: %zu Gaussians at %dx%d; saving edits into %s\n", source.scene.size(),
                options.width, options.height, output.string().c_str());
   ViewerServer server(std::move(options), std::move(source.scene), source.settings.trace);
@@ -85,6 +88,7 @@ void addViewCommand(CLI::App& app) {
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
   addThreadsFlag(cmd, &o->threads, "the viewer renders with them");
+  o->relight.add(cmd);
   cmd->callback([o]() { runView(*o); });
 }
 

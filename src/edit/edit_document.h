@@ -35,14 +35,27 @@ struct AttributeFilter {
   float lo = 0.0f, hi = 1.0f;  // inclusive range
 };
 
+// Growth of a Gaussian selection along connected Gaussians of similar material, e.g. to
+// take with an object the cap of it that a selection box stopping above the floor leaves
+// behind: repeatedly, a Gaussian joins when its centre lies within `distance` of a selected
+// one whose mean diffuse, mean F0 and roughness each differ from its own by at most
+// `tolerance`. distance 0: no growth. Meshes (`glint synth --edits`) are selected whole and
+// do not grow.
+struct SelectionGrowth {
+  float distance = 0.0f;
+  float tolerance = 0.1f;
+};
+
 // A named selection: a shape, everything, or a combination of other named selections;
-// then every filter must hold. Difference is the first operand minus all the others.
+// then every filter must hold, then the selection grows (SelectionGrowth). Difference is
+// the first operand minus all the others.
 struct Selection {
   enum class Kind { Shape, Everything, Union, Intersection, Difference };
   Kind kind = Kind::Everything;
   Shape shape;                         // Kind::Shape
   std::vector<std::string> operands;   // Union, Intersection, Difference
   std::vector<AttributeFilter> filters;
+  SelectionGrowth grow;
 };
 
 // How a colour (diffuse or F0) is changed: replaced (mixed with `blend` in [0, 1]),

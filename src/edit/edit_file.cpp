@@ -242,7 +242,8 @@ class Parser {
       return s;
     }
     if (!j.is_object()) fail(where, "must be an object or \"everything\"");
-    allowOnly(j, where, {"box", "sphere", "cylinder", "everything", "union", "intersection", "difference", "filters"});
+    allowOnly(j, where,
+              {"box", "sphere", "cylinder", "everything", "union", "intersection", "difference", "filters", "grow"});
     int kinds = 0;
     for (const char* k : {"box", "sphere", "cylinder", "everything", "union", "intersection", "difference"})
       kinds += j.contains(k);
@@ -266,7 +267,19 @@ class Parser {
       s.kind = Selection::Kind::Difference, s.operands = operands(j["difference"], at(where, "difference"), 2);
     }
     if (j.contains("filters")) s.filters = filters(j["filters"], at(where, "filters"));
+    if (j.contains("grow")) s.grow = growth(j["grow"], at(where, "grow"));
     return s;
+  }
+
+  SelectionGrowth growth(const json& j, const std::string& where) const {
+    if (!j.is_object()) fail(where, "must be an object {\"distance\": d, \"tolerance\": t}");
+    allowOnly(j, where, {"distance", "tolerance"});
+    SelectionGrowth g;
+    g.distance = number(required(j, where, "distance"), at(where, "distance"));
+    if (!(g.distance > 0 && g.distance <= 1e3f)) fail(at(where, "distance"), "must lie in (0, 1000]");
+    if (j.contains("tolerance")) g.tolerance = number(j["tolerance"], at(where, "tolerance"));
+    if (!(g.tolerance >= 0 && g.tolerance <= 1)) fail(at(where, "tolerance"), "must lie in [0, 1]");
+    return g;
   }
 
   // Every operand names a selection, and no selection contains itself.
@@ -468,6 +481,7 @@ json selectionToJson(const Selection& s) {
       filters.push_back({{"attribute", attributeName(f.attribute)}, {"range", {f.lo, f.hi}}});
     j["filters"] = filters;
   }
+  if (s.grow.distance > 0) j["grow"] = {{"distance", s.grow.distance}, {"tolerance", s.grow.tolerance}};
   return j;
 }
 

@@ -85,7 +85,75 @@ void applyOperation(const EditDocument& document, const Operation& op, const Gau
   }
 }
 
-EditReport applyEdits(const EditDocument& document, GaussianScene& scene, size_t maxGaussians) {
+EditProvenance EditProvenance::identity(size_t n) {
+  EditProvenance p;
+  p.countBefore = n;
+  p.source.resize(n);
+  for (size_t i = 0; i < n; ++i) p.source[i] = uint32_t(i);
+  p.moved.assign(n, 0);
+  return p;
+}
+
+std::vector<uint32_t> EditProvenance::unmoved() const {
+  std::vector<uint32_t> indices;
+  for (size_t i = 0; i < moved.size(); ++i)
+    if (!moved[i]) indices.push_back(uint32_t(i));
+  return indices;
+}
+
+std::vector<uint32_t> EditProvenance::movedOrAdded() const {
+  std::vector<uint32_t> indices;
+  for (size_t i = 0; i < moved.size(); ++i)
+    if (moved[i]) indices.push_back(uint32_t(i));
+  return indices;
+}
+
+std::vector<uint32_t> EditProvenance::movedOrRemoved() const {
+  // A Gaussian before stays in place when some Gaussian after is it, unmoved (a copy is
+  // always marked moved, so copies never count).
+  std::vector<uint8_t> inPlace(countBefore, 0);
+  for (size_t i = 0; i < source.size(); ++i)
+    if (!moved[i]) inPlace[source[i]] = 1;
+  std::vector<uint32_t> indices;
+  for (size_t i = 0; i < countBefore; ++i)
+    if (!inPlace[i]) indices.push_back(uint32_t(i));
+  return indices;
+}
+
+namespace {
+
+// What one operation does to the provenance record (run after the operation itself).
+void recordOperation(const Operation& op, const GaussianMask& mask, EditProvenance& p) {
+  switch (op.kind) {
+    case Operation::Kind::Translate:
+    case Operation::Kind::Rotate:
+    case Operation::Kind::Scale:
+      for (size_t i = 0; i < mask.size(); ++i) p.moved[i] = p.moved[i] || mask[i];
+      break;
+    case Operation::Kind::Duplicate:
+      for (size_t i = 0; i < mask.size(); ++i)
+        if (mask[i]) p.source.push_back(p.source[i]), p.moved.push_back(1);
+      break;
+    case Operation::Kind::Delete: {
+      size_t kept = 0;
+      for (size_t i = 0; i < mask.size(); ++i)
+        if (!mask[i]) p.source[kept] = p.source[i], p.moved[kept] = p.moved[i], ++kept;
+      p.source.resize(kept);
+      p.moved.resize(kept);
+      break;
+    }
+    case Operation::Kind::Roughness:
+    case Operation::Kind::F0:
+    case Operation::Kind::Diffuse:
+      break;  // materials: the geometry that shadows stays
+  }
+}
+
+}  // namespace
+
+EditReport applyEdits(const EditDocument& document, GaussianScene& scene, size_t maxGaussians,
+                      EditProvenance* provenance) {
+  GLINT_CHECK(!provenance || provenance->source.size() == scene.size(), "applyEdits: provenance of another scene");
   EditReport report;
   report.countBefore = scene.size();
   for (size_t k = 0; k < document.operations.size(); ++k) {
@@ -105,6 +173,7 @@ EditReport applyEdits(const EditDocument& document, GaussianScene& scene, size_t
                                    " Gaussians, more than the limit of " + std::to_string(maxGaussians) +
                                    " (--max-gaussians)");
     applyOperation(document, op, mask, scene);
+    if (provenance) recordOperation(op, mask, *provenance);
     report.operations.push_back(entry);
   }
   report.countAfter = scene.size();

@@ -36,12 +36,32 @@ class GaussianLimitError : public Error {
   using Error::Error;
 };
 
+// Where each Gaussian of an edited scene came from, for differential relighting: which
+// Gaussians the edit left in place (they receive the changed light) and which it moved,
+// added or removed (they change it).
+struct EditProvenance {
+  size_t countBefore = 0;
+  std::vector<uint32_t> source;  // per Gaussian after the edit: its index before (a copy: its original's)
+  std::vector<uint8_t> moved;    // per Gaussian after: translated, rotated or scaled, or a copy
+
+  // Starts the record of an unedited scene of n Gaussians.
+  static EditProvenance identity(size_t n);
+  // Indices after the edit of Gaussians neither moved nor added.
+  std::vector<uint32_t> unmoved() const;
+  // Indices after the edit of Gaussians moved or added.
+  std::vector<uint32_t> movedOrAdded() const;
+  // Indices before the edit of Gaussians the edit moved or removed.
+  std::vector<uint32_t> movedOrRemoved() const;
+};
+
 // Applies the operations in order; each selection is evaluated on the scene as the
 // operations before it left it. The document must be valid (parseEditDocument). Throws
 // GaussianLimitError (naming document.source) before an operation would make the scene
 // hold more than maxGaussians; operations that do not add Gaussians always apply.
+// With `provenance` (started with EditProvenance::identity of the scene's size), it records
+// what each operation did to each Gaussian.
 EditReport applyEdits(const EditDocument& document, GaussianScene& scene,
-                      size_t maxGaussians = kDefaultMaxGaussians);
+                      size_t maxGaussians = kDefaultMaxGaussians, EditProvenance* provenance = nullptr);
 
 // Applies one operation to the Gaussians whose mask entry is set.
 void applyOperation(const EditDocument& document, const Operation& op, const std::vector<uint8_t>& mask,

@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "edit/selection_growth.h"
 #include "edit/selection_plan.h"
 #include "edit/shape.h"
 
@@ -45,6 +46,7 @@ GaussianMask evaluateSelection(const Selection& selection, const std::vector<con
         if (mask[i] && !passesFilter(filter, scene, size_t(i))) mask[i] = 0;
     });
   }
+  if (selection.grow.distance > 0) growSelection(selection.grow, scene, mask);
   return mask;
 }
 

@@ -14,6 +14,7 @@
 
 #include "app/run_glint.h"
 #include "io/temp_folder.h"
+#include "render/gaussian_layers.h"
 #include "scene/gaussian_ply.h"
 
 namespace glint {
@@ -167,6 +168,63 @@ TEST_F(EditCliTest, RenderAndEvalApplyEditsAndReportRefitAndRebuildCosts) {
   std::ifstream in(folder_ / "m.json");
   nlohmann::json metrics = nlohmann::json::parse(in);
   EXPECT_EQ(metrics["edits"], path("edits.json"));
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// Relighting on `glint edit` (the default): deleting a plate that shades the floor brightens
+// the floor under it, moving it by zero changes no colour at all, and --no-relight keeps
+// every colour.
+TEST(EditRelightCli, DeletedPlateBrightensTheFloorAndANullMoveChangesNothing) {
+  test::TempFolder folder;
+  auto path = [&](const std::string& name) { return (folder / name).string(); };
+  const test::PlateRoom room = test::plateRoom();
+  const GaussianScene& scene = room.scene;
+  writeGaussianPly(folder / "scene.ply", scene);
+  const char* selection = R"("selections": {"plate": {"box": {"min": [-0.2, -0.2, 0.3], "max": [0.2, 0.2, 0.5]}}})";
+  std::ofstream(folder / "delete.json") << "{\"glint_edits\": 1, " << selection
+                                        << R"(, "operations": [{"op": "delete", "selection": "plate"}]})";
+  std::ofstream(folder / "still.json")
+      << "{\"glint_edits\": 1, " << selection
+      << R"(, "operations": [{"op": "translate", "selection": "plate", "offset": [0, 0, 0]}]})";
+
+  // Relighting is on by default.
+  Outcome deleted = runGlint("edit " + path("scene.ply") + " " + path("delete.json") + " -o " + path("deleted.ply"));
+  ASSERT_EQ(deleted.status, 0) << deleted.output;
+  EXPECT_NE(deleted.output.find("glint edit: relit "), std::string::npos) << deleted.output;
+  GaussianScene relit = readGaussianPly(path("deleted.ply"));
+  ASSERT_EQ(relit.size(), room.floorEnd);
+  // The floor Gaussian nearest the centre, under the plate, gains light; one in a far corner
+  // barely changes.
+  const size_t centre = room.centre;
+  size_t corner = room.floorBegin;
+  for (size_t i = room.floorBegin; i < room.floorEnd; ++i)
+    if (length(scene.position[i]) > length(scene.position[corner])) corner = i;
+  EXPECT_GT(relit.diffuse[centre].x, 1.15f * scene.diffuse[centre].x);
+  EXPECT_NEAR(relit.diffuse[corner].x, scene.diffuse[corner].x, 0.05f * scene.diffuse[corner].x);
+  // The ceiling faces away from the plate's region: it keeps its colour exactly.
+  EXPECT_EQ(relit.diffuse[0], scene.diffuse[0]);
+
+  Outcome still = runGlint("edit " + path("scene.ply") + " " + path("still.json") + " -o " + path("still.ply") +
+                           " --relight");
+  ASSERT_EQ(still.status, 0) << still.output;
+  EXPECT_NE(still.output.find("relit 0 of the"), std::string::npos) << still.output;
+  GaussianScene same = readGaussianPly(path("still.ply"));
+  ASSERT_EQ(same.size(), scene.size());
+  for (size_t i = 0; i < scene.size(); ++i) EXPECT_EQ(same.diffuse[i], scene.diffuse[i]) << i;
+
+  // --no-relight keeps every trained colour, also under a deletion.
+  Outcome kept = runGlint("edit " + path("scene.ply") + " " + path("delete.json") + " -o " + path("kept.ply") +
+                          " --no-relight");
+  ASSERT_EQ(kept.status, 0) << kept.output;
+  EXPECT_EQ(kept.output.find("relit"), std::string::npos) << kept.output;
+  GaussianScene unrelit = readGaussianPly(path("kept.ply"));
+  ASSERT_EQ(unrelit.size(), room.floorEnd);
+  for (size_t i = 0; i < unrelit.size(); ++i) EXPECT_EQ(unrelit.diffuse[i], scene.diffuse[i]) << i;
 }
 
 }  // namespace

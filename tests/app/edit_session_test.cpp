@@ -7,6 +7,7 @@
 
 #include "common/random_gaussians.h"
 #include "edit/gaussian_edits.h"
+#include "render/gaussian_layers.h"
 
 namespace glint {
 namespace {
@@ -73,6 +74,44 @@ TEST(EditSession, RefitsInPlaceOnlyWhenTheCountStaysAndTheSceneIsFree) {
   EXPECT_EQ(released, 3);
   EXPECT_EQ(session.status()["tracer_update"]["action"], "refit");
   EXPECT_EQ(session.current()->scene->roughness[3], pristine.roughness[3]);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// With relighting, deleting a plate that shades a floor brightens the floor under it; undo
+// returns every colour to the pristine scene's exactly.
+TEST(EditSession, RelightsAfterEachEditAndUndoRestoresThePristineColours) {
+  const test::PlateRoom room = test::plateRoom();
+  const GaussianScene& pristine = room.scene;
+  EditSession session(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{});
+  TracerUpdateContext context;
+  context.probeCamera =
+      Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0, -3, 1), Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, 32, 24);
+  context.workRays = 1e6;
+
+  session.apply({{"selection", {{"box", {{"min", {-0.2, -0.2, 0.3}}, {"max", {0.2, 0.2, 0.5}}}}}},
+                 {"operation", {{"op", "delete"}}}},
+                context);
+  nlohmann::json status = session.status();
+  ASSERT_TRUE(status.contains("relight")) << status;
+  EXPECT_GE(status["relight_ms"].get<double>(), 0.0);
+  std::shared_ptr<const TracedScene> shown = session.current();
+  ASSERT_EQ(shown->scene->size(), room.floorEnd);
+  const size_t centre = room.centre;
+  EXPECT_GT(shown->scene->diffuse[centre].x, 1.15f * pristine.diffuse[centre].x);
+  // The shown tracer sees the relit colours (it was refitted after relighting).
+  TraceRay down{pristine.position[centre] + Vec3f(0, 0, 0.3f), Vec3f(0, 0, -1), 0.0f};
+  EXPECT_GT(shown->tracer->trace(down).diffuse.x, 1.1f * pristine.diffuse[centre].x);
+  shown.reset();
+
+  session.undo(context);
+  shown = session.current();
+  ASSERT_EQ(shown->scene->size(), pristine.size());
+  for (size_t i = 0; i < pristine.size(); ++i) ASSERT_EQ(shown->scene->diffuse[i], pristine.diffuse[i]) << i;
 }
 
 }  // namespace

@@ -97,6 +97,7 @@ EditDocument everyFeature() {
   all.kind = Selection::Kind::Everything;
   doc.selections["all"] = all;
   all.filters = {{Attribute::Diffuse, 0.2f, 0.9f}};
+  all.grow = {0.05f, 0.2f};
   doc.selections["bright"] = all;
   Selection combination;
   combination.kind = Selection::Kind::Union;
@@ -163,6 +164,9 @@ TEST(EditFile, RoundTripsEveryFeature) {
   EXPECT_EQ(back.selections.at("cylinder").shape.rotation.x, 1.0f);
   EXPECT_EQ(back.selections.at("bright").kind, Selection::Kind::Everything);
   EXPECT_EQ(back.selections.at("bright").filters[0].lo, 0.2f);
+  EXPECT_EQ(back.selections.at("bright").grow.distance, 0.05f);
+  EXPECT_EQ(back.selections.at("bright").grow.tolerance, 0.2f);
+  EXPECT_EQ(back.selections.at("box").grow.distance, 0.0f);
   EXPECT_EQ(back.selections.at("difference").operands.size(), 3u);
   EXPECT_EQ(back.selections.at("difference").filters[0].hi, 0.75f);
   ASSERT_EQ(back.operations.size(), doc.operations.size());
@@ -231,6 +235,13 @@ TEST(EditFile, RejectsMalformedFilesNamingFileAndProblem) {
       {"filter range lo > hi",
        [](json& j) { j["selections"]["ball"]["filters"] = {{{"attribute", "f0"}, {"range", {0.8, 0.2}}}}; },
        {"selections.ball.filters[0].range", "lo must not exceed hi"}},
+      {"grow without distance", [](json& j) { j["selections"]["ball"]["grow"] = {{"tolerance", 0.1}}; },
+       {"selections.ball.grow", "distance"}},
+      {"grow distance zero", [](json& j) { j["selections"]["ball"]["grow"] = {{"distance", 0}}; },
+       {"selections.ball.grow.distance", "(0, 1000]"}},
+      {"grow tolerance above one",
+       [](json& j) { j["selections"]["ball"]["grow"] = {{"distance", 0.1}, {"tolerance", 2}}; },
+       {"selections.ball.grow.tolerance", "[0, 1]"}},
       {"unknown filter attribute",
        [](json& j) { j["selections"]["ball"]["filters"] = {{{"attribute", "shininess"}, {"range", {0, 1}}}}; },
        {"selections.ball.filters[0].attribute", "shininess"}},

@@ -46,14 +46,18 @@ GaussianScene tinyScene() {
   return s;
 }
 
+Selection sphereSelection(const Vec3f& centre, float radius) {
+  Selection s;
+  s.kind = Selection::Kind::Shape;
+  s.shape.kind = Shape::Kind::Sphere;
+  s.shape.center = centre;
+  s.shape.radius = radius;
+  return s;
+}
+
 EditDocument documentWith(std::vector<Operation> operations) {
   EditDocument doc;
-  Selection near;
-  near.kind = Selection::Kind::Shape;
-  near.shape.kind = Shape::Kind::Sphere;
-  near.shape.center = {1, 0, 0};
-  near.shape.radius = 1.5f;
-  doc.selections["near"] = near;
+  doc.selections["near"] = sphereSelection({1, 0, 0}, 1.5f);
   Selection all;
   all.kind = Selection::Kind::Everything;
   doc.selections["all"] = all;
@@ -343,6 +347,50 @@ TEST(GaussianEdits, DuplicateThenDeleteTheCopiesRestoresTheRenderBitForBit) {
   EXPECT_NE(withCopy[Buffer::Specular].pixels, before[Buffer::Specular].pixels);
   // ...and deleting it gives back every buffer exactly.
   for (Buffer b : kAllBuffers) EXPECT_EQ(after[b].pixels, before[b].pixels) << bufferName(b);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// Provenance: which Gaussians an edit moved, added or removed, through a sequence of
+// operations on the tiny scene (A and B in "near", C far away).
+TEST(EditProvenance, RecordsMovedAddedAndRemovedGaussians) {
+  // Material edits move nothing.
+  GaussianScene scene = tinyScene();
+  EditProvenance p = EditProvenance::identity(scene.size());
+  applyEdits(documentWith({op(Operation::Kind::Roughness)}), scene, kDefaultMaxGaussians, &p);
+  EXPECT_EQ(p.unmoved(), (std::vector<uint32_t>{0, 1, 2}));
+  EXPECT_TRUE(p.movedOrAdded().empty());
+  EXPECT_TRUE(p.movedOrRemoved().empty());
+
+  // Translate "near" (A, B) by 5 m, duplicate everything 10 m up (A', B', C'), then delete
+  // the original C (sphere "far" around it; its copy is out of reach).
+  scene = tinyScene();
+  p = EditProvenance::identity(scene.size());
+  Operation move = op(Operation::Kind::Translate);
+  move.offset = {5, 0, 0};
+  Operation copy = op(Operation::Kind::Duplicate, "all");
+  copy.offset = {0, 0, 10};
+  EditDocument doc = documentWith({move, copy, op(Operation::Kind::Delete, "far")});
+  doc.selections["far"] = sphereSelection({0, 5, 0}, 0.5f);
+  applyEdits(doc, scene, kDefaultMaxGaussians, &p);
+  // After: A, B (moved), A', B', C' (copies); C deleted.
+  ASSERT_EQ(scene.size(), 5u);
+  EXPECT_EQ(p.source, (std::vector<uint32_t>{0, 1, 0, 1, 2}));
+  EXPECT_TRUE(p.unmoved().empty());
+  EXPECT_EQ(p.movedOrAdded(), (std::vector<uint32_t>{0, 1, 2, 3, 4}));
+  EXPECT_EQ(p.movedOrRemoved(), (std::vector<uint32_t>{0, 1, 2}));  // A, B moved; C removed
+
+  // Duplicating alone keeps the originals in place: only the copies changed the scene.
+  scene = tinyScene();
+  p = EditProvenance::identity(scene.size());
+  applyEdits(documentWith({op(Operation::Kind::Duplicate)}), scene, kDefaultMaxGaussians, &p);
+  EXPECT_EQ(p.unmoved(), (std::vector<uint32_t>{0, 1, 2}));
+  EXPECT_EQ(p.movedOrAdded(), (std::vector<uint32_t>{3, 4}));
+  EXPECT_TRUE(p.movedOrRemoved().empty());
 }
 
 }  // namespace

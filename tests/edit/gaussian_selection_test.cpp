@@ -210,3 +210,55 @@ TEST(GaussianSelection, LargeScenesMatchTheDefinitionInParallel) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// A chrome ball of radius 0.3 resting on a rough floor: a box that stops 1 cm above the
+// floor leaves the ball's contact cap behind; growing along similar material takes the cap
+// and never the floor, even where the two touch.
+TEST(GaussianSelection, GrowthTakesTheContactCapAndStopsAtTheFloor) {
+  GaussianScene scene;
+  const Vec3f centre(0, 0, 0.3f);
+  // The ball's surface (Fibonacci sphere, about 4 cm between neighbours).
+  const int ballCount = 700;
+  for (int k = 0; k < ballCount; ++k) {
+    float z = 1.0f - 2.0f * (float(k) + 0.5f) / float(ballCount), r = std::sqrt(1.0f - z * z);
+    float phi = float(k) * 2.399963f;
+    size_t i = scene.size();
+    scene.resize(i + 1);
+    scene.position[i] = centre + Vec3f(r * std::cos(phi), r * std::sin(phi), z) * 0.3f;
+    scene.f0[i] = Rgb(0.9f);
+    scene.roughness[i] = 0.05f;
+  }
+  // The floor, every 2 cm, touching the ball's lowest point.
+  for (int x = -30; x <= 30; ++x)
+    for (int y = -30; y <= 30; ++y) {
+      size_t i = scene.size();
+      scene.resize(i + 1);
+      scene.position[i] = Vec3f(0.02f * float(x), 0.02f * float(y), 0.0f);
+      scene.diffuse[i] = Rgb(0.5f);
+      scene.roughness[i] = 0.9f;
+    }
+  Shape box;
+  box.center = Vec3f(0, 0, 0.36f);
+  box.halfExtent = Vec3f(0.4f, 0.4f, 0.35f);  // from z = 0.01 up
+  Selection selection = shapeSelection(box);
+  GaussianMask plain = select(selection, scene);
+  int capLeft = 0;
+  for (int i = 0; i < ballCount; ++i) capLeft += !plain[i];
+  ASSERT_GT(capLeft, 0) << "the box should leave a cap behind";
+
+  selection.grow = {0.06f, 0.1f};
+  GaussianMask grown = select(selection, scene);
+  for (size_t i = 0; i < scene.size(); ++i) {
+    if (int(i) < ballCount) EXPECT_TRUE(grown[i]) << "ball Gaussian " << i << " at z " << scene.position[i].z;
+    else EXPECT_FALSE(grown[i]) << "floor Gaussian " << i;
+  }
+  // A distance shorter than the spacing of the ball's Gaussians grows nothing.
+  selection.grow = {0.005f, 0.1f};
+  EXPECT_EQ(select(selection, scene), plain);
+}
+
+}  // namespace
+}  // namespace glint

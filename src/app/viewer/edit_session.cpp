@@ -1,10 +1,13 @@
 // The viewer's undoable edit stack over an edit document.
 #include "app/viewer/edit_session.h"
 
+#include <chrono>
+
 #include <algorithm>
 #include <atomic>
 #include <optional>
 
+#include "app/relight_flags.h"
 #include "app/viewer/request_json.h"
 #include "core/error.h"
 #include "edit/edit_file.h"
@@ -62,12 +65,14 @@ float attributeValue(const GaussianScene& scene, size_t i, Attribute attribute) 
 
 }  // namespace
 
-EditSession::EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians)
+EditSession::EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians,
+                         std::optional<RelightSettings> relight)
     : pristine_(std::make_shared<const GaussianScene>(std::move(pristine))),
       trace_(trace),
       maxGaussians_(maxGaussians),
       shownScene_(std::make_shared<GaussianScene>(*pristine_)),
-      current_(traceScene(shownScene_, trace_)) {}
+      current_(traceScene(shownScene_, trace_)),
+      relight_(relight) {}
 
 std::shared_ptr<const TracedScene> EditSession::current() const {
   std::lock_guard lock(mutex_);
@@ -93,7 +98,9 @@ EditDocument EditSession::documentOfSteps() const {
 void EditSession::update(const TracerUpdateContext& context) {
   // Applied to a copy first: an operation that cannot apply throws before anything shown changes.
   GaussianScene edited = *pristine_;
-  applyEdits(documentOfSteps(), edited, maxGaussians_);
+  EditProvenance provenance;
+  if (relight_) provenance = EditProvenance::identity(edited.size());
+  applyEdits(documentOfSteps(), edited, maxGaussians_, relight_ ? &provenance : nullptr);
 
   // A refit needs the shown tracer and its scene object to ourselves: the render thread lets
   // go of them; a request that took them through current() just before still holds them.
@@ -116,6 +123,16 @@ void EditSession::update(const TracerUpdateContext& context) {
   bool refitPossible = previous != nullptr;
   UpdatedTracer updated = updateTracerAfterEdit(std::move(previous), *shownScene_, trace_, kViewerTracer,
                                                 refitPossible, context.probeCamera, context.workRays);
+  if (relight_) {
+    auto started = std::chrono::steady_clock::now();
+    if (!pristineTracer_) {
+      pristineTracer_ = makeGaussianTracer(kViewerTracer);
+      pristineTracer_->build(*pristine_, trace_);
+    }
+    lastRelight_ = relightAfterEdit(*pristineTracer_, *pristine_, *updated.tracer, *shownScene_, provenance, *relight_);
+    updated.tracer->refit();  // tracers may keep copies of the colours
+    lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  }
   auto next = std::make_shared<TracedScene>();
   next->scene = shownScene_;
   next->tracer = std::move(updated.tracer);
@@ -178,6 +195,10 @@ nlohmann::json EditSession::status() const {
                                {"probe_rays", t.probeRays},
                                {"work_rays", t.workRays}};
     if (!t.refitPossible) status["tracer_update"]["no_refit"] = noRefitReason_;
+  }
+  if (!lastRelight_.empty()) {
+    status["relight"] = lastRelight_;
+    status["relight_ms"] = 1e3 * lastRelightSeconds_;
   }
   return status;
 }

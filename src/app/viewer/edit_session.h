@@ -19,6 +19,7 @@
 #include "app/viewer/progressive_renderer.h"
 #include "edit/edit_document.h"
 #include "raytrace/trace_settings.h"
+#include "render/differential_relight.h"
 #include "render/tracer_update.h"
 #include "scene/camera.h"
 
@@ -35,8 +36,11 @@ struct TracerUpdateContext {
 
 class EditSession {
  public:
-  // maxGaussians: the most Gaussians an edit may leave (gaussian_edits.h).
-  EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians);
+  // maxGaussians: the most Gaussians an edit may leave (gaussian_edits.h). With relight,
+  // every edit is followed by differential relighting (app/relight_flags.h) against the
+  // pristine scene, whose tracer is built at the first edit.
+  EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians,
+              std::optional<RelightSettings> relight = std::nullopt);
 
   std::shared_ptr<const TracedScene> current() const;
 
@@ -52,7 +56,8 @@ class EditSession {
   // {"operations", "redoable", "gaussians"} and, after an edit, "tracer_update": {"action":
   // "refit"|"rebuild", "refit_possible", "refit_ms", "rebuild_ms", "refit_probe_ms",
   // "rebuild_probe_ms", "probe_rays", "work_rays", and "no_refit" (why) when no refit was
-  // possible} of the last tracer update.
+  // possible} of the last tracer update, and with relighting "relight": what it did and its
+  // time in "relight_ms".
   nlohmann::json status() const;
   // {"selection": S, "attribute": "roughness"|"f0"|"diffuse"|"metalness", "bins": 1..256}
   // -> {"count", "total", "attribute", "histogram": [...], "range": [lo, hi]}: how many
@@ -90,6 +95,10 @@ class EditSession {
   std::shared_ptr<TracedScene> current_;  // over shownScene_
   std::optional<TracerUpdateTimes> lastUpdate_;
   std::string noRefitReason_;  // of the last update, when it could not refit
+  std::optional<RelightSettings> relight_;
+  std::unique_ptr<GaussianTracer> pristineTracer_;  // built at the first relit edit
+  std::string lastRelight_;                          // what the last relighting did
+  double lastRelightSeconds_ = 0;
   int nextSelectionId_ = 0;
 };
 

@@ -8,6 +8,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -16,6 +17,7 @@
 #include "app/viewer/viewer_camera.h"
 #include "edit/gaussian_edits.h"
 #include "raytrace/trace_settings.h"
+#include "render/differential_relight.h"
 #include "render/gaussian_path.h"
 #include "scene/gaussians.h"
 
@@ -46,6 +48,8 @@ struct ViewerOptions {
   std::string token;  // required on requests that change anything; empty: a random one
   // Gaussians an edit may leave in the scene; an edit beyond is refused (413).
   size_t maxGaussians = kDefaultMaxGaussians;
+  // Differential relighting after every edit (glint view --relight), or none.
+  std::optional<RelightSettings> relight;
   // How the scene's paths are traced (a run's TrainConfig::path()); the page starts at its
   // bounces and may change them.
   PathSettings path = [] {

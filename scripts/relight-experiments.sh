@@ -1,0 +1,44 @@
+#!/bin/bash
+# Edits scored against each edited scene's own ground truth, with and without relighting
+# (README, "Edits that move shadows"): builtin:spheres at 160x120, the default glint train,
+# the red sphere moved, duplicated or deleted by `glint synth --edits` and `glint eval --edits`.
+# Usage: scripts/relight-experiments.sh OUT [GLINT]   (about 50 minutes on 2 cores)
+set -euo pipefail
+out="${1:?usage: relight-experiments.sh OUT [GLINT]}"
+glint="$(realpath "${2:-build/glint}")"
+mkdir -p "$out"
+cd "$out"
+red='"selections": {"red": {"sphere": {"center": [-1.3, 0.6, 0.3], "radius": 0.65}}}'
+echo "{\"glint_edits\": 1, $red, \"operations\": [{\"op\": \"translate\", \"selection\": \"red\", \"offset\": [0, 0, 0.5]}]}" > edits_move.json
+echo "{\"glint_edits\": 1, $red, \"operations\": [{\"op\": \"duplicate\", \"selection\": \"red\", \"offset\": [0.9, 0, 0.9]}]}" > edits_duplicate.json
+echo "{\"glint_edits\": 1, $red, \"operations\": [{\"op\": \"delete\", \"selection\": \"red\"}]}" > edits_delete.json
+echo "{\"glint_edits\": 1, $red, \"operations\": [{\"op\": \"translate\", \"selection\": \"red\", \"offset\": [0, 0, 0]}]}" > edits_null.json
+S="--res 160x120 --spp 64 --test-spp 128 --test 10 --threads 2 --force"
+[ -d D ] || "$glint" synth builtin:spheres -o D $S --train 40
+for e in move duplicate delete; do
+  [ -d "D_$e" ] || "$glint" synth builtin:spheres -o "D_$e" $S --train 1 --edits "edits_$e.json"
+done
+[ -f R/scene.ply ] || "$glint" train D -o R --threads 2 --force
+E="--spp 64 --threads 2"
+"$glint" eval R --dataset D $E -o R/eval/unedited.json
+"$glint" eval R --dataset D $E --edits edits_null.json -o R/eval/null_relight.json
+for e in move duplicate delete; do
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --no-relight -o "R/eval/$e.json"
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" -o "R/eval/${e}_relight.json"
+done
+python3 - <<'PY'
+import json
+def m(f):
+    d = json.load(open('R/eval/' + f + '.json'))['mean']
+    return [d[p]['psnr_tonemapped'] for p in ('diffuse', 'specular', 'final')]
+u = m('unedited')
+print('| edit | relighting | diffuse dB | specular dB | final dB | final drop | diffuse drop |')
+print('| --- | --- | --- | --- | --- | --- | --- |')
+print('| none | - | %.2f | %.2f | %.2f | - | - |' % tuple(u))
+rows = [('translate by 0', 'null_relight', 'on')]
+for e in ('move', 'duplicate', 'delete'):
+    rows += [(e, e, 'off'), (e, e + '_relight', 'on')]
+for name, f, r in rows:
+    v = m(f)
+    print('| %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f |' % (name, r, v[0], v[1], v[2], u[2] - v[2], u[0] - v[0]))
+PY

@@ -1,0 +1,199 @@
+// The irradiance ratios of differential relighting: cone sampling of the changed regions for
+// the change, cosine sampling for the irradiance before.
+#include "render/differential_relight.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "core/progress.h"
+#include "math/frame.h"
+#include "math/owen_sobol.h"
+#include "math/rng.h"
+#include "math/sampling.h"
+
+namespace glint {
+
+ChangedRegion changedRegionOf(const GaussianScene& scene, std::span<const uint32_t> indices) {
+  if (indices.empty()) return {};
+  Vec3d sum(0.0);
+  for (uint32_t i : indices) sum += Vec3d(scene.position[i]);
+  Vec3f centre(sum * (1.0 / double(indices.size())));
+  float radius = 0;
+  for (uint32_t i : indices) {
+    Vec3f s = scene.scale(i);
+    radius = std::max(radius, length(scene.position[i] - centre) + 3.0f * std::max({s.x, s.y, s.z}));
+  }
+  return {centre, radius};
+}
+
+namespace {
+
+// The cone of directions from a receiver toward one changed region.
+struct Cone {
+  Framef frame;          // around the direction to the region's centre
+  float cosThetaMax = 1;  // -1: the receiver is inside the region (every direction)
+  float solidAngle = 0;
+
+  bool contains(const Vec3f& w) const { return dot(w, frame.n) >= cosThetaMax; }
+  float pdf() const { return uniformConePdf(cosThetaMax); }
+};
+
+// Cones toward the regions that rise above the receiver's horizon.
+int conesToward(const Vec3f& p, const Vec3f& n, std::span<const ChangedRegion> regions, Cone* cones) {
+  int count = 0;
+  for (const ChangedRegion& region : regions) {
+    if (!(region.radius > 0)) continue;
+    Vec3f toCentre = region.centre - p;
+    float d = length(toCentre);
+    Cone cone;
+    if (d <= region.radius) {
+      cone.frame = Framef::fromNormal(n);
+      cone.cosThetaMax = -1.0f;
+    } else {
+      Vec3f axis = toCentre / d;
+      float sinThetaMax = region.radius / d;
+      // The whole cone lies below the horizon when its axis is more than 90 degrees plus its
+      // half-angle away from the normal.
+      if (dot(axis, n) < -sinThetaMax) continue;
+      cone.frame = Framef::fromNormal(axis);
+      cone.cosThetaMax = std::sqrt(std::max(0.0f, 1.0f - sinThetaMax * sinThetaMax));
+    }
+    cone.solidAngle = 2.0f * kPi * (1.0f - cone.cosThetaMax);
+    cones[count++] = cone;
+  }
+  return count;
+}
+
+constexpr int kMaxRegions = 8;
+
+float luminance(const Rgb& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
+
+// E_after / E_before per channel from E_before and the change, clamped.
+Rgb irradianceRatio(const Rgb& before, const Rgb& change, float maxRatio, bool* clamped) {
+  const float tiny = 1e-6f;
+  float lumBefore = luminance(before);
+  float lumRatio = lumBefore > tiny ? (lumBefore + luminance(change)) / lumBefore : 1.0f;
+  Rgb ratio;
+  for (int c = 0; c < 3; ++c) {
+    // A channel that received almost no light follows the luminance rather than a ratio of
+    // two noisy near-zero numbers.
+    float r = before[c] > tiny ? (before[c] + change[c]) / before[c] : lumRatio;
+    if (!std::isfinite(r)) r = 1.0f;
+    float kept = std::clamp(r, 1.0f / maxRatio, maxRatio);
+    *clamped = *clamped || kept != r;
+    ratio[c] = kept;
+  }
+  return ratio;
+}
+
+}  // namespace
+
+std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTracer& after,
+                               const GaussianScene& afterScene, std::span<const uint32_t> receivers,
+                               std::span<const ChangedRegion> regions, const RelightSettings& settings,
+                               RelightReport* report) {
+  GLINT_CHECK(regions.size() <= size_t(kMaxRegions), "relightRatios: too many changed regions");
+  GLINT_CHECK(settings.rays >= 1 && settings.minRays >= 1 && settings.hemisphereRays >= 1 && settings.quickRays >= 1 &&
+                  settings.maxRatio >= 1 && settings.minRelativeChange >= 0,
+              "relightRatios: bad settings");
+  std::vector<Rgb> ratios(receivers.size(), Rgb(1.0f));
+  std::atomic<size_t> reached = 0, changed = 0, clampedCount = 0;
+  std::atomic<uint64_t> rays = 0;
+  ProgressBar progress("relight", int64_t(receivers.size()), "Gaussians");
+  auto radiance = [&](const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const Vec3f& w) {
+    TraceRay ray{p + n * settings.normalOffset, w, 0.0f, settings.backfaceSkip};
+    return tracer.trace(ray).diffuse;
+  };
+  parallelFor(int64_t(receivers.size()), 16, [&](int64_t i) {
+    const uint32_t g = receivers[size_t(i)];
+    float normalLength = length(afterScene.normal[g]);
+    if (!(normalLength >= settings.minNormalLength)) return progress.advance();
+    const Vec3f n = afterScene.normal[g] / normalLength, p = afterScene.position[g];
+    Cone cones[kMaxRegions];
+    int coneCount = conesToward(p, n, regions, cones);
+    float solidAngle = 0, largest = 0;
+    for (int c = 0; c < coneCount; ++c) solidAngle += cones[c].solidAngle, largest = std::max(largest, cones[c].solidAngle);
+    if (coneCount == 0 || largest < settings.minSolidAngle) return progress.advance();
+    reached.fetch_add(1, std::memory_order_relaxed);
+
+    // dE by one-sample MIS over the cones: pick a cone uniformly, a direction in it, and
+    // divide by the mean of the densities of every cone that holds the direction.
+    int count = std::clamp(int(std::ceil(float(settings.rays) * solidAngle / kFullRaysSolidAngle)), settings.minRays,
+                           settings.rays);
+    const uint64_t stream = hashKeys({settings.seed, g, 0});
+    Rgb change(0.0f);
+    uint64_t traced = 0;
+    for (int k = 0; k < count; ++k) {
+      Vec2f u = stratifiedSample2(stream, uint32_t(k));
+      int pick = std::min(int(u.x * float(coneCount)), coneCount - 1);
+      u.x = u.x * float(coneCount) - float(pick);
+      Vec3f w = normalize(cones[pick].frame.toWorld(sampleUniformCone(u, cones[pick].cosThetaMax)));
+      float cosine = dot(n, w);
+      if (cosine <= 0) continue;
+      float pdf = 0;
+      for (int c = 0; c < coneCount; ++c)
+        if (cones[c].contains(w)) pdf += cones[c].pdf();
+      pdf /= float(coneCount);
+      if (!(pdf > 0)) continue;
+      Rgb difference = radiance(after, p, n, w) - radiance(before, p, n, w);
+      traced += 2;
+      change += difference * (cosine / pdf);
+    }
+    change = change * (1.0f / float(count));
+    if (change == Rgb(0.0f)) {  // every ray met the same radiance in both scenes
+      rays.fetch_add(traced, std::memory_order_relaxed);
+      return progress.advance();
+    }
+
+    // E_before = pi x mean radiance over cosine-distributed directions: a first estimate,
+    // then the rest of the stratified sequence where the change is large enough to matter.
+    const Framef frame = Framef::fromNormal(n);
+    const uint64_t hemisphere = hashKeys({settings.seed, g, 1});
+    Rgb sum(0.0f);
+    auto addRays = [&](int begin, int end) {
+      for (int k = begin; k < end; ++k)
+        sum += radiance(before, p, n,
+                        normalize(frame.toWorld(sampleCosineHemisphere(stratifiedSample2(hemisphere, uint32_t(k))))));
+      traced += uint64_t(end - begin);
+    };
+    const int quick = std::min(settings.quickRays, settings.hemisphereRays);
+    addRays(0, quick);
+    const float quickLuminance = luminance(sum * (kPi / float(quick)));
+    const float largestChange = std::max({std::abs(change.x), std::abs(change.y), std::abs(change.z)});
+    if (largestChange < settings.minRelativeChange * quickLuminance) {
+      rays.fetch_add(traced, std::memory_order_relaxed);
+      return progress.advance();
+    }
+    addRays(quick, settings.hemisphereRays);
+    const Rgb irradiance = sum * (kPi / float(settings.hemisphereRays));
+
+    bool clamped = false;
+    ratios[size_t(i)] = irradianceRatio(irradiance, change, settings.maxRatio, &clamped);
+    if (ratios[size_t(i)] != Rgb(1.0f)) changed.fetch_add(1, std::memory_order_relaxed);
+    if (clamped) clampedCount.fetch_add(1, std::memory_order_relaxed);
+    rays.fetch_add(traced, std::memory_order_relaxed);
+    progress.advance();
+  });
+  if (report) {
+    report->receivers = receivers.size();
+    report->reached = reached;
+    report->changed = changed;
+    report->clamped = clampedCount;
+    report->rays = rays;
+  }
+  return ratios;
+}
+
+RelightReport relightDiffuse(const GaussianTracer& before, const GaussianTracer& after, GaussianScene& afterScene,
+                             std::span<const uint32_t> receivers, std::span<const ChangedRegion> regions,
+                             const RelightSettings& settings) {
+  RelightReport report;
+  std::vector<Rgb> ratios = relightRatios(before, after, afterScene, receivers, regions, settings, &report);
+  for (size_t i = 0; i < receivers.size(); ++i) afterScene.diffuse[receivers[i]] *= ratios[i];
+  return report;
+}
+
+}  // namespace glint

@@ -1,0 +1,190 @@
+// Differential relighting against brute-force irradiance: a deleted occluder lifts its
+// shadow to the open floor's level, an edit that changes nothing changes no colour, and the
+// ratio stays finite where the unedited scene had no light.
+#include "render/differential_relight.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <numeric>
+
+#include "math/frame.h"
+#include "math/rng.h"
+#include "math/sampling.h"
+#include "render/gaussian_layers.h"
+
+namespace glint {
+namespace {
+
+using test::addLayer;
+using test::LayerLook;
+
+constexpr float kAlbedo = 0.5f;
+constexpr float kCeilingRadiance = 2.0f;
+
+struct Room {
+  GaussianScene scene;
+  std::vector<uint32_t> floor, plate;
+};
+
+std::vector<uint32_t> indicesFrom(size_t begin, size_t end) {
+  std::vector<uint32_t> indices(end - begin);
+  std::iota(indices.begin(), indices.end(), uint32_t(begin));
+  return indices;
+}
+
+// A 1 m floor at z = 0 under a 16 m emitting ceiling at z = 1.5 (nearly uniform light over
+// the floor), with a black 0.3 m plate at z = 0.4 over the floor's centre.
+Room makeRoom(bool withPlate) {
+  Room room;
+  LayerLook ceiling;
+  ceiling.diffuse = Rgb(kCeilingRadiance);
+  ceiling.normal = Vec3f(0, 0, -1);
+  addLayer(&room.scene, 0, 0, 1.5f, 40, 40, 0.4f, ceiling);
+  size_t floorBegin = room.scene.size();
+  LayerLook floor;
+  floor.diffuse = Rgb(0.1f);  // baked below
+  addLayer(&room.scene, 0, 0, 0, 20, 20, 0.05f, floor);
+  room.floor = indicesFrom(floorBegin, room.scene.size());
+  if (withPlate) {
+    size_t plateBegin = room.scene.size();
+    LayerLook plate;
+    plate.normal = Vec3f(0, 0, -1);
+    addLayer(&room.scene, 0, 0, 0.4f, 6, 6, 0.05f, plate);
+    room.plate = indicesFrom(plateBegin, room.scene.size());
+  }
+  return room;
+}
+
+// Brute-force irradiance at Gaussian g: pi x the mean blended diffuse of many independent
+// cosine-distributed rays (the obviously correct estimator, with its own random numbers).
+Rgb bruteForceIrradiance(const GaussianTracer& tracer, const GaussianScene& scene, uint32_t g, int rays) {
+  Vec3f n = normalize(scene.normal[g]);
+  Framef frame = Framef::fromNormal(n);
+  Rng rng = Rng::forKeys({77, g});
+  Rgb sum(0.0f);
+  for (int k = 0; k < rays; ++k) {
+    Vec3f w = normalize(frame.toWorld(sampleCosineHemisphere({rng.uniform(), rng.uniform()})));
+    sum += tracer.trace({scene.position[g] + n * 1e-3f, w, 0.0f, 0.1f}).diffuse;
+  }
+  return sum * (kPi / float(rays));
+}
+
+std::unique_ptr<GaussianTracer> tracerOf(const GaussianScene& scene) {
+  std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer("fast");
+  tracer->build(scene, TraceSettings());
+  return tracer;
+}
+
+// Bakes the floor's diffuse as a trained scene holds it: albedo / pi x its irradiance.
+void bakeFloor(Room& room) {
+  std::unique_ptr<GaussianTracer> tracer = tracerOf(room.scene);
+  std::vector<Rgb> baked(room.floor.size());
+  for (size_t i = 0; i < room.floor.size(); ++i)
+    baked[i] = bruteForceIrradiance(*tracer, room.scene, room.floor[i], 1024) * (kAlbedo / kPi);
+  for (size_t i = 0; i < room.floor.size(); ++i) room.scene.diffuse[room.floor[i]] = baked[i];
+}
+
+// The floor Gaussian nearest (x, y).
+size_t floorIndexAt(const Room& room, float x, float y) {
+  size_t best = 0;
+  float bestDistance = INFINITY;
+  for (size_t i = 0; i < room.floor.size(); ++i) {
+    float d = length(room.scene.position[room.floor[i]] - Vec3f(x, y, 0));
+    if (d < bestDistance) best = i, bestDistance = d;
+  }
+  return best;
+}
+
+TEST(DifferentialRelight, DeletedOccluderLiftsItsShadowToTheOpenFloor) {
+  Room before = makeRoom(true);
+  bakeFloor(before);
+  // The same room without the plate: the floor keeps the colours baked under it.
+  Room after = makeRoom(false);
+  for (size_t i = 0; i < before.floor.size(); ++i)
+    after.scene.diffuse[after.floor[i]] = before.scene.diffuse[before.floor[i]];
+
+  const size_t centre = floorIndexAt(before, 0, 0), open = floorIndexAt(before, 0.45f, 0.45f);
+  const float shadowBefore = before.scene.diffuse[before.floor[centre]].x;
+  const float openFloor = before.scene.diffuse[before.floor[open]].x;
+  ASSERT_LT(shadowBefore, 0.85f * openFloor) << "the plate should cast a visible shadow";
+
+  std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(before.scene), afterTracer = tracerOf(after.scene);
+  const ChangedRegion regions[] = {changedRegionOf(before.scene, before.plate)};
+  RelightSettings settings;
+  RelightReport report = relightDiffuse(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings);
+  EXPECT_EQ(report.receivers, after.floor.size());
+  EXPECT_GT(report.changed, after.floor.size() / 2);
+
+  // Under the plate, the floor now holds what the open scene's irradiance gives it.
+  const float truth = bruteForceIrradiance(*afterTracer, after.scene, after.floor[centre], 4096).x * kAlbedo / kPi;
+  const float relit = after.scene.diffuse[after.floor[centre]].x;
+  EXPECT_NEAR(relit, truth, 0.04f * truth) << "shadow before " << shadowBefore << ", open floor " << openFloor;
+  EXPECT_NEAR(relit, openFloor, 0.05f * openFloor);
+  // Over the whole floor, the relit colours follow the open scene's light.
+  double worst = 0;
+  for (size_t i = 0; i < after.floor.size(); i += 7) {
+    float expected = bruteForceIrradiance(*afterTracer, after.scene, after.floor[i], 1024).x * kAlbedo / kPi;
+    worst = std::max(worst, std::abs(double(after.scene.diffuse[after.floor[i]].x) / expected - 1.0));
+  }
+  EXPECT_LT(worst, 0.08);
+}
+
+TEST(DifferentialRelight, AnEditThatChangesNothingChangesNoColour) {
+  Room room = makeRoom(true);
+  bakeFloor(room);
+  GaussianScene edited = room.scene;  // e.g. the plate translated by zero
+  std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(room.scene), afterTracer = tracerOf(edited);
+  const ChangedRegion region = changedRegionOf(room.scene, room.plate);
+  const ChangedRegion regions[] = {region, region};
+  RelightReport report = relightDiffuse(*beforeTracer, *afterTracer, edited, room.floor, regions, RelightSettings());
+  EXPECT_GT(report.reached, 0u);
+  EXPECT_EQ(report.changed, 0u);
+  for (uint32_t g : room.floor) EXPECT_EQ(edited.diffuse[g], room.scene.diffuse[g]) << g;
+}
+
+TEST(DifferentialRelight, RatioStaysFiniteWhereTheUneditedSceneWasDark) {
+  // Before: a floor Gaussian (the receiver) in a room whose every other Gaussian sends
+  // (almost) no light; after: a bright plate added over it. The ratio of light after to
+  // nearly none is clamped, never infinite; to none at all, it is left at 1.
+  for (float dim : {0.0f, 1e-7f, 1e-3f}) {
+    Room room = makeRoom(false);
+    const uint32_t receiver = room.floor[floorIndexAt(room, 0, 0)];
+    for (size_t i = 0; i < room.scene.size(); ++i)
+      if (i != receiver) room.scene.diffuse[i] = Rgb(dim);
+    room.floor = {receiver};
+    GaussianScene edited = room.scene;
+    LayerLook lamp;
+    lamp.diffuse = Rgb(50.0f);
+    lamp.normal = Vec3f(0, 0, -1);
+    size_t lampBegin = edited.size();
+    addLayer(&edited, 0, 0, 0.4f, 6, 6, 0.05f, lamp);
+    std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(room.scene), afterTracer = tracerOf(edited);
+    const ChangedRegion regions[] = {changedRegionOf(edited, indicesFrom(lampBegin, edited.size()))};
+    RelightSettings settings;
+    RelightReport report = relightDiffuse(*beforeTracer, *afterTracer, edited, room.floor, regions, settings);
+    for (uint32_t g : room.floor) {
+      Rgb c = edited.diffuse[g], c0 = room.scene.diffuse[g];
+      ASSERT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) << dim;
+      EXPECT_LE(c.x, c0.x * settings.maxRatio) << dim;
+    }
+    if (dim == 0.0f) EXPECT_EQ(report.changed, 0u);  // nothing to scale
+    if (dim == 1e-3f) EXPECT_GT(report.clamped, 0u);
+  }
+}
+
+TEST(DifferentialRelight, ChangedRegionBoundsTheGaussiansWithThreeSigmas) {
+  GaussianScene scene;
+  scene.resize(2);
+  scene.position = {Vec3f(-1, 0, 0), Vec3f(1, 0, 0)};
+  scene.logScale = {Vec3f(std::log(0.1f)), Vec3f(std::log(0.2f), std::log(0.05f), std::log(0.05f))};
+  const uint32_t both[] = {0, 1};
+  ChangedRegion r = changedRegionOf(scene, both);
+  EXPECT_NEAR(r.centre.x, 0.0f, 1e-6f);
+  EXPECT_NEAR(r.radius, 1.0f + 3 * 0.2f, 1e-5f);
+  EXPECT_EQ(changedRegionOf(scene, {}).radius, 0.0f);
+}
+
+}  // namespace
+}  // namespace glint
