@@ -41,6 +41,8 @@ void growSelection(const SelectionGrowth& growth, const GaussianScene& scene, Ga
     const Vec3f& p = scene.position[i];
     grid[cellKey(coordinate(p.x), coordinate(p.y), coordinate(p.z))].push_back(uint32_t(i));
   }
+  std::vector<Material> materials(scene.size());
+  for (size_t i = 0; i < scene.size(); ++i) materials[i] = materialOf(scene, i);
   // Breadth-first from every selected Gaussian; the set reached is the closure of the
   // relation, whatever the order.
   std::vector<uint32_t> frontier;
@@ -51,7 +53,7 @@ void growSelection(const SelectionGrowth& growth, const GaussianScene& scene, Ga
     std::vector<uint32_t> next;
     for (uint32_t i : frontier) {
       const Vec3f& p = scene.position[i];
-      const Material material = materialOf(scene, i);
+      const Material& material = materials[i];
       const int64_t cx = coordinate(p.x), cy = coordinate(p.y), cz = coordinate(p.z);
       for (int64_t dx = -1; dx <= 1; ++dx)
         for (int64_t dy = -1; dy <= 1; ++dy)
@@ -61,7 +63,7 @@ void growSelection(const SelectionGrowth& growth, const GaussianScene& scene, Ga
             for (uint32_t j : found->second) {
               if (mask[j]) continue;
               Vec3f d = scene.position[j] - p;
-              if (dot(d, d) > distanceSquared || !similar(material, materialOf(scene, j), growth.tolerance)) continue;
+              if (dot(d, d) > distanceSquared || !similar(material, materials[j], growth.tolerance)) continue;
               mask[j] = 1;
               next.push_back(j);
             }

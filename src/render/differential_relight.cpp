@@ -69,8 +69,6 @@ int conesToward(const Vec3f& p, const Vec3f& n, std::span<const ChangedRegion> r
 
 constexpr int kMaxRegions = 8;
 
-float luminance(const Rgb& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
 // E_after / E_before per channel from E_before and the change, clamped.
 Rgb irradianceRatio(const Rgb& before, const Rgb& change, float maxRatio, bool* clamped) {
   const float tiny = 1e-6f;

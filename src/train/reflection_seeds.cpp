@@ -32,8 +32,6 @@ constexpr float kMaxColourStd = 0.07f;
 constexpr float kPriorVariance = 0.0225f;
 constexpr float kPriorRays = 4.0f;
 
-float luminance(const Rgb& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
 struct Candidate {
   TraceRay ray;
   Rgb radiance;  // what the pixel's specular buffer says the reflected ray sees

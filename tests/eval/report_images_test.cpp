@@ -10,8 +10,6 @@
 namespace glint {
 namespace {
 
-float luminance(const Rgb& c) { return 0.2126f * c.x + 0.7152f * c.y + 0.0722f * c.z; }
-
 TEST(ReportImages, ErrorRampRunsFromBlackToPaleYellowWithRisingLuminance) {
   EXPECT_EQ(errorRampColour(0.0f), Rgb(0.0f));
   EXPECT_EQ(errorRampColour(-1.0f), Rgb(0.0f));
