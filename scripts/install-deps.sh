@@ -13,6 +13,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   chromium  # the viewer's end-to-end test drives it headless (tests/web)
   ffmpeg    # glint render --path encodes its frames into an MP4
+  openmpi-bin libopenmpi-dev  # training, rendering and synthesis over MPI (docs/cluster.md); the 2-rank tests
 )
 for option in "$@"; do
   case "$option" in

@@ -13,9 +13,22 @@
 #include "app/commands.h"
 #include "app/nearest_name.h"
 #include "core/activity.h"
+#include "core/cluster.h"
 #include "core/error.h"
 
-int main(int argc, char** argv) {
+namespace {
+
+// One clear message and a non-zero exit. In an MPI job every rank may fail alike (a missing
+// file); each says so with its rank, and the job ends at once, since the other ranks may be
+// waiting in a collective for this one.
+int fail(const std::string& message) {
+  glint::cluster::reportError("glint: error: " + message);
+  if (glint::cluster::distributed()) glint::cluster::abortJob(1);
+  return 1;
+}
+
+// The command line, parsed and run; returns the exit status.
+int runGlint(int argc, char** argv) {
   CLI::App app{
       "Glint: editable physically-based reflections in ray-traced Gaussian radiance fields.\n"
       "Run `glint COMMAND --help` for the flags of each command.",
@@ -66,11 +79,18 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const glint::Error& e) {
-    std::fprintf(stderr, "glint: error: %s\n", e.what());
-    return 1;
+    return fail(e.what());
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "glint: error: %s\n", glint::describeUnexpectedException(e).c_str());
-    return 1;
+    return fail(glint::describeUnexpectedException(e));
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  glint::cluster::join(&argc, &argv);
+  const int code = runGlint(argc, argv);
+  glint::cluster::leave();
+  return code;
 }

@@ -13,6 +13,7 @@
 #include "app/dataset_flags.h"
 #include "app/thread_flag.h"
 #include "app/viewer/viewer_setup.h"
+#include "core/cluster.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -128,7 +129,7 @@ class TrainPrinter : public TrainingObserver {
   void started(const Trainer& trainer, const Dataset& dataset, const TrainingViews& views) override {
     // The viewer gets a copy of the scene every viewEvery seconds, taken between steps, and
     // builds its tracer on its own thread: the loop pays only for the copy.
-    if (o_.view) {
+    if (o_.view && cluster::isRoot()) {
       ViewerOptions options = makeViewerOptions(o_.viewer, std::optional<Dataset>(dataset), trainer.scene(),
                                                 run_.root());
       options.editable = false;
@@ -231,7 +232,9 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
     if (run.isUnfinishedStart())
       std::fprintf(stderr, "glint train: %s holds a start that never saved a checkpoint; starting afresh (its "
                    "config.json and log.csv are replaced)\n", run.root().string().c_str());
-    run.create(config, o.force);
+    // In an MPI job rank 0 alone writes the run folder; the other ranks only read the dataset.
+    if (cluster::isRoot()) run.create(config, o.force);
+    undoFailedStart = undoFailedStart && cluster::isRoot();
   }
 
   TrainPrinter printer(o, config, run);
@@ -246,6 +249,7 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
   if (outcome.stopped) {
     std::fprintf(stderr, "glint train: interrupted; saved step %lld to %s (continue with --resume)\n",
                  (long long)outcome.step, run.checkpointFile().string().c_str());
+    cluster::leave();
     std::exit(130);
   }
   std::fprintf(stderr, "glint train: done; %zu Gaussians in %s\n", outcome.gaussians,

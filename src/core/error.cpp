@@ -1,14 +1,18 @@
 // Failure path of GLINT_CHECK: reports the broken invariant and aborts.
 #include "core/error.h"
 
+#include "core/cluster.h"
+
 #include <cstdio>
 #include <cstdlib>
 
 namespace glint {
 
 void checkFailed(const char* condition, const char* file, int line, const std::string& message) {
-  std::fprintf(stderr, "glint: internal check failed at %s:%d: %s%s%s\n", file, line, condition,
-               message.empty() ? "" : ": ", message.c_str());
+  // To the stderr this process started with: a rank other than 0 of an MPI job has its
+  // own silenced (core/cluster.h).
+  cluster::reportError(std::string("glint: internal check failed at ") + file + ":" + std::to_string(line) + ": " +
+                       condition + (message.empty() ? "" : ": ") + message);
   std::abort();
 }
 

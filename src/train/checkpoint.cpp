@@ -37,6 +37,7 @@ class Writer {
     bytes(entries, count * entrySize);
   }
   const std::vector<char>& data() const { return data_; }
+  std::vector<char> take() { return std::move(data_); }
 
  private:
   std::vector<char> data_;
@@ -90,7 +91,7 @@ void forEachStateArray(Scene& scene, Moments& first, Moments& second, Visit&& vi
 
 }  // namespace
 
-void writeCheckpoint(const std::filesystem::path& file, const TrainingState& state) {
+std::vector<char> encodeCheckpoint(const TrainingState& state) {
   // The whole file is reserved at once: the header, the config, each array's count and
   // floats (the values and both moments of every parameter, the prune weight and the
   // densification score), the checksum.
@@ -116,10 +117,15 @@ void writeCheckpoint(const std::filesystem::path& file, const TrainingState& sta
   w.array(state.densifyScore.data(), state.densifyScore.size(), sizeof(float));
   uint64_t checksum = fnv1a(w.data().data(), w.data().size());
   w.value(checksum);
+  return w.take();
+}
+
+void writeCheckpoint(const std::filesystem::path& file, const TrainingState& state) {
+  const std::vector<char> bytes = encodeCheckpoint(state);
   std::filesystem::create_directories(file.parent_path());
   writeAtomically(file, [&](const std::string& temp) {
     std::ofstream out(temp, std::ios::binary);
-    out.write(w.data().data(), std::streamsize(w.data().size()));
+    out.write(bytes.data(), std::streamsize(bytes.size()));
     if (!out) throw Error(temp, "could not be written (disk full?)");
   });
 }
@@ -128,7 +134,10 @@ TrainingState readCheckpoint(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Error(file.string(), "cannot be opened (no checkpoint to resume from)");
   std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  const std::string name = file.string();
+  return decodeCheckpoint(data, file.string());
+}
+
+TrainingState decodeCheckpoint(const std::vector<char>& data, const std::string& name) {
   if (data.size() < sizeof(kMagic) + sizeof(uint64_t) || std::memcmp(data.data(), kMagic, sizeof(kMagic)) != 0)
     throw Error(name, "is not a Glint checkpoint");
   size_t body = data.size() - sizeof(uint64_t);

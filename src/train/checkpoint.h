@@ -28,4 +28,9 @@ void writeCheckpoint(const std::filesystem::path& file, const TrainingState& sta
 // corrupt (a checksum covers every byte).
 TrainingState readCheckpoint(const std::filesystem::path& file);
 
+// The bytes of a checkpoint file, and back (`name` names them in errors); also how an MPI
+// job's rank 0 hands its state to the others (train/training_loop.cpp).
+std::vector<char> encodeCheckpoint(const TrainingState& state);
+TrainingState decodeCheckpoint(const std::vector<char>& bytes, const std::string& name);
+
 }  // namespace glint

@@ -1,8 +1,10 @@
-// The training step. Determinism: a step's rays depend only on (seed, step); its paths are
-// traced in wavefronts of fixed size (each path's result depends on its keys alone); each
-// wavefront is split into one contiguous range per slot (one slot per thread), each slot
-// accumulates into its own gradient buffer, and the buffers are summed in slot order, so a
-// run is reproducible bit for bit for a given seed and thread count, resumed or not.
+// The training step. Determinism: a step's rays depend only on (seed, step); each path's
+// result depends on its keys alone, whichever wavefront traces it; the batch (each rank's
+// share of it in an MPI job) is cut into one contiguous lane per slot (one slot per thread),
+// each slot accumulates its lane in ray order into its own gradient buffer, and the buffers
+// are summed in slot order, then over the ranks in rank order. So a run is reproducible bit
+// for bit for a given seed, rank count and thread count, resumed or not, and N ranks of one
+// thread each give the bits of one process of N threads.
 #include "train/trainer.h"
 
 #include <algorithm>
@@ -10,10 +12,12 @@
 #include <cmath>
 #include <tuple>
 
+#include "core/cluster.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "train/densify.h"
 #include "train/far_field.h"
+#include "train/rank_sync.h"
 #include "train/reflection_seeds.h"
 
 namespace glint {
@@ -106,7 +110,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
       }
     });
   }
-  // Slots start empty; each accumulates its share of every wavefront.
+  // Slots start empty; each accumulates its lane (below) of the batch.
   parallelFor(slotCount, 1, [&](int64_t s) {
     Slot& slot = *slots_[s];
     if (slot.gradient.size() != n)
@@ -117,30 +121,55 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     slot.terms = {};
     slot.hitCount = slot.overflowed = slot.reflected = 0;
   });
-  // The batch goes in wavefronts of at most kWavefrontRays paths: each is traced with every
-  // segment recorded (hits included), then its losses and backward pass run, split over
-  // the slots in contiguous ranges. The records' memory (about 6 KB per path) stays bounded
-  // whatever the batch size. The sample key is the step, so each step draws new reflection
-  // directions.
-  for (int64_t first = 0; first < rays; first += kWavefrontRays) {
-    const int64_t count = std::min(kWavefrontRays, rays - first);
+  // This process's share of the batch (all of it unless an MPI job splits it over ranks),
+  // cut into one contiguous lane per slot. Each slot adds its lane's rays in ray order, and
+  // the lanes are summed in slot order and then in rank order, so N ranks of one thread give
+  // the same bits as one process of N threads.
+  const cluster::Share share = cluster::myShare(rays);
+  std::vector<cluster::Share> lanes(static_cast<size_t>(slotCount));
+  int64_t longestLane = 0;
+  for (int64_t s = 0; s < slotCount; ++s) {
+    cluster::Share lane = cluster::shareOf(share.end - share.begin, int(s), int(slotCount));
+    lanes[size_t(s)] = {share.begin + lane.begin, share.begin + lane.end};
+    longestLane = std::max(longestLane, lane.end - lane.begin);
+  }
+  // The lanes go in wavefronts of at most kWavefrontRays paths, an equal part of each lane
+  // per wavefront: each is traced with every segment recorded (hits included), then its
+  // losses and backward pass run, each slot on its lane's part. The records' memory (about
+  // 6 KB per path) stays bounded whatever the batch size. The sample key is the step, so
+  // each step draws new reflection directions.
+  const int64_t perLane = std::max<int64_t>(1, kWavefrontRays / slotCount);
+  std::vector<int64_t> laneStart(static_cast<size_t>(slotCount) + 1);
+  for (int64_t offset = 0; offset < longestLane; offset += perLane) {
+    int64_t count = 0;
+    for (int64_t s = 0; s < slotCount; ++s) {
+      laneStart[size_t(s)] = count;
+      const cluster::Share& lane = lanes[size_t(s)];
+      count += std::clamp<int64_t>(lane.end - lane.begin - offset, 0, perLane);
+    }
+    laneStart[size_t(slotCount)] = count;
     rays_.resize(size_t(count));
     keys_.resize(size_t(count));
     paths_.resize(size_t(count));
-    for (int64_t r = 0; r < count; ++r) {
-      const BatchRay& b = batch[size_t(first + r)];
-      rays_[size_t(r)] = b.ray;
-      keys_[size_t(r)] = {b.view, b.pixel, uint64_t(step_)};
-    }
+    // Batch index of wavefront entry r of slot s: lanes[s].begin + offset + (r - laneStart[s]).
+    for (int64_t s = 0; s < slotCount; ++s)
+      for (int64_t r = laneStart[size_t(s)]; r < laneStart[size_t(s) + 1]; ++r) {
+        const BatchRay& b = batch[size_t(lanes[size_t(s)].begin + offset + r - laneStart[size_t(s)])];
+        rays_[size_t(r)] = b.ray;
+        keys_[size_t(r)] = {b.view, b.pixel, uint64_t(step_)};
+      }
+    auto traceStart = std::chrono::steady_clock::now();
     pathBatch_.trace(*tracer_, rays_, keys_, config_.seed, pathSettings, paths_, /*record=*/true);
+    auto backwardStart = std::chrono::steady_clock::now();
+    report->traceSeconds += std::chrono::duration<double>(backwardStart - traceStart).count();
     parallelFor(slotCount, 1, [&](int64_t s) {
       Slot& slot = *slots_[s];
       auto sink = [&](uint32_t id, const HitGradient<float>& g) {
         slot.gradient.add(id, g);
         if (scoring) slot.splitScore[id] += splitScore(g, sigmaMax_[id]);
       };
-      for (int64_t r = count * s / slotCount; r < count * (s + 1) / slotCount; ++r) {
-        const BatchRay& b = batch[size_t(first + r)];
+      for (int64_t r = laneStart[size_t(s)]; r < laneStart[size_t(s) + 1]; ++r) {
+        const BatchRay& b = batch[size_t(lanes[size_t(s)].begin + offset + r - laneStart[size_t(s)])];
         const PixelTarget target = views_.target(b.view, b.pixel);
         std::span<const PathSegment> path = pathBatch_.path(size_t(r));
         const RayResult& result = path[0].result;
@@ -163,21 +192,47 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
                                                 slot.scratch, sink);
       }
     });
+    report->backwardSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - backwardStart).count();
   }
   // Reduce into slot 0, in slot order for every Gaussian.
+  auto reduceStart = std::chrono::steady_clock::now();
   GaussianGradients& total = slots_[0]->gradient;
+  std::vector<float>& score = slots_[0]->splitScore;
   parallelForChunks(int64_t(n), 8192, [&](int64_t begin, int64_t end) {
     for (size_t s = 1; s < slots_.size(); ++s) total.addRange(slots_[s]->gradient, size_t(begin), size_t(end));
     if (scoring)
-      for (const auto& slot : slots_)
-        for (int64_t i = begin; i < end; ++i) densifyScore_[size_t(i)] += slot->splitScore[size_t(i)];
+      for (size_t s = 1; s < slots_.size(); ++s)
+        for (int64_t i = begin; i < end; ++i) score[size_t(i)] += slots_[s]->splitScore[size_t(i)];
   });
+  report->backwardSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - reduceStart).count();
+  // Then over the ranks of an MPI job, in rank order.
+  LossTerms terms;
+  int64_t counters[3] = {0, 0, 0};
   for (const auto& slot : slots_) {
-    report->terms += slot->terms;
-    report->hits += slot->hitCount;
-    report->overflowedRays += slot->overflowed;
-    report->reflectedSegments += slot->reflected;
+    terms += slot->terms;
+    counters[0] += slot->hitCount;
+    counters[1] += slot->overflowed;
+    counters[2] += slot->reflected;
   }
+  if (cluster::distributed()) {
+    const ExchangeStats exchange =
+        sumOverRanks(total, scoring ? std::span<float>(score) : std::span<float>(), exchangeMode_);
+    double t[6] = {terms.diffuse, terms.depth, terms.normal, terms.roughness, terms.f0, terms.specular};
+    cluster::sumInRankOrder(std::span<double>(t, 6));
+    terms = {t[0], t[1], t[2], t[3], t[4], t[5]};
+    cluster::sumInRankOrder(std::span<int64_t>(counters, 3));
+    report->exchangeSeconds += exchange.seconds;
+    report->exchangedBytes += exchange.bytesIn;
+    report->sparseExchange = exchange.sparse;
+  }
+  if (scoring)
+    parallelForChunks(int64_t(n), 8192, [&](int64_t begin, int64_t end) {
+      for (int64_t i = begin; i < end; ++i) densifyScore_[size_t(i)] += score[size_t(i)];
+    });
+  report->terms += terms;
+  report->hits += counters[0];
+  report->overflowedRays += counters[1];
+  report->reflectedSegments += counters[2];
   report->rays += rays;
 }
 
@@ -191,6 +246,7 @@ StepReport Trainer::step() {
   const GaussianGradients& gradient = slots_[0]->gradient;
   for (size_t i = 0; i < scene_.size(); ++i) pruneWeight_[i] += gradient.weight[i];
 
+  auto adamStart = std::chrono::steady_clock::now();
   adam_.step(&scene_, gradient, learningRatesAt(config_.lr, extent_, step_));
   // Scale decay (appendix: favour small Gaussians, which keep rays cheap) and the valid
   // ranges of the attributes.
@@ -205,6 +261,7 @@ StepReport Trainer::step() {
       f = {std::clamp(f.x, 0.0f, 1.0f), std::clamp(f.y, 0.0f, 1.0f), std::clamp(f.z, 0.0f, 1.0f)};
     }
   });
+  report.adamSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - adamStart).count();
   ++step_;
   housekeeping(&report);
   report.step = step_;
@@ -216,20 +273,28 @@ StepReport Trainer::step() {
 
 std::pair<size_t, size_t> Trainer::addFarField() {
   // Seeds first: their reflected rays are traced through the warm-up's scene alone.
-  GaussianScene seeds = reflectionSeeds(config_.farField, views_, *tracer_, config_.trace, config_.backfaceSkip,
-                                        extent_, config_.seed);
-  if (config_.farField.count == 0 && config_.farField.boxes.empty() && seeds.size() == 0) return {0, 0};
-  Vec3d sum(0.0);
-  for (size_t v = 0; v < views_.viewCount(); ++v) sum += views_.camera(v).position();
-  const Vec3f centre = Vec3f(sum / double(views_.viewCount()));
-  GaussianScene far = farFieldGaussians(config_.farField, centre, extent_, config_.seed);
-  // The cloud loses all of each camera sphere: a random Gaussian behind a camera is a
-  // floater in the reflections of every other view. Boxes are placed by the user, often
-  // around what lies behind the cameras (builtin:room's hidden box), and keep theirs.
-  std::vector<bool> keep = outsideCameraSpheres(far, spheres_, CullRegion::WholeSphere);
-  std::fill(keep.begin() + config_.farField.count, keep.end(), true);
-  far.filter(keep);
-  carveObservedFreeSpace(&far, views_, config_.trace);
+  // In an MPI job rank 0 places them and the others take its Gaussians (train/rank_sync.h).
+  GaussianScene seeds, far;
+  if (cluster::isRoot()) {
+    seeds = reflectionSeeds(config_.farField, views_, *tracer_, config_.trace, config_.backfaceSkip, extent_,
+                            config_.seed);
+    if (config_.farField.count > 0 || !config_.farField.boxes.empty()) {
+      Vec3d sum(0.0);
+      for (size_t v = 0; v < views_.viewCount(); ++v) sum += views_.camera(v).position();
+      const Vec3f centre = Vec3f(sum / double(views_.viewCount()));
+      far = farFieldGaussians(config_.farField, centre, extent_, config_.seed);
+      // The cloud loses all of each camera sphere: a random Gaussian behind a camera is a
+      // floater in the reflections of every other view. Boxes are placed by the user, often
+      // around what lies behind the cameras (builtin:room's hidden box), and keep theirs.
+      std::vector<bool> keep = outsideCameraSpheres(far, spheres_, CullRegion::WholeSphere);
+      std::fill(keep.begin() + config_.farField.count, keep.end(), true);
+      far.filter(keep);
+      carveObservedFreeSpace(&far, views_, config_.trace);
+    }
+  }
+  broadcastScene(&seeds);
+  broadcastScene(&far);
+  if (far.size() == 0 && seeds.size() == 0) return {0, 0};
   for (size_t i = 0; i < far.size(); ++i) scene_.append(far, i);
   for (size_t i = 0; i < seeds.size(); ++i) scene_.append(seeds, i);
   const size_t added = far.size() + seeds.size();
@@ -282,6 +347,7 @@ size_t Trainer::prune() {
   std::vector<bool> keep = outsideCameraSpheres(scene_, spheres_, cullRegion(config_.prune));
   for (size_t i = 0; i < scene_.size(); ++i)
     if (double(pruneWeight_[i]) * scale < threshold) keep[i] = false;
+  broadcastMask(&keep);  // rank 0's choice in an MPI job
   size_t kept = size_t(std::count(keep.begin(), keep.end(), true));
   if (kept == 0) throw Error(config_.dataset, "pruning would remove every Gaussian at step " + std::to_string(step_) +
                                                   "; lower prune.weight_threshold");
@@ -298,7 +364,8 @@ size_t Trainer::prune() {
 size_t Trainer::densify() {
   const DensifySettings& d = config_.densify;
   const size_t room = size_t(std::max<int64_t>(d.maxGaussians - int64_t(scene_.size()), 0));
-  const std::vector<uint32_t> parents = chooseSplits(densifyScore_, d.fraction, room);
+  std::vector<uint32_t> parents = chooseSplits(densifyScore_, d.fraction, room);
+  cluster::broadcastVector(&parents);  // rank 0's choice in an MPI job
   if (parents.empty()) return 0;
   splitGaussians(&scene_, parents);
   adam_.appendCopies(parents);

@@ -18,6 +18,7 @@
 #include "train/adam.h"
 #include "train/camera_culling.h"
 #include "train/checkpoint.h"
+#include "train/gradient_exchange.h"
 #include "train/ray_loss.h"
 #include "train/train_config.h"
 #include "train/training_views.h"
@@ -38,6 +39,12 @@ struct StepReport {
   size_t farFieldAdded = 0;  // far-field Gaussians added before this step (when reflections start)
   size_t reflectionSeedsAdded = 0;  // of them, seeded along mirror reflections (train/reflection_seeds.h)
   double seconds = 0;        // wall time of the step
+  // Its parts (bench/cluster_bench): tracing the wavefronts, their losses and backward pass
+  // with the reduction of the threads' sums, the exchange between the ranks of an MPI job,
+  // and the Adam step with the clamping after it.
+  double traceSeconds = 0, backwardSeconds = 0, exchangeSeconds = 0, adamSeconds = 0;
+  uint64_t exchangedBytes = 0;  // received by this rank in the exchange
+  bool sparseExchange = false;  // the exchange sent the touched Gaussians only
 };
 
 class Trainer {
@@ -67,6 +74,8 @@ class Trainer {
   int64_t stepCount() const { return step_; }
   const GaussianScene& scene() const { return scene_; }
   float sceneExtent() const { return extent_; }
+  // How an MPI job exchanges its gradients (train/gradient_exchange.h).
+  void setExchangeMode(ExchangeMode mode) { exchangeMode_ = mode; }
   // The tracer over the current scene (built with the training settings), for evaluation.
   const GaussianTracer& tracer() const { return *tracer_; }
   TrainingState state() const;
@@ -92,6 +101,7 @@ class Trainer {
   TrainConfig config_;
   const TrainingViews& views_;
   std::vector<CameraSphere> spheres_;
+  ExchangeMode exchangeMode_ = ExchangeMode::Auto;
   GaussianScene scene_;
   float extent_ = 1;
   int64_t step_ = 0;

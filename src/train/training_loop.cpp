@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
 #include <cstdio>
 #include <fstream>
 #include <memory>
@@ -10,6 +11,7 @@
 
 #include "core/activity.h"
 #include "core/atomic_file.h"
+#include "core/cluster.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "eval/training_log.h"
@@ -153,15 +155,35 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
                                             config.baseline == Baseline::Rgb ? ColourTarget::Render
                                                                              : ColourTarget::Diffuse);
   std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);
-  TestViews testViews = TestViews::load(dataset, dataset.test(), session.evalViews);
+  TestViews testViews = TestViews::load(dataset, dataset.test(), cluster::isRoot() ? session.evalViews : 0);
 
   activity.describe("setting up the training of " + run.root().string());
   const bool checkpointAtStart = session.resume && run.hasCheckpoint();
   std::unique_ptr<Trainer> trainer;
-  double wallOffset = setUpTrainer(run, config, session, dataset, views, std::move(spheres), observer, &trainer);
+  double wallOffset = 0;
+  if (cluster::isRoot()) {
+    wallOffset = setUpTrainer(run, config, session, dataset, views, std::move(spheres), observer, &trainer);
+    if (cluster::distributed()) {
+      // The other ranks of an MPI job start from rank 0's state, the same bytes a
+      // checkpoint holds.
+      std::vector<char> bytes = encodeCheckpoint(trainer->state());
+      std::vector<std::byte> message(bytes.size());
+      std::memcpy(message.data(), bytes.data(), bytes.size());
+      cluster::broadcast(&message);
+    }
+  } else {
+    std::vector<std::byte> message;
+    cluster::broadcast(&message);
+    std::vector<char> bytes(message.size());
+    std::memcpy(bytes.data(), message.data(), message.size());
+    trainer = std::make_unique<Trainer>(config, views, std::move(spheres),
+                                        decodeCheckpoint(bytes, "the state rank 0 sent"), session.tracer);
+  }
   observer.started(*trainer, dataset, views);
 
-  std::ofstream log(run.logFile(), std::ios::app);
+  // Rank 0 alone writes the log, checkpoints and scene, and scores the test views.
+  std::ofstream log;
+  if (cluster::isRoot()) log.open(run.logFile(), std::ios::app);
   auto start = std::chrono::steady_clock::now();
   DivergenceMonitor divergence(trainer->sceneExtent());
   bool saveDue = false;  // a checkpoint waits while the monitor suspects a collapse
@@ -182,22 +204,25 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     std::optional<TestScore> score;
     if (!testViews.empty() && (r.step % config.evalEvery == 0 || r.step == config.iters))
       score = testViews.score(trainer->tracer(), session.evalSpp, config.path());
-    log << logRow(r, wall, score) << std::flush;
+    if (cluster::isRoot()) log << logRow(r, wall, score) << std::flush;
     observer.stepped(r, score);
     saveDue = saveDue || r.step % config.saveEvery == 0 || r.step == config.iters;
     if (saveDue && (divergence.clean() || r.step == config.iters)) {
-      saveRun(run, *trainer);
+      if (cluster::isRoot()) saveRun(run, *trainer);
       saveDue = false;
       lastSaved = r.step;
       checkpointOnDisk = true;
     }
     observer.betweenSteps(*trainer, r);
-    if (observer.stopRequested()) {
-      saveRun(run, *trainer);
+    // Every rank stops at the step rank 0 heard Ctrl-C (mpirun forwards it to all, but not
+    // necessarily between the same steps).
+    if (cluster::broadcastFlag(observer.stopRequested())) {
+      if (cluster::isRoot()) saveRun(run, *trainer);
       return {true, r.step, trainer->scene().size()};
     }
   }
-  if (trainer->stepCount() >= config.iters && !fs::exists(run.sceneFile())) saveRun(run, *trainer);
+  if (cluster::isRoot() && trainer->stepCount() >= config.iters && !fs::exists(run.sceneFile()))
+    saveRun(run, *trainer);
   return {false, trainer->stepCount(), trainer->scene().size()};
 }
 
