@@ -34,7 +34,9 @@ int runGlint(int argc, char** argv) {
       "Run `glint COMMAND --help` for the flags of each command.",
       "glint"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "glint 0.1.0");
+  // Scripts (the MPI tests) tell from it whether this build can join an MPI job.
+  app.set_version_flag("--version", std::string("glint 0.1.0") +
+                                        (glint::cluster::builtWithMpi() ? " (with MPI)" : " (without MPI)"));
   glint::addSynthCommand(app);
   glint::addInfoCommand(app);
   glint::addSheetCommand(app);

@@ -1,11 +1,14 @@
 // `glint train DATASET -o RUN`: learns a Gaussian scene from a dataset. The run folder holds
 // config.json (every hyper-parameter), log.csv, scene.ply and a resumable checkpoint; the
 // loop itself is train/training_loop.h: this file parses the flags and prints.
+#include <unistd.h>
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <memory>
 
@@ -45,6 +48,17 @@ struct TrainOptions {
 
 std::atomic<bool> gInterrupted{false};
 extern "C" void onInterrupt(int) { gInterrupted = true; }
+
+// In an MPI job the launcher ends the other ranks with SIGTERM when one fails; they may be
+// waiting in a collective for it and could never reach a step's end, so rank 0 says what
+// happened and where the run stands, and exits at once (the checkpoint on disk is whole:
+// it is written atomically). Ctrl-C (SIGINT) still stops at the next step and saves.
+char gJobEndedMessage[1024] = "";
+extern "C" void onJobEnded(int) {
+  ssize_t written = write(STDERR_FILENO, gJobEndedMessage, std::strlen(gJobEndedMessage));
+  (void)written;
+  _exit(143);
+}
 
 std::string formatCount(double n) {
   char buf[32];
@@ -143,7 +157,16 @@ class TrainPrinter : public TrainingObserver {
       lastSnapshot_ = std::chrono::steady_clock::now();
     }
     std::signal(SIGINT, onInterrupt);
-    std::signal(SIGTERM, onInterrupt);
+    if (cluster::distributed()) {
+      std::snprintf(gJobEndedMessage, sizeof(gJobEndedMessage),
+                    "\nglint train: the MPI job was ended (a rank failed or was killed, or the job was cancelled); "
+                    "the last checkpoint is %s (written every %d steps): continue with `glint train --resume -o %s`, "
+                    "with any number of ranks\n",
+                    run_.checkpointFile().string().c_str(), config_.saveEvery, run_.root().string().c_str());
+      std::signal(SIGTERM, onJobEnded);
+    } else {
+      std::signal(SIGTERM, onInterrupt);
+    }
     std::fprintf(stderr, "glint train: %zu Gaussians, %zu training views (the first %dx%d), %d rays per step, "
                  "%d threads\n", trainer.scene().size(), views.viewCount(), views.camera(0).width,
                  views.camera(0).height, config_.batchRays, maxThreads());
