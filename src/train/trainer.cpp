@@ -215,6 +215,10 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     counters[2] += slot->reflected;
   }
   if (cluster::distributed()) {
+    // Waiting for the slowest rank is timed apart from the exchange itself.
+    auto waitStart = std::chrono::steady_clock::now();
+    cluster::barrier();
+    report->waitSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart).count();
     const ExchangeStats exchange =
         sumOverRanks(total, scoring ? std::span<float>(score) : std::span<float>(), exchangeMode_);
     double t[6] = {terms.diffuse, terms.depth, terms.normal, terms.roughness, terms.f0, terms.specular};

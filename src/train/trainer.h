@@ -41,8 +41,9 @@ struct StepReport {
   double seconds = 0;        // wall time of the step
   // Its parts (bench/cluster_bench): tracing the wavefronts, their losses and backward pass
   // with the reduction of the threads' sums, the exchange between the ranks of an MPI job,
-  // and the Adam step with the clamping after it.
-  double traceSeconds = 0, backwardSeconds = 0, exchangeSeconds = 0, adamSeconds = 0;
+  // and the Adam step with the clamping after it; in an MPI job also the wait for the
+  // slowest rank before the exchange (the imbalance of the shares).
+  double traceSeconds = 0, backwardSeconds = 0, waitSeconds = 0, exchangeSeconds = 0, adamSeconds = 0;
   uint64_t exchangedBytes = 0;  // received by this rank in the exchange
   bool sparseExchange = false;  // the exchange sent the touched Gaussians only
 };
