@@ -23,14 +23,13 @@
 #include "core/cluster.h"
 #include "core/parallel.h"
 #include "scene/dataset.h"
-#include "synth/builtin_scenes.h"
-#include "synth/dataset_generator.h"
 #include "train/camera_culling.h"
 #include "train/dense_init.h"
 #include "train/densify.h"
 #include "train/gradient_exchange.h"
 #include "train/scene_extent.h"
 #include "train/trainer.h"
+#include "training_dataset.h"
 
 using namespace glint;
 namespace fs = std::filesystem;
@@ -193,14 +192,7 @@ int main(int argc, char** argv) {
   fs::path temp = fs::temp_directory_path() / ("glint_cluster_bench_" + std::to_string(::getpid()));
   fs::create_directories(temp);
   if (o.dataset.empty()) {
-    SynthSettings s;
-    s.trainViews = 40;
-    s.testViews = 2;
-    s.width = 160;
-    s.height = 120;
-    s.spp = 8;
-    std::fprintf(stderr, "rendering builtin:spheres (40 views, 160x120, 8 spp) into %s\n", (temp / "D").c_str());
-    generateDataset(makeBuiltinScene("spheres"), s, temp / "D");
+    renderTrainingBenchDataset(temp / "D");
     o.dataset = (temp / "D").string();
   }
 

@@ -26,6 +26,7 @@
 #include "render/gaussian_path.h"
 #include "train/trainer.h"
 #include "bench_timing.h"
+#include "training_dataset.h"
 
 using namespace glint;
 namespace fs = std::filesystem;
@@ -52,14 +53,7 @@ int main(int argc, char** argv) {
   fs::path temp;
   if (datasetPath.empty()) {
     temp = fs::temp_directory_path() / ("glint_train_bench_" + std::to_string(::getpid()));
-    SynthSettings s;
-    s.trainViews = 40;
-    s.testViews = 2;
-    s.width = 160;
-    s.height = 120;
-    s.spp = 8;
-    std::fprintf(stderr, "rendering builtin:spheres (40 views, 160x120, 8 spp) into %s\n", temp.c_str());
-    generateDataset(makeBuiltinScene("spheres"), s, temp);
+    renderTrainingBenchDataset(temp);
     datasetPath = temp.string();
   }
   Dataset dataset = Dataset::open(datasetPath);
