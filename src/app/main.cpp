@@ -34,7 +34,8 @@ int runGlint(int argc, char** argv) {
       "Run `glint COMMAND --help` for the flags of each command.",
       "glint"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "glint 0.1.0");
+  // "(MPI)" tells scripts (tests/scripts/mpi_render_test.sh) that this build can join an MPI job.
+  app.set_version_flag("--version", glint::cluster::builtWithMpi() ? "glint 0.1.0 (MPI)" : "glint 0.1.0");
   glint::addSynthCommand(app);
   glint::addInfoCommand(app);
   glint::addSheetCommand(app);
