@@ -3,6 +3,9 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <span>
+#include <type_traits>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -21,6 +24,7 @@
 #include "app/trace_flags.h"
 #include "core/atomic_file.h"
 #include "core/activity.h"
+#include "core/cluster.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -32,6 +36,7 @@
 #include "render/denoise.h"
 #include "render/gaussian_renderer.h"
 #include "scene/dataset.h"
+#include "scene/view_sharing.h"
 #include "train/training_eval.h"
 
 namespace glint {
@@ -137,6 +142,40 @@ ViewBuffers renderInHalves(const GaussianTracer& tracer, const Camera& camera, R
   return mean;
 }
 
+// What one view contributes to the report, sent as bytes from the rank that scored it to
+// rank 0, which puts the views back in order before averaging and summing them exactly as
+// one process does.
+struct ScoredView {
+  uint64_t view = 0;
+  ViewMetrics metrics;
+  RegionMetrics region;
+  ErrorBreakdown breakdown;
+};
+static_assert(std::is_trivially_copyable_v<ScoredView>);
+
+// Every rank's scored views, on rank 0, in view order (an empty list on the other ranks).
+std::vector<ScoredView> gatherScoredViews(const std::vector<ScoredView>& mine, size_t viewCount) {
+  std::span<const std::byte> bytes(reinterpret_cast<const std::byte*>(mine.data()), mine.size() * sizeof(ScoredView));
+  std::vector<ScoredView> all;
+  if (!cluster::isRoot()) {
+    cluster::gatherToRoot(bytes);
+    return all;
+  }
+  all.resize(viewCount);
+  std::vector<bool> seen(viewCount, false);
+  for (const std::vector<std::byte>& part : cluster::gatherToRoot(bytes)) {
+    for (size_t at = 0; at + sizeof(ScoredView) <= part.size(); at += sizeof(ScoredView)) {
+      ScoredView view;
+      std::memcpy(&view, part.data() + at, sizeof view);
+      GLINT_CHECK(view.view < viewCount && !seen[view.view], "eval: a view scored twice or out of range");
+      seen[view.view] = true;
+      all[view.view] = view;
+    }
+  }
+  for (size_t v = 0; v < viewCount; ++v) GLINT_CHECK(seen[v], "eval: a view was scored by no rank");
+  return all;
+}
+
 void runEval(const EvalOptions& o) {
   ThreadLimit threads(o.threads);
   std::optional<WorldBox> region;
@@ -171,42 +210,80 @@ void runEval(const EvalOptions& o) {
   // builtin:spheres than jittered samples).
   const RenderSettings settings = scoringSettings(o.spp, rendering.path, o.seed);
   fs::path imagesFolder = output.parent_path() / o.split;
-  std::vector<ViewMetrics> views(split.views.size());
-  std::vector<RegionMetrics> regions(region ? split.views.size() : 0);
-  ErrorBreakdown breakdown;
+  // Rank 0 makes the folders before any rank writes into them.
+  if (cluster::isRoot()) {
+    if (output.has_parent_path()) fs::create_directories(output.parent_path());
+    if (o.saveImages) {
+      for (Buffer b : kRenderedBuffers)
+        fs::create_directories(renderedBufferPath(imagesFolder, split.views[0].filePath, b).parent_path());
+      if (o.breakdown) fs::create_directories(imagesFolder / "pixel_kinds");
+    }
+  }
+  cluster::barrier();
+  // Views go to the ranks whole, or, with fewer views than ranks, as bands of rows that rank 0
+  // joins and scores (SSIM and the pixel classes look across the band edges).
+  const ViewShare share(split.views.size(), /*allowBands=*/true);
+  std::vector<ScoredView> scored;
   auto start = std::chrono::steady_clock::now();
   {
-    ProgressBar progress("eval", int64_t(split.views.size()), "views");
+    ProgressBar progress(share.progressLabel("eval"), int64_t(share.myCount()), "views");
     for (size_t v = 0; v < split.views.size(); ++v) {
+      if (!share.mine(v)) continue;
       ActivityScope activity("rendering view " + split.views[v].filePath);
+      RenderSettings mine = settings;
+      const cluster::Share rows = share.myRows(split.camera(v).height);
+      mine.rowBegin = int(rows.begin);
+      mine.rowEnd = int(rows.end);
       ViewBuffers halves[2];
-      ViewBuffers rendered = o.breakdown ? renderInHalves(*tracer, split.camera(v), settings, uint64_t(v), halves)
-                                         : renderScoredView(*tracer, split.camera(v), settings, uint64_t(v));
+      ViewBuffers rendered = o.breakdown ? renderInHalves(*tracer, split.camera(v), mine, uint64_t(v), halves)
+                                         : renderScoredView(*tracer, split.camera(v), mine, uint64_t(v));
+      if (share.banded()) {
+        rendered = joinBandsOnRoot(rendered);
+        if (o.breakdown)
+          for (ViewBuffers& half : halves) half = joinBandsOnRoot(half);
+        if (!cluster::isRoot()) {
+          progress.advance();
+          continue;
+        }
+      }
       denoisePasses(o.denoise, rendered);
       // A capture's view may lack some buffers: their metrics are left empty ("-").
       ViewBuffers truth;
       for (Buffer b : kAllBuffers)
         if (dataset.findBufferFile(split.views[v], b)) truth[b] = dataset.loadBuffer(split, v, b);
-      views[v] = evaluateView(rendered, truth);
+      ScoredView& score = scored.emplace_back();
+      score.view = v;
+      score.metrics = evaluateView(rendered, truth);
       if (o.breakdown) {
         std::vector<PixelKind> kinds = classifyPixels(split.camera(v), truth);
         // Noise is measured on the raw halves; after --denoise it no longer describes the render.
         bool raw = o.denoise == "none";
-        breakdown += breakdownView(kinds, rendered, truth, raw ? &halves[0] : nullptr, raw ? &halves[1] : nullptr);
+        score.breakdown =
+            breakdownView(kinds, rendered, truth, raw ? &halves[0] : nullptr, raw ? &halves[1] : nullptr);
         if (o.saveImages) {
           fs::path kindsFolder = imagesFolder / "pixel_kinds";
-          fs::create_directories(kindsFolder);
           writeImage(kindsFolder / (fs::path(split.views[v].filePath).filename().string() + ".png"),
                      pixelKindImage(kinds, split.width, split.height));
         }
       }
       if (region)
-        regions[v] = evaluateRegion(rendered, truth, regionMask(split.camera(v), truth[Buffer::Depth], *region));
+        score.region = evaluateRegion(rendered, truth, regionMask(split.camera(v), truth[Buffer::Depth], *region));
       if (o.saveImages) writeRenderedBuffers(imagesFolder, split.views[v].filePath, rendered);
       progress.advance();
     }
   }
+  // Rank 0 writes the report and prints the tables; its time includes waiting for the others.
+  const std::vector<ScoredView> all = gatherScoredViews(scored, split.views.size());
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!cluster::isRoot()) return;
+  std::vector<ViewMetrics> views;
+  std::vector<RegionMetrics> regions;
+  ErrorBreakdown breakdown;
+  for (const ScoredView& view : all) {  // in view order, as one process adds them
+    views.push_back(view.metrics);
+    if (region) regions.push_back(view.region);
+    if (o.breakdown) breakdown += view.breakdown;
+  }
   ViewMetrics mean = averageViewMetrics(views);
 
   nlohmann::json report = {

@@ -15,6 +15,7 @@
 #include "app/trace_flags.h"
 #include "app/video_encoder.h"
 #include "core/activity.h"
+#include "core/cluster.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -26,6 +27,7 @@
 #include "render/progressive_render.h"
 #include "scene/buffer_codec.h"
 #include "scene/dataset.h"
+#include "scene/view_sharing.h"
 
 namespace glint {
 
@@ -85,6 +87,8 @@ void printPixelPaths(const std::vector<std::vector<PathSegment>>& paths, int x, 
   }
 }
 
+ImageFormat outputFormat(const RenderOptions& o) { return o.format == "png" ? ImageFormat::Png : ImageFormat::Exr; }
+
 // The output folder must be new, empty, or hold an earlier render of the same kind (its
 // `marker` subfolder: "render" for views, "path" for camera-path frames).
 void checkOutputFolder(const fs::path& out, bool force, const char* marker) {
@@ -95,14 +99,26 @@ void checkOutputFolder(const fs::path& out, bool force, const char* marker) {
                               "or pass --force");
 }
 
-// Renders one view, in one pass or progressively, handing every result to write (the
-// progressive passes' means too, so the files on disk improve while the render runs).
+// Renders this rank's part of one view (all of it, or its band of rows), in one pass or
+// progressively, and hands every result to write on the rank that writes the view's files
+// (the progressive passes' means too, so the files on disk improve while the render runs).
+// Banded, rank 0 joins the bands and writes; the other ranks only render.
 void renderView(const RenderOptions& o, const GaussianTracer& tracer, const Camera& camera,
-                const RenderSettings& settings, uint64_t viewKey, const ProgressivePassCallback& write) {
+                const RenderSettings& settings, const ViewShare& share, uint64_t viewKey,
+                const ProgressivePassCallback& write) {
+  RenderSettings mine = settings;
+  const cluster::Share rows = share.myRows(camera.height);
+  mine.rowBegin = int(rows.begin);
+  mine.rowEnd = int(rows.end);
+  ProgressivePassCallback handOut = [&](const ViewBuffers& buffers, int samples) {
+    if (!share.banded()) return write(buffers, samples);
+    ViewBuffers whole = joinBandsOnRoot(buffers);
+    if (cluster::isRoot()) write(whole, samples);
+  };
   if (o.progressive)
-    renderProgressively(tracer, camera, settings, viewKey, write);
+    renderProgressively(tracer, camera, mine, viewKey, handOut);
   else
-    write(renderGaussianView(tracer, camera, settings, viewKey), settings.spp);
+    handOut(renderGaussianView(tracer, camera, mine, viewKey), mine.spp);
 }
 
 // The final image as the viewer shows it: the filmic tonemap of the dataset's 8-bit files.
@@ -112,14 +128,21 @@ void writeFramePng(const fs::path& path, const Image& radiance) {
 
 // Renders frames along the camera path into OUT/path/frame_####.png (and, with --denoise,
 // OUT/path_denoised/), then encodes OUT/path.mp4 from the shown frames when ffmpeg exists.
+// Under MPI the frames are shared like views (ViewShare), and rank 0 encodes the video once
+// every rank has written its frames.
 void renderCameraPath(const RenderOptions& o, const GaussianTracer& tracer, const RenderSettings& settings,
                       const std::vector<Mat4>& path, const Camera& intrinsics) {
   fs::path framesDir = fs::path(o.output) / "path", denoisedDir = fs::path(o.output) / "path_denoised";
-  fs::create_directories(framesDir);
-  if (o.denoise) fs::create_directories(denoisedDir);
+  if (cluster::isRoot()) {
+    fs::create_directories(framesDir);
+    if (o.denoise) fs::create_directories(denoisedDir);
+  }
+  cluster::barrier();  // the folders exist before any rank writes into them
+  const ViewShare share(path.size(), /*allowBands=*/true);
   char name[32];
-  ProgressBar progress("render " + o.path, int64_t(path.size()), "frames");
+  ProgressBar progress(share.progressLabel("render " + o.path), int64_t(share.myCount()), "frames");
   for (size_t f = 0; f < path.size(); ++f) {
+    if (!share.mine(f)) continue;
     std::snprintf(name, sizeof(name), "frame_%04zu.png", f);
     Camera camera = intrinsics;
     camera.cameraToWorld = path[f];
@@ -127,12 +150,13 @@ void renderCameraPath(const RenderOptions& o, const GaussianTracer& tracer, cons
       writeFramePng(framesDir / name, buffers[Buffer::Render]);
       if (o.denoise) writeFramePng(denoisedDir / name, denoiseView(buffers));
     };
-    renderView(o, tracer, camera, settings, uint64_t(f), write);
+    renderView(o, tracer, camera, settings, share, uint64_t(f), write);
     progress.advance();
   }
   progress.finish();
+  cluster::barrier();  // every frame is on disk
   fs::path video = fs::path(o.output) / "path.mp4";
-  if (o.noVideo) return;
+  if (o.noVideo || !cluster::isRoot()) return;
   std::optional<fs::path> ffmpeg = findFfmpeg();
   if (!ffmpeg) {
     std::fprintf(stderr, "glint render: ffmpeg is not installed, so no %s (the frames are in %s)\n",
@@ -175,7 +199,8 @@ void runRender(const RenderOptions& o) {
     return resolution ? camera.resized(resolution->x, resolution->y) : camera;
   };
   const Camera first = viewCamera(0);
-  if (o.debugPixel.empty()) checkOutputFolder(o.output, o.force, pathKind ? "path" : "render");
+  // Rank 0 alone looks at the folder, before any rank writes into it (the barrier below).
+  if (o.debugPixel.empty() && cluster::isRoot()) checkOutputFolder(o.output, o.force, pathKind ? "path" : "render");
 
   // The frames of the camera path, through the split's cameras with the first one's intrinsics.
   std::vector<Mat4> path;
@@ -226,16 +251,25 @@ void runRender(const RenderOptions& o) {
     renderCameraPath(o, *tracer, settings, path, first);
     return;
   }
-  ProgressBar progress("render", int64_t(split.views.size()), "views");
+  if (cluster::isRoot()) {
+    std::vector<fs::path> folders = {o.output};
+    for (Buffer b : kRenderedBuffers)
+      folders.push_back(renderedBufferPath(o.output, split.views[0].filePath, b, outputFormat(o)).parent_path());
+    if (o.denoise) folders.push_back(denoisedRenderPath(o.output, split.views[0].filePath).parent_path());
+    for (const fs::path& folder : folders) fs::create_directories(folder);
+  }
+  cluster::barrier();  // the folders exist before any rank writes into them
+  const ViewShare share(split.views.size(), /*allowBands=*/true);
+  ProgressBar progress(share.progressLabel("render"), int64_t(share.myCount()), "views");
   for (size_t v = 0; v < split.views.size(); ++v) {
+    if (!share.mine(v)) continue;
     ActivityScope activity("rendering view " + split.views[v].filePath);
     const Camera camera = viewCamera(v);
     auto write = [&](const ViewBuffers& buffers, int /*samples*/) {
-      writeRenderedBuffers(o.output, split.views[v].filePath, buffers,
-                           o.format == "png" ? ImageFormat::Png : ImageFormat::Exr);
+      writeRenderedBuffers(o.output, split.views[v].filePath, buffers, outputFormat(o));
       if (o.denoise) writeImage(denoisedRenderPath(o.output, split.views[v].filePath), denoiseView(buffers));
     };
-    renderView(o, *tracer, camera, settings, uint64_t(v), write);
+    renderView(o, *tracer, camera, settings, share, uint64_t(v), write);
     progress.advance();
   }
 }

@@ -8,6 +8,7 @@
 #include "app/commands.h"
 #include "app/thread_flag.h"
 #include "core/activity.h"
+#include "core/cluster.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -145,7 +146,9 @@ void runSynth(const SynthOptions& o) {
   const bool capture = o.layout == "capture";
   if (!capture && o.degrade != "none")
     throw Error("--degrade", "degraded priors are written in the capture layout only (add --layout capture)");
-  checkOutputFolder(o.output, o.force, capture);
+  // Rank 0 alone looks at the folder; the generators make their folders on rank 0 and wait
+  // for it before any rank writes.
+  if (cluster::isRoot()) checkOutputFolder(o.output, o.force, capture);
 
   ThreadLimit limit(o.threads);
   auto start = std::chrono::steady_clock::now();

@@ -62,6 +62,11 @@ struct TileSums {
 
 }  // namespace
 
+std::pair<int, int> renderedRows(const Camera& camera, const RenderSettings& settings) {
+  const int first = std::clamp(settings.rowBegin, 0, camera.height);
+  return {first, settings.rowEnd < 0 ? camera.height : std::clamp(settings.rowEnd, first, camera.height)};
+}
+
 size_t renderTileRays() { return kRaysPerTile; }
 
 size_t renderTileBytes(int bounces) {
@@ -73,10 +78,11 @@ size_t renderTileBytes(int bounces) {
 
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
                                uint64_t viewKey, std::vector<Image>* bounceLight) {
-  ViewBuffers out = ViewBuffers::allocate(camera.width, camera.height);
+  const auto [rowBegin, rowEnd] = renderedRows(camera, settings);
+  ViewBuffers out = ViewBuffers::allocate(camera.width, rowEnd - rowBegin);
   const float invSpp = 1.0f / float(settings.spp);
   const int separate = bounceLight ? std::clamp(settings.path.bounces, 0, kSeparateBounces) : 0;
-  if (bounceLight) bounceLight->assign(size_t(separate), Image(camera.width, camera.height, 3));
+  if (bounceLight) bounceLight->assign(size_t(separate), Image(camera.width, rowEnd - rowBegin, 3));
   const size_t width = size_t(camera.width);
   const int rowsPerTile = int(std::max<size_t>(1, kRaysPerTile / std::max<size_t>(width, 1)));
   PathBatch batch;
@@ -86,8 +92,8 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
   std::vector<PathResult> paths;
   // Tile by tile, sample by sample: each pass traces one sample of every pixel of the tile
   // as one wavefront, and the pixel sums add the samples in order (as a per-pixel loop would).
-  for (int y0 = 0; y0 < camera.height; y0 += rowsPerTile) {
-    const int y1 = std::min(camera.height, y0 + rowsPerTile);
+  for (int y0 = rowBegin; y0 < rowEnd; y0 += rowsPerTile) {
+    const int y1 = std::min(rowEnd, y0 + rowsPerTile);
     const size_t pixels = size_t(y1 - y0) * width;
     sums.reset(pixels, separate);
     rays.resize(pixels);
@@ -122,7 +128,7 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
     }
     parallelForChunks(int64_t(pixels), 1024, [&](int64_t begin, int64_t end) {
       for (int64_t j = begin; j < end; ++j) {
-        const int x = int(size_t(j) % width), y = y0 + int(size_t(j) / width);
+        const int x = int(size_t(j) % width), y = y0 - rowBegin + int(size_t(j) / width);  // row in the band
         const Rgb diffuse = sums.diffuse[size_t(j)], specular = sums.specular[size_t(j)];
         out[Buffer::Diffuse].setRgb(x, y, diffuse * invSpp);
         out[Buffer::Specular].setRgb(x, y, specular * invSpp);

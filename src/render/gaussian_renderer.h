@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "raytrace/gaussian_tracer.h"
@@ -28,6 +29,12 @@ struct RenderSettings {
   // when false, their plain mean, so renders of a few samples each can be summed into the
   // normal of one render of all their samples (progressive rendering).
   bool normalizeNormals = true;
+  // The rows traced, [rowBegin, rowEnd) of the image (rowEnd -1: through the last row); the
+  // buffers hold only these rows. A rank of an MPI job renders its band of a view this way
+  // (scene/view_sharing.h); a pixel's samples are the same in any band, since their keys
+  // number the pixels of the whole image.
+  int rowBegin = 0;
+  int rowEnd = -1;
 };
 
 // Renders the buffers of one view: diffuse and the G-buffers from each path's first segment,
@@ -39,6 +46,9 @@ struct RenderSettings {
 // segment k (PathResult::bounceLight): the terms of the specular buffer.
 ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
                                uint64_t viewKey, std::vector<Image>* bounceLight = nullptr);
+
+// The rows [first, second) of camera's image that settings trace (RenderSettings::rowBegin).
+std::pair<int, int> renderedRows(const Camera& camera, const RenderSettings& settings);
 
 // Camera rays traced per wavefront (a tile of whole rows), and the bytes a tile's arrays
 // take with that many rays (paths, keys, pixel sums and the wavefront's own), for

@@ -51,7 +51,8 @@ std::vector<int> progressivePassSizes(int spp) {
 
 ViewBuffers renderProgressively(const GaussianTracer& tracer, const Camera& camera, const RenderSettings& settings,
                                 uint64_t viewKey, const ProgressivePassCallback& onPass) {
-  ViewAccumulator accumulator(camera.width, camera.height);
+  const auto [rowBegin, rowEnd] = renderedRows(camera, settings);
+  ViewAccumulator accumulator(camera.width, rowEnd - rowBegin);
   RenderSettings pass = settings;
   pass.normalizeNormals = false;  // summed as blended normals, normalised by mean()
   for (int size : progressivePassSizes(settings.spp)) {

@@ -3,10 +3,12 @@
 
 #include <cstdio>
 
+#include "core/cluster.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "io/transfer.h"
 #include "scene/capture_writer.h"
+#include "scene/view_sharing.h"
 #include "synth/camera_paths.h"
 #include "synth/light_sampler.h"
 #include "synth/network_degradation.h"
@@ -36,24 +38,38 @@ void generateCapture(const MeshScene& scene, const SynthSettings& settings, cons
   const std::vector<Mat4> poses = orbitCameras(rig.train, count);
   auto isTest = [&](int i) { return capture.holdout > 1 && i % capture.holdout == 0; };
 
+  // In an MPI job the views go round-robin to the ranks (scene/view_sharing.h), and rank 0,
+  // which writes the whole capture, receives them one by one in order.
+  const ViewShare share(size_t(count), /*allowBands=*/false);
   const int testSpp = settings.testSamplesPerPixel();
   int64_t samples = 0;
-  for (int i = 0; i < count; ++i) samples += isTest(i) ? testSpp : settings.spp;
-  ProgressBar progress("synth", samples * settings.width * settings.height, "samples");
+  for (int i = 0; i < count; ++i) samples += share.mine(size_t(i)) ? (isTest(i) ? testSpp : settings.spp) : 0;
+  ProgressBar progress(share.progressLabel("synth"), samples * settings.width * settings.height, "samples");
+
+  std::vector<Camera> cameras;
+  std::vector<ViewBuffers> rendered(static_cast<size_t>(count));
+  for (int i = 0; i < count; ++i) {
+    cameras.push_back(Camera::fromFieldOfView(poses[size_t(i)], rig.fovX, settings.width, settings.height));
+    if (!share.mine(size_t(i))) continue;
+    SynthSettings viewSettings = settings;
+    viewSettings.spp = isTest(i) ? testSpp : settings.spp;
+    // The same random streams as the transforms layout's training view i.
+    rendered[size_t(i)] = renderView(tracer, cameras.back(), viewSettings, (uint64_t(1) << 32) | uint64_t(i), &progress);
+  }
+  progress.finish();
 
   std::vector<CaptureWriteView> views;
   std::vector<DepthView> depthViews;  // training views only: test views must not inform the points
   for (int i = 0; i < count; ++i) {
-    Camera camera = Camera::fromFieldOfView(poses[size_t(i)], rig.fovX, settings.width, settings.height);
-    SynthSettings viewSettings = settings;
-    viewSettings.spp = isTest(i) ? testSpp : settings.spp;
-    // The same random streams as the transforms layout's training view i.
-    ViewBuffers exact = renderView(tracer, camera, viewSettings, (uint64_t(1) << 32) | uint64_t(i), &progress);
+    ViewBuffers exact = sendViewToRoot(rendered[size_t(i)], share.owner(size_t(i)));
+    rendered[size_t(i)] = ViewBuffers();
+    if (!cluster::isRoot()) continue;
+    const Camera& camera = cameras[size_t(i)];
     if (!isTest(i)) depthViews.push_back({exact[Buffer::Depth], exact[Buffer::Diffuse], camera});
     ViewBuffers priors = capture.networkLikePriors ? networkLikePriors(exact, settings.seed, uint64_t(i)) : exact;
     views.push_back({viewImageName(i), camera, std::move(priors)});
   }
-  progress.finish();
+  if (!cluster::isRoot()) return;
 
   // pointCloudFromDepth colours are sRGB-encoded; writeCapture takes linear colours.
   PointCloud cloud = pointCloudFromDepth(depthViews, capture.sparsePoints);

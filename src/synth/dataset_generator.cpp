@@ -4,9 +4,11 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/cluster.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "scene/dataset.h"
+#include "scene/view_sharing.h"
 #include "synth/camera_paths.h"
 #include "synth/light_sampler.h"
 #include "synth/ray_caster.h"
@@ -14,11 +16,6 @@
 namespace glint {
 
 namespace {
-
-float srgbEncode(float linear) {
-  linear = std::clamp(linear, 0.0f, 1.0f);
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
 
 std::string frameName(const std::string& split, int index) {
   char buffer[64];
@@ -67,32 +64,6 @@ ViewBuffers renderView(const PathTracer& tracer, const Camera& camera, const Syn
   return out;
 }
 
-PointCloud pointCloudFromDepth(const std::vector<DepthView>& views, int maxPoints) {
-  PointCloud cloud;
-  int64_t surfacePixels = 0;
-  for (const DepthView& v : views) {
-    for (float d : v.depth.pixels) surfacePixels += hasSurface(d) ? 1 : 0;
-  }
-  if (surfacePixels == 0) return cloud;
-  // Keep every stride-th surface pixel (in scan order across views) to respect maxPoints.
-  int64_t stride = std::max<int64_t>(1, (surfacePixels + maxPoints - 1) / std::max(1, maxPoints));
-  int64_t counter = 0;
-  for (const DepthView& v : views) {
-    const Image& depth = v.depth;
-    const Image& diffuse = v.diffuse;
-    for (int y = 0; y < depth.height; ++y)
-      for (int x = 0; x < depth.width; ++x) {
-        float d = depth.at(x, y);
-        if (!hasSurface(d) || (counter++ % stride) != 0) continue;
-        Ray ray = v.camera.generateRay(x + 0.5, y + 0.5);
-        cloud.positions.push_back(Vec3f(ray.origin + ray.direction * double(d)));
-        Rgb c = diffuse.rgb(x, y);
-        cloud.colors.push_back({srgbEncode(c.x), srgbEncode(c.y), srgbEncode(c.z)});
-      }
-  }
-  return cloud;
-}
-
 void generateDataset(const MeshScene& scene, const SynthSettings& settings, const std::filesystem::path& outDir) {
   RayCaster caster(scene);
   LightSampler lights(scene);
@@ -111,11 +82,28 @@ void generateDataset(const MeshScene& scene, const SynthSettings& settings, cons
   const SplitPlan plans[] = {{"train", settings.trainViews, &rig.train, 1, settings.spp},
                              {"test", settings.testViews, &rig.test, 2, testSpp}};
 
+  // View i of the training split is view i of the job's list, test view i is view
+  // trainViews + i; whole views only, since a dataset has more views than a job has ranks.
+  const ViewShare share(size_t(settings.trainViews) + size_t(settings.testViews), /*allowBands=*/false);
+  auto listIndex = [&](const SplitPlan& plan, int i) {
+    return size_t(i) + (plan.key == 1 ? 0 : size_t(settings.trainViews));
+  };
+  // Rank 0 makes the folders of every buffer before any rank writes into them.
+  if (cluster::isRoot())
+    for (const SplitPlan& plan : plans)
+      for (Buffer b : kAllBuffers)
+        std::filesystem::create_directories((outDir / bufferFilePath(frameName(plan.name, 0), b)).parent_path());
+  cluster::barrier();
+
   // Progress counts path samples, so that the ETA holds when the splits' spp differ.
   const int64_t pixelsPerView = int64_t(settings.width) * settings.height;
-  const int64_t samplesOfAllViews = int64_t(settings.trainViews) * settings.spp + int64_t(settings.testViews) * testSpp;
-  ProgressBar progress("synth", pixelsPerView * samplesOfAllViews, "samples");
+  int64_t mySamples = 0;
+  for (const SplitPlan& plan : plans)
+    for (int i = 0; i < plan.count; ++i) mySamples += share.mine(listIndex(plan, i)) ? plan.spp : 0;
+  ProgressBar progress(share.progressLabel("synth"), pixelsPerView * mySamples, "samples");
   std::vector<DepthView> depthViews;  // training views only: the point cloud must not see test views
+  std::vector<size_t> depthViewIndex;
+  std::vector<DatasetSplit> splits;
   for (const SplitPlan& plan : plans) {
     DatasetSplit split;
     split.name = plan.name;
@@ -127,16 +115,23 @@ void generateDataset(const MeshScene& scene, const SynthSettings& settings, cons
     for (int i = 0; i < plan.count; ++i) {
       Camera camera = Camera::fromFieldOfView(poses[i], rig.fovX, settings.width, settings.height);
       DatasetView view{frameName(plan.name, i), camera};
+      split.views.push_back(view);
+      if (!share.mine(listIndex(plan, i))) continue;
       ViewBuffers buffers = renderView(tracer, camera, splitSettings, (plan.key << 32) | uint64_t(i), &progress);
       writeViewBuffers(outDir, view, buffers, settings.format);
-      split.views.push_back(view);
-      if (plan.name == "train")
+      if (plan.name == "train") {
         depthViews.push_back({std::move(buffers[Buffer::Depth]), std::move(buffers[Buffer::Diffuse]), camera});
+        depthViewIndex.push_back(size_t(i));
+      }
     }
-    writeTransforms(outDir, split);
+    splits.push_back(std::move(split));
   }
   progress.finish();
-  writePointCloud(outDir / "point_cloud_dense.ply", pointCloudFromDepth(depthViews, settings.pointCloudMaxPoints));
+  PointCloud cloud = pointCloudFromDepthOverRanks(depthViews, depthViewIndex, size_t(settings.trainViews),
+                                                  settings.pointCloudMaxPoints);
+  if (!cluster::isRoot()) return;
+  for (const DatasetSplit& split : splits) writeTransforms(outDir, split);
+  writePointCloud(outDir / "point_cloud_dense.ply", cloud);
 }
 
 }  // namespace glint

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "io/image.h"
-#include "io/point_cloud.h"
+#include "synth/depth_point_cloud.h"
 #include "scene/buffers.h"
 #include "scene/camera.h"
 #include "synth/mesh_scene.h"
@@ -44,17 +44,11 @@ struct SynthSettings {
 ViewBuffers renderView(const PathTracer& tracer, const Camera& camera, const SynthSettings& settings,
                        uint64_t viewKey, class ProgressBar* progress = nullptr);
 
-// Unprojects the depth buffers of views into points coloured by their diffuse buffer
-// (sRGB-encoded), keeping every k-th pixel so that at most maxPoints remain.
-struct DepthView {
-  Image depth;
-  Image diffuse;
-  Camera camera;
-};
-PointCloud pointCloudFromDepth(const std::vector<DepthView>& views, int maxPoints);
-
 // Generates the whole dataset into outDir (created if needed). Files are written
-// atomically; existing datasets are overwritten only file by file.
+// atomically; existing datasets are overwritten only file by file. In an MPI job the views
+// (training then test, as one list) go round-robin to the ranks (scene/view_sharing.h),
+// each writing its own views' buffers; rank 0 makes the folders first and alone writes
+// the transforms files and the point cloud.
 void generateDataset(const MeshScene& scene, const SynthSettings& settings, const std::filesystem::path& outDir);
 
 }  // namespace glint

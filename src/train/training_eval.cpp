@@ -13,6 +13,8 @@ ViewBuffers renderScoredView(const GaussianTracer& tracer, const Camera& camera,
   if (settings.jitter) {
     RenderSettings centre;
     centre.jitter = false;
+    centre.rowBegin = settings.rowBegin;  // the same band of rows
+    centre.rowEnd = settings.rowEnd;
     ViewBuffers gbuffers = renderGaussianView(tracer, camera, centre, viewKey);
     for (Buffer b : {Buffer::Depth, Buffer::Normal, Buffer::Roughness, Buffer::F0}) rendered[b] = gbuffers[b];
   }

@@ -108,6 +108,38 @@ TEST(GaussianRenderer, OneSampleRendersFromFirstSampleAddUpToTheFullRender) {
   EXPECT_GT(specularTotal, 0.0f);  // the bounces were traced
 }
 
+// Bands of rows (how the ranks of an MPI job share one view) stacked in order are the full
+// render bit for bit: a pixel's samples and paths do not depend on the band around it. With
+// a band boundary inside a wavefront tile, jitter, bounces and per-bounce images.
+TEST(GaussianRenderer, BandsOfRowsStackUpToTheFullRender) {
+  GaussianScene scene = randomScene(200, 7);
+  ReferenceTracer tracer;
+  tracer.build(scene, TraceSettings{});
+  Camera camera = testCamera();
+  RenderSettings settings;
+  settings.spp = 3;
+  settings.seed = 11;
+  settings.path.bounces = 2;
+  std::vector<Image> fullBounces;
+  ViewBuffers full = renderGaussianView(tracer, camera, settings, 2, &fullBounces);
+  const int edges[] = {0, 1, 4, 4, camera.height};  // an empty band too
+  ViewBuffers stacked;
+  std::vector<float> stackedBounce;
+  for (int k = 0; k + 1 < 5; ++k) {
+    settings.rowBegin = edges[k];
+    settings.rowEnd = edges[k + 1];
+    std::vector<Image> bounces;
+    ViewBuffers band = renderGaussianView(tracer, camera, settings, 2, &bounces);
+    for (Buffer b : kAllBuffers) {
+      EXPECT_EQ(band[b].height, edges[k + 1] - edges[k]);
+      stacked[b].pixels.insert(stacked[b].pixels.end(), band[b].pixels.begin(), band[b].pixels.end());
+    }
+    stackedBounce.insert(stackedBounce.end(), bounces[0].pixels.begin(), bounces[0].pixels.end());
+  }
+  for (Buffer b : kAllBuffers) EXPECT_EQ(stacked[b].pixels, full[b].pixels) << bufferName(b);
+  EXPECT_EQ(stackedBounce, fullBounces[0].pixels);
+}
+
 // The wavefront renderer against the obviously-correct loop: every pixel's samples traced
 // one path at a time with tracePath (same keys, same sample positions), averaged in sample
 // order. On the fast tracer with 64 x 48 pixels (so camera rays go in bundles) and 3
