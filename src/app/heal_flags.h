@@ -21,7 +21,7 @@ class HealFlags {
 
  private:
   // On by default: on builtin:spheres, with relighting, it lowered the final-image drop of a
-  // move from 1.56 to 1.49 dB and of a deletion from 2.27 to 2.08; a duplication and a null
+  // move from 1.56 to 1.48 dB and of a deletion from 2.27 to 2.09; a duplication and a null
   // edit vacate nothing and heal nothing (README, "Edits that move shadows").
   bool on_ = true;
   HealSettings settings_;
