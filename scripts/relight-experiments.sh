@@ -1,8 +1,10 @@
 #!/bin/bash
-# Edits scored against each edited scene's own ground truth, with and without relighting
-# (README, "Edits that move shadows"): builtin:spheres at 160x120, the default glint train,
-# the red sphere moved, duplicated or deleted by `glint synth --edits` and `glint eval --edits`.
-# Usage: scripts/relight-experiments.sh OUT [GLINT]   (about 50 minutes on 2 cores)
+# Edits scored against each edited scene's own ground truth, with and without relighting and
+# healing of the uncovered surface (README, "Edits that move shadows"): builtin:spheres at
+# 160x120, the default glint train, the red sphere moved, duplicated or deleted by
+# `glint synth --edits` and `glint eval --edits`.
+# Usage: scripts/relight-experiments.sh OUT [GLINT]   (about 60 minutes on 2 cores; an OUT that
+# already holds D, D_* and R, such as the last run's, skips the synthesis and training)
 set -euo pipefail
 out="${1:?usage: relight-experiments.sh OUT [GLINT]}"
 glint="$(realpath "${2:-build/glint}")"
@@ -21,10 +23,12 @@ done
 [ -f R/scene.ply ] || "$glint" train D -o R --threads 2 --force
 E="--spp 64 --threads 2"
 "$glint" eval R --dataset D $E -o R/eval/unedited.json
-"$glint" eval R --dataset D $E --edits edits_null.json -o R/eval/null_relight.json
+"$glint" eval R --dataset D $E --edits edits_null.json --no-heal -o R/eval/null_relight.json
+"$glint" eval R --dataset D $E --edits edits_null.json --heal -o R/eval/null_heal.json
 for e in move duplicate delete; do
-  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --no-relight -o "R/eval/$e.json"
-  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" -o "R/eval/${e}_relight.json"
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --no-relight --no-heal -o "R/eval/$e.json"
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --no-heal -o "R/eval/${e}_relight.json"
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --heal -o "R/eval/${e}_heal.json"
 done
 python3 - <<'PY'
 import json
@@ -32,13 +36,13 @@ def m(f):
     d = json.load(open('R/eval/' + f + '.json'))['mean']
     return [d[p]['psnr_tonemapped'] for p in ('diffuse', 'specular', 'final')]
 u = m('unedited')
-print('| edit | relighting | diffuse dB | specular dB | final dB | final drop | diffuse drop |')
-print('| --- | --- | --- | --- | --- | --- | --- |')
-print('| none | - | %.2f | %.2f | %.2f | - | - |' % tuple(u))
-rows = [('translate by 0', 'null_relight', 'on')]
+print('| edit | relighting | healing | diffuse dB | specular dB | final dB | final drop | diffuse drop |')
+print('| --- | --- | --- | --- | --- | --- | --- | --- |')
+print('| none | - | - | %.2f | %.2f | %.2f | - | - |' % tuple(u))
+rows = [('translate by 0', 'null_relight', 'on', 'off'), ('translate by 0', 'null_heal', 'on', 'on')]
 for e in ('move', 'duplicate', 'delete'):
-    rows += [(e, e, 'off'), (e, e + '_relight', 'on')]
-for name, f, r in rows:
+    rows += [(e, e, 'off', 'off'), (e, e + '_relight', 'on', 'off'), (e, e + '_heal', 'on', 'on')]
+for name, f, r, h in rows:
     v = m(f)
-    print('| %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f |' % (name, r, v[0], v[1], v[2], u[2] - v[2], u[0] - v[0]))
+    print('| %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f |' % (name, r, h, v[0], v[1], v[2], u[2] - v[2], u[0] - v[0]))
 PY

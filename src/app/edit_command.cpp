@@ -6,6 +6,7 @@
 
 #include "app/commands.h"
 #include "app/output_file.h"
+#include "app/heal_flags.h"
 #include "app/relight_flags.h"
 #include "app/scene_source.h"
 #include "app/thread_flag.h"
@@ -28,6 +29,7 @@ struct EditOptions {
   size_t maxGaussians = kDefaultMaxGaussians;
   int threads = 0;
   RelightFlags relight;
+  HealFlags heal;
 };
 
 void runEdit(const EditOptions& o) {
@@ -37,10 +39,17 @@ void runEdit(const EditOptions& o) {
   SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
   GaussianScene unedited;
   EditProvenance provenance;
-  if (o.relight.on()) unedited = source.scene, provenance = EditProvenance::identity(source.scene.size());
-  EditReport report = applyEdits(document, source.scene, o.maxGaussians, o.relight.on() ? &provenance : nullptr);
+  const bool traced = o.relight.on() || o.heal.on();  // both need the unedited scene and the provenance
+  if (traced) unedited = source.scene, provenance = EditProvenance::identity(source.scene.size());
+  EditReport report = applyEdits(document, source.scene, o.maxGaussians, traced ? &provenance : nullptr);
   std::fprintf(stderr, "glint edit: %s with %s\n%s", o.scene.c_str(), o.edits.c_str(),
                formatEditReport(report).c_str());
+  HealReport healed;
+  if (o.heal.on()) {  // before relighting, so that the filled surface is relit with the rest
+    std::string line;
+    healed = healAfterEdit(unedited, source.scene, provenance, o.heal.settings(), &line);
+    std::fprintf(stderr, "glint edit: %s\n", line.c_str());
+  }
   if (o.relight.on()) {  // traced as the scene renders: the run's tracer settings
     const char* kind = "fast";
     std::unique_ptr<GaussianTracer> before = makeGaussianTracer(kind), after = makeGaussianTracer(kind);
@@ -50,6 +59,7 @@ void runEdit(const EditOptions& o) {
                  relightAfterEdit(*before, unedited, *after, source.scene, provenance,
                                   o.relight.settings(source.settings.path()))
                      .c_str());
+    continueHealedColours(healed, source.scene);  // the filled surface takes its relit surroundings' colour
   }
   writeGaussianPly(o.output, source.scene);
   std::fprintf(stderr, "glint edit: wrote %s (%zu Gaussians)\n", o.output.c_str(), source.scene.size());
@@ -77,6 +87,7 @@ void addEditCommand(CLI::App& app) {
       ->capture_default_str();
   addThreadsFlag(cmd, &o->threads);
   o->relight.add(cmd);
+  o->heal.add(cmd);
   cmd->callback([o]() { runEdit(*o); });
 }
 

@@ -19,6 +19,7 @@ void EditsFlag::add(CLI::App* cmd) {
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
   relight_.add(cmd);
+  heal_.add(cmd);
 }
 
 std::unique_ptr<GaussianTracer> EditsFlag::prepareTracer(GaussianScene& scene, const TraceSettings& settings,
@@ -35,11 +36,18 @@ std::unique_ptr<GaussianTracer> EditsFlag::prepareTracer(GaussianScene& scene, c
   // Relighting traces the unedited scene too: it keeps a copy with a tracer of its own.
   GaussianScene unedited;
   EditProvenance provenance;
-  if (relight_.on()) unedited = scene, provenance = EditProvenance::identity(scene.size());
-  EditReport report = applyEdits(document, scene, maxGaussians_, relight_.on() ? &provenance : nullptr);
+  const bool traced = relight_.on() || heal_.on();  // both need the unedited scene and the provenance
+  if (traced) unedited = scene, provenance = EditProvenance::identity(scene.size());
+  EditReport report = applyEdits(document, scene, maxGaussians_, traced ? &provenance : nullptr);
   std::fprintf(stderr, "%s: edits from %s\n%s", command, path_.c_str(), formatEditReport(report).c_str());
-  UpdatedTracer updated =
-      updateTracerAfterEdit(std::move(tracer), scene, settings, kind, !report.countChanged(), probeCamera, workRays);
+  HealReport healed;
+  if (heal_.on()) {  // before relighting, so that the filled surface is relit with the rest
+    std::string line;
+    healed = healAfterEdit(unedited, scene, provenance, heal_.settings(), &line);
+    std::fprintf(stderr, "%s: %s\n", command, line.c_str());
+  }
+  UpdatedTracer updated = updateTracerAfterEdit(std::move(tracer), scene, settings, kind,
+                                                report.countBefore == scene.size(), probeCamera, workRays);
   std::fprintf(stderr, "%s: after the edits: %s\n", command, describeTracerUpdate(updated.times).c_str());
   if (relight_.on()) {
     std::unique_ptr<GaussianTracer> uneditedTracer = makeGaussianTracer(kind);
@@ -48,7 +56,8 @@ std::unique_ptr<GaussianTracer> EditsFlag::prepareTracer(GaussianScene& scene, c
                  relightAfterEdit(*uneditedTracer, unedited, *updated.tracer, scene, provenance,
                                   relight_.settings(path))
                      .c_str());
-    updated.tracer->refit();  // tracers may keep copies of the colours
+    continueHealedColours(healed, scene);  // the filled surface takes its relit surroundings' colour
+    updated.tracer->refit();               // tracers may keep copies of the colours
   }
   return std::move(updated.tracer);
 }

@@ -7,6 +7,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "app/heal_flags.h"
 #include "app/relight_flags.h"
 #include "edit/gaussian_edits.h"
 #include "raytrace/gaussian_tracer.h"
@@ -23,7 +24,8 @@ class EditsFlag {
 
   // Builds a tracer of `kind` for `scene`. With --edits: validates the file, builds on the
   // unedited scene, applies the edits in place, prints the per-operation counts and warnings,
-  // then refits or rebuilds (tracer_update.h), printing both costs. With --relight, the
+  // with --heal fills the surface the edit uncovered (heal_flags.h), then refits or rebuilds
+  // (tracer_update.h), printing both costs. With --relight, the
   // diffuse colours of the Gaussians the edit left in place then follow the change of their
   // irradiance (relight_flags.h), traced with `path`'s ray offsets. `workRays` estimates
   // the rays the command will trace; `command` prefixes the messages.
@@ -35,6 +37,7 @@ class EditsFlag {
   std::string path_;
   size_t maxGaussians_ = kDefaultMaxGaussians;
   RelightFlags relight_;
+  HealFlags heal_;
 };
 
 }  // namespace glint

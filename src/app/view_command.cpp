@@ -6,6 +6,7 @@
 #include <optional>
 
 #include "app/commands.h"
+#include "app/heal_flags.h"
 #include "app/relight_flags.h"
 #include "app/scene_source.h"
 #include "app/thread_flag.h"
@@ -28,6 +29,7 @@ struct ViewOptions {
   size_t maxGaussians = kDefaultMaxGaussians;
   int threads = 0;
   RelightFlags relight;
+  HealFlags heal;
 };
 
 void runView(const ViewOptions& o) {
@@ -45,6 +47,7 @@ void runView(const ViewOptions& o) {
   options.maxGaussians = o.maxGaussians;
   options.path = source.settings.renderPath();  // the page starts at the run's render bounces
   if (o.relight.on()) options.relight = o.relight.settings(source.settings.path());
+  if (o.heal.on()) options.heal = o.heal.settings();
   std::fprintf(stderr, "glint view: %zu Gaussians at %dx%d; saving edits into %s\n", source.scene.size(),
                options.width, options.height, output.string().c_str());
   ViewerServer server(std::move(options), std::move(source.scene), source.settings.trace);
@@ -89,6 +92,7 @@ void addViewCommand(CLI::App& app) {
       ->capture_default_str();
   addThreadsFlag(cmd, &o->threads, "the viewer renders with them");
   o->relight.add(cmd);
+  o->heal.add(cmd);
   cmd->callback([o]() { runView(*o); });
 }
 

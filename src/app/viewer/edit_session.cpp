@@ -66,13 +66,14 @@ float attributeValue(const GaussianScene& scene, size_t i, Attribute attribute) 
 }  // namespace
 
 EditSession::EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians,
-                         std::optional<RelightSettings> relight)
+                         std::optional<RelightSettings> relight, std::optional<HealSettings> heal)
     : pristine_(std::make_shared<const GaussianScene>(std::move(pristine))),
       trace_(trace),
       maxGaussians_(maxGaussians),
       shownScene_(std::make_shared<GaussianScene>(*pristine_)),
       current_(traceScene(shownScene_, trace_)),
-      relight_(relight) {}
+      relight_(relight),
+      heal_(heal) {}
 
 std::shared_ptr<const TracedScene> EditSession::current() const {
   std::lock_guard lock(mutex_);
@@ -99,8 +100,12 @@ void EditSession::update(const TracerUpdateContext& context) {
   // Applied to a copy first: an operation that cannot apply throws before anything shown changes.
   GaussianScene edited = *pristine_;
   EditProvenance provenance;
-  if (relight_) provenance = EditProvenance::identity(edited.size());
-  applyEdits(documentOfSteps(), edited, maxGaussians_, relight_ ? &provenance : nullptr);
+  const bool traced = relight_ || heal_;  // both need the provenance
+  if (traced) provenance = EditProvenance::identity(edited.size());
+  applyEdits(documentOfSteps(), edited, maxGaussians_, traced ? &provenance : nullptr);
+  HealReport healed;  // before relighting, so that the filled surface is relit with the rest
+  if (heal_) healed = healUncovered(*pristine_, edited, provenance, *heal_);
+  lastHealed_ = healed.added;
 
   // A refit needs the shown tracer and its scene object to ourselves: the render thread lets
   // go of them; a request that took them through current() just before still holds them.
@@ -130,6 +135,7 @@ void EditSession::update(const TracerUpdateContext& context) {
       pristineTracer_->build(*pristine_, trace_);
     }
     lastRelight_ = relightAfterEdit(*pristineTracer_, *pristine_, *updated.tracer, *shownScene_, provenance, *relight_);
+    continueHealedColours(healed, *shownScene_);  // the filled surface takes its relit surroundings' colour
     updated.tracer->refit();  // tracers may keep copies of the colours
     lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
@@ -196,6 +202,7 @@ nlohmann::json EditSession::status() const {
                                {"work_rays", t.workRays}};
     if (!t.refitPossible) status["tracer_update"]["no_refit"] = noRefitReason_;
   }
+  if (heal_) status["healed"] = lastHealed_;
   if (!lastRelight_.empty()) {
     status["relight"] = lastRelight_;
     status["relight_ms"] = 1e3 * lastRelightSeconds_;

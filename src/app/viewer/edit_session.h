@@ -19,6 +19,7 @@
 #include "app/viewer/progressive_renderer.h"
 #include "edit/edit_document.h"
 #include "raytrace/trace_settings.h"
+#include "edit/heal_uncovered.h"
 #include "render/differential_relight.h"
 #include "render/tracer_update.h"
 #include "scene/camera.h"
@@ -38,9 +39,10 @@ class EditSession {
  public:
   // maxGaussians: the most Gaussians an edit may leave (gaussian_edits.h). With relight,
   // every edit is followed by differential relighting (app/relight_flags.h) against the
-  // pristine scene, whose tracer is built at the first edit.
+  // pristine scene, whose tracer is built at the first edit. With heal, the surface an edit
+  // uncovered is filled first (edit/heal_uncovered.h).
   EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians,
-              std::optional<RelightSettings> relight = std::nullopt);
+              std::optional<RelightSettings> relight = std::nullopt, std::optional<HealSettings> heal = std::nullopt);
 
   std::shared_ptr<const TracedScene> current() const;
 
@@ -57,7 +59,7 @@ class EditSession {
   // "refit"|"rebuild", "refit_possible", "refit_ms", "rebuild_ms", "refit_probe_ms",
   // "rebuild_probe_ms", "probe_rays", "work_rays", and "no_refit" (why) when no refit was
   // possible} of the last tracer update, and with relighting "relight": what it did and its
-  // time in "relight_ms".
+  // time in "relight_ms"; with healing "healed": the Gaussians it added.
   nlohmann::json status() const;
   // {"selection": S, "attribute": "roughness"|"f0"|"diffuse"|"metalness", "bins": 1..256}
   // -> {"count", "total", "attribute", "histogram": [...], "range": [lo, hi]}: how many
@@ -99,6 +101,8 @@ class EditSession {
   std::unique_ptr<GaussianTracer> pristineTracer_;  // built at the first relit edit
   std::string lastRelight_;                          // what the last relighting did
   double lastRelightSeconds_ = 0;
+  std::optional<HealSettings> heal_;
+  size_t lastHealed_ = 0;  // Gaussians the last healing added
   int nextSelectionId_ = 0;
 };
 

@@ -17,6 +17,7 @@
 #include "app/viewer/viewer_camera.h"
 #include "edit/gaussian_edits.h"
 #include "raytrace/trace_settings.h"
+#include "edit/heal_uncovered.h"
 #include "render/differential_relight.h"
 #include "render/gaussian_path.h"
 #include "scene/gaussians.h"
@@ -50,6 +51,8 @@ struct ViewerOptions {
   size_t maxGaussians = kDefaultMaxGaussians;
   // Differential relighting after every edit (glint view --relight), or none.
   std::optional<RelightSettings> relight;
+  // Healing of the surface an edit uncovered, before relighting (glint view --heal), or none.
+  std::optional<HealSettings> heal;
   // How the scene's paths are traced (a run's TrainConfig::path()); the page starts at its
   // bounces and may change them.
   PathSettings path = [] {

@@ -1,0 +1,36 @@
+// Declaring the --heal flags and healing the uncovered surface after an edit.
+#include "app/heal_flags.h"
+
+#include <chrono>
+#include <cstdio>
+
+namespace glint {
+
+void HealFlags::add(CLI::App* cmd) {
+  cmd->add_flag("--heal,!--no-heal", on_,
+                "Fill the surface a moved or removed object uncovered (on by default; --no-heal leaves it as trained) (a floor no training view saw under it) with "
+                "Gaussians continued from the surface around it: colour, normal, roughness, F0, shape; with "
+                "--relight their colour follows the relit surroundings. Heals before relighting");
+  cmd->add_option("--heal-below", settings_.fillBelow,
+                  "--heal fills points of the uncovered surface whose coverage is below this fraction of the "
+                  "surrounding surface's")
+      ->check(CLI::Range(0.0f, 1.0f))
+      ->capture_default_str();
+}
+
+HealReport healAfterEdit(const GaussianScene& before, GaussianScene& after, EditProvenance& provenance,
+                         const HealSettings& settings, std::string* line) {
+  auto started = std::chrono::steady_clock::now();
+  HealReport r = healUncovered(before, after, provenance, settings);
+  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  char text[256];
+  std::snprintf(text, sizeof text,
+                "healed the uncovered surface: %zu Gaussians added at %zu points under %zu vacated ones, %zu hidden ones "
+                "recoloured (%zu support "
+                "Gaussians, spacing %.3g, ring coverage %.2f), %.2f s",
+                r.added, r.candidates, r.vacated, r.recoloured, r.support, double(r.spacing), double(r.ringCoverage), seconds);
+  *line = text;
+  return r;
+}
+
+}  // namespace glint

@@ -1,0 +1,326 @@
+// Healing the uncovered surface: vacated Gaussians projected onto planes fitted to the
+// support around them, points of low coverage filled with Gaussians continued from the ring.
+#include "edit/heal_uncovered.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <span>
+#include <tuple>
+#include <unordered_map>
+
+#include "core/error.h"
+#include "core/parallel.h"
+#include "math/quat.h"
+
+namespace glint {
+
+namespace {
+
+// Gaussians hashed by the cell of their mean, for radius queries of up to one cell.
+class CellGrid {
+ public:
+  CellGrid(const GaussianScene& scene, std::span<const uint32_t> indices, float cell) : scene_(scene), cell_(cell) {
+    for (uint32_t i : indices) cells_[keyOf(scene.position[i])].push_back(i);
+  }
+  // Calls visit(i) for every Gaussian whose mean lies within `radius` (<= cell) of p.
+  template <typename Visit>
+  void near(const Vec3f& p, float radius, Visit&& visit) const {
+    const int64_t cx = coordinate(p.x), cy = coordinate(p.y), cz = coordinate(p.z);
+    const float r2 = radius * radius;
+    for (int64_t dx = -1; dx <= 1; ++dx)
+      for (int64_t dy = -1; dy <= 1; ++dy)
+        for (int64_t dz = -1; dz <= 1; ++dz) {
+          auto found = cells_.find(key(cx + dx, cy + dy, cz + dz));
+          if (found == cells_.end()) continue;
+          for (uint32_t i : found->second) {
+            Vec3f d = scene_.position[i] - p;
+            if (dot(d, d) <= r2) visit(i);
+          }
+        }
+  }
+
+ private:
+  int64_t coordinate(float v) const { return int64_t(std::floor(v / cell_)); }
+  static uint64_t key(int64_t x, int64_t y, int64_t z) {
+    auto bits = [](int64_t v) { return uint64_t(v) & 0x1fffff; };  // 21 bits each
+    return bits(x) | (bits(y) << 21) | (bits(z) << 42);
+  }
+  uint64_t keyOf(const Vec3f& p) const { return key(coordinate(p.x), coordinate(p.y), coordinate(p.z)); }
+
+  const GaussianScene& scene_;
+  float cell_;
+  std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
+};
+
+// The standard deviations across a Gaussian's two widest axes, as one (geometric mean).
+float inPlaneSpread(const GaussianScene& scene, size_t i) {
+  Vec3f s = scene.scale(i);
+  float a[3] = {s.x, s.y, s.z};
+  std::sort(a, a + 3);
+  return std::sqrt(a[1] * a[2]);
+}
+
+float median(std::vector<float> values) {
+  if (values.empty()) return 0;
+  auto middle = values.begin() + std::ptrdiff_t(values.size() / 2);
+  std::nth_element(values.begin(), middle, values.end());
+  return *middle;
+}
+
+// The largest opacity a ray through p along the unit direction w collects from Gaussian i
+// (its response at the ray's closest approach in the Gaussian's own metric), and where along
+// the ray that is.
+float rayAlpha(const GaussianScene& scene, size_t i, const Vec3f& p, const Vec3f& w, float* t) {
+  const Mat3f r = quatToRotation(scene.rotation[i]);
+  const Vec3f s = scene.scale(i);
+  const Vec3f offset = p - scene.position[i];
+  // Local, whitened coordinates: the columns of r are the Gaussian's axes.
+  Vec3f o, d;
+  for (int k = 0; k < 3; ++k) {
+    Vec3f axis(r.m[0][k], r.m[1][k], r.m[2][k]);
+    o[k] = dot(offset, axis) / s[k];
+    d[k] = dot(w, axis) / s[k];
+  }
+  const float dd = std::max(dot(d, d), 1e-20f);
+  *t = -dot(o, d) / dd;
+  const float distanceSquared = std::max(0.0f, dot(o, o) - dot(o, d) * dot(o, d) / dd);
+  return scene.opacity(i) * std::exp(-0.5f * distanceSquared);
+}
+
+// A plane fitted to support Gaussians: their weighted centroid and mean normal.
+struct Plane {
+  Vec3f point, normal;
+  bool valid = false;
+};
+
+}  // namespace
+
+HealReport healUncovered(const GaussianScene& before, GaussianScene& after, EditProvenance& provenance,
+                         const HealSettings& settings) {
+  HealReport report;
+  GLINT_CHECK(settings.fitSpacings > 0 && settings.minSupport >= 1 && settings.continueFrom >= 1,
+              "healUncovered: bad settings");
+  GLINT_CHECK(provenance.source.size() == after.size() && provenance.countBefore == before.size(),
+              "healUncovered: provenance does not match the scenes");
+
+  // Vacated: moved or removed, and not kept where it was by any Gaussian after the edit.
+  std::vector<uint8_t> keptInPlace(before.size(), 0);
+  for (size_t j = 0; j < after.size(); ++j) {
+    const uint32_t i = provenance.source[j];
+    if (provenance.moved[j] && after.position[j] == before.position[i] && after.logScale[j] == before.logScale[i])
+      keptInPlace[i] = 1;
+  }
+  std::vector<uint32_t> vacated;
+  for (uint32_t i : provenance.movedOrRemoved())
+    if (!keptInPlace[i]) vacated.push_back(i);
+  report.vacated = vacated.size();
+  if (vacated.empty()) return report;
+
+  // A sphere around the vacated means.
+  Vec3d sum(0.0);
+  for (uint32_t i : vacated) sum += Vec3d(before.position[i]);
+  const Vec3f centre(sum * (1.0 / double(vacated.size())));
+  float radius = 0;
+  for (uint32_t i : vacated) radius = std::max(radius, length(before.position[i] - centre));
+
+  // Support candidates: unmoved, opaque enough, with a normal, near the sphere. Their spacing
+  // sets every length below; the ring around the sphere is as wide as a plane fit reaches.
+  std::vector<uint32_t> nearby;
+  for (size_t j = 0; j < after.size(); ++j)
+    if (!provenance.moved[j] && after.opacity(j) >= settings.minSupportOpacity &&
+        length(after.normal[j]) >= settings.minNormalLength)
+      nearby.push_back(uint32_t(j));
+  std::vector<float> spreads;
+  for (uint32_t j : nearby)
+    if (length(after.position[j] - centre) <= 1.5f * radius) spreads.push_back(inPlaneSpread(after, j));
+  const float spacing = median(spreads);
+  if (!(spacing > 0)) return report;
+  report.spacing = spacing;
+  const float reach = settings.fitSpacings * spacing;
+  std::vector<uint32_t> support;
+  for (uint32_t j : nearby)
+    if (length(after.position[j] - centre) <= radius + 2.0f * reach) support.push_back(j);
+  report.support = support.size();
+  if (support.size() < size_t(settings.minSupport)) return report;
+  const CellGrid supportGrid(after, support, reach);
+
+  // The ring: support no vacated Gaussian came within reach of (what the training views saw).
+  std::vector<uint8_t> touched(support.size(), 0);
+  {
+    std::unordered_map<uint32_t, size_t> slot;
+    for (size_t k = 0; k < support.size(); ++k) slot[support[k]] = k;
+    std::vector<std::vector<uint32_t>> touchedBy(vacated.size());
+    parallelFor(int64_t(vacated.size()), 64, [&](int64_t v) {
+      supportGrid.near(before.position[vacated[size_t(v)]], reach,
+                       [&](uint32_t j) { touchedBy[size_t(v)].push_back(j); });
+    });
+    for (const auto& list : touchedBy)
+      for (uint32_t j : list) touched[slot[j]] = 1;
+  }
+  std::vector<uint32_t> ring;
+  for (size_t k = 0; k < support.size(); ++k)
+    if (!touched[k]) ring.push_back(support[k]);
+  if (ring.empty()) return report;
+
+  // Coverage of a surface point: the opacity collected along its normal from the Gaussians
+  // (every one after the edit, moved ones included) near the surface there.
+  std::vector<uint32_t> all;
+  for (size_t j = 0; j < after.size(); ++j)
+    if (length(after.position[j] - centre) <= radius + 3.0f * reach) all.push_back(uint32_t(j));
+  const CellGrid allGrid(after, all, reach);
+  const float slab = settings.coverageSlabSpacings * spacing;
+  auto coverage = [&](const Vec3f& p, const Vec3f& n) {
+    float transmittance = 1;
+    allGrid.near(p, reach, [&](uint32_t j) {
+      float t = 0;
+      float alpha = rayAlpha(after, j, p, n, &t);
+      if (std::abs(t) <= slab) transmittance *= 1.0f - std::min(alpha, 0.999f);
+    });
+    return 1.0f - transmittance;
+  };
+  std::vector<float> ringCoverages(ring.size());
+  parallelFor(int64_t(ring.size()), 64, [&](int64_t k) {
+    const uint32_t j = ring[size_t(k)];
+    ringCoverages[size_t(k)] = coverage(after.position[j], normalize(after.normal[j]));
+  });
+  report.ringCoverage = median(ringCoverages);
+
+  // Surface points under the vacated Gaussians: each projected onto the plane fitted to the
+  // support within reach (weights: opacity times a smooth fall-off with distance).
+  struct Candidate {
+    Vec3f point, normal;
+    bool valid = false;
+  };
+  std::vector<Candidate> projected(vacated.size());
+  parallelFor(int64_t(vacated.size()), 64, [&](int64_t v) {
+    const Vec3f c = before.position[vacated[size_t(v)]];
+    double weightSum = 0;
+    Vec3d pointSum(0.0), normalSum(0.0);
+    int count = 0;
+    supportGrid.near(c, reach, [&](uint32_t j) {
+      const float q = 1.0f - dot(after.position[j] - c, after.position[j] - c) / (reach * reach);
+      const double w = double(after.opacity(j)) * double(q * q);
+      weightSum += w;
+      pointSum += Vec3d(after.position[j]) * w;
+      normalSum += Vec3d(normalize(after.normal[j])) * w;
+      ++count;
+    });
+    if (count < settings.minSupport || !(weightSum > 0) || !(length(normalSum) > 0.5 * weightSum)) return;
+    Plane plane{Vec3f(pointSum * (1.0 / weightSum)), Vec3f(normalize(normalSum)), true};
+    double residual = 0;
+    supportGrid.near(c, reach, [&](uint32_t j) {
+      const float q = 1.0f - dot(after.position[j] - c, after.position[j] - c) / (reach * reach);
+      const double h = dot(after.position[j] - plane.point, plane.normal);
+      residual += double(after.opacity(j)) * double(q * q) * h * h;
+    });
+    if (std::sqrt(residual / weightSum) > settings.maxResidualSpacings * spacing) return;
+    // The vacated Gaussian must have stood on the surface's front side, within reach of it.
+    const float height = dot(c - plane.point, plane.normal);
+    if (height < -slab || height > reach) return;
+    projected[size_t(v)] = {c - plane.normal * height, plane.normal, true};
+  });
+
+  // One candidate per cell of the spacing (the lowest vacated index wins: deterministic).
+  std::map<std::tuple<int64_t, int64_t, int64_t>, size_t> firstInCell;
+  for (size_t v = 0; v < projected.size(); ++v) {
+    if (!projected[v].valid) continue;
+    const Vec3f& p = projected[v].point;
+    auto cellOf = [&](float x) { return int64_t(std::floor(x / spacing)); };
+    firstInCell.emplace(std::make_tuple(cellOf(p.x), cellOf(p.y), cellOf(p.z)), v);
+  }
+  std::vector<size_t> candidates;
+  for (const auto& [cell, v] : firstInCell) candidates.push_back(v);
+  std::sort(candidates.begin(), candidates.end());
+  report.candidates = candidates.size();
+
+  // The nearest ring Gaussians to p within eight reaches (by distance, then index), weighted
+  // by inverse distance; false when there are none.
+  const CellGrid ringGrid(after, ring, 8.0f * reach);
+  auto continueRing = [&](const Vec3f& p, HealedGaussian& h) {
+    std::vector<std::pair<float, uint32_t>> found;
+    ringGrid.near(p, 8.0f * reach, [&](uint32_t j) { found.push_back({length(after.position[j] - p), j}); });
+    if (found.empty()) return false;
+    std::sort(found.begin(), found.end());
+    found.resize(std::min(found.size(), size_t(std::max(1, settings.continueFrom))));
+    float total = 0;
+    for (const auto& [distance, j] : found) {
+      h.neighbours.push_back(j);
+      h.weights.push_back(1.0f / std::max(distance, 0.1f * spacing));
+      total += h.weights.back();
+    }
+    for (float& w : h.weights) w /= total;
+    return true;
+  };
+
+  // Support the vacated Gaussians hid: its trained colour is the object's shadow at best.
+  if (settings.recolourSpacings > 0) {
+    const float hidden = settings.recolourSpacings * spacing;
+    const CellGrid vacatedGrid(before, vacated, reach);
+    std::vector<HealedGaussian> recoloured(support.size());
+    std::vector<uint8_t> found(support.size(), 0);
+    parallelFor(int64_t(support.size()), 64, [&](int64_t k) {
+      if (!touched[size_t(k)]) return;
+      const uint32_t j = support[size_t(k)];
+      bool near = false;
+      vacatedGrid.near(after.position[j], hidden, [&](uint32_t) { near = true; });
+      if (near && continueRing(after.position[j], recoloured[size_t(k)])) found[size_t(k)] = 1;
+    });
+    // Colours from the ring only (never from another recoloured Gaussian): order-independent.
+    for (size_t k = 0; k < support.size(); ++k) {
+      if (!found[k]) continue;
+      recoloured[k].index = support[k];
+      report.healed.push_back(std::move(recoloured[k]));
+      ++report.recoloured;
+    }
+    continueHealedColours(report, after);
+  }
+
+  // Fill the candidates of low coverage, continuing the nearest ring Gaussians.
+  std::vector<uint8_t> fill(candidates.size(), 0);
+  std::vector<HealedGaussian> made(candidates.size());
+  parallelFor(int64_t(candidates.size()), 16, [&](int64_t k) {
+    const Candidate& candidate = projected[candidates[size_t(k)]];
+    if (coverage(candidate.point, candidate.normal) >= settings.fillBelow * report.ringCoverage) return;
+    if (continueRing(candidate.point, made[size_t(k)])) fill[size_t(k)] = 1;
+  });
+
+  for (size_t k = 0; k < candidates.size() && report.added < settings.maxAdded; ++k) {
+    if (!fill[k]) continue;
+    const Candidate& candidate = projected[candidates[k]];
+    HealedGaussian h = std::move(made[k]);
+    const uint32_t shape = h.neighbours.front();  // the nearest
+    const size_t index = after.size();
+    GaussianScene copy;  // shape, orientation and opacity of the nearest ring Gaussian
+    copy.append(after, shape);
+    after.append(copy, 0);
+    after.position[index] = candidate.point;
+    after.normal[index] = candidate.normal;
+    Rgb diffuse(0.0f), f0(0.0f);
+    float roughness = 0;
+    for (size_t n = 0; n < h.neighbours.size(); ++n) {
+      diffuse += after.diffuse[h.neighbours[n]] * h.weights[n];
+      f0 += after.f0[h.neighbours[n]] * h.weights[n];
+      roughness += after.roughness[h.neighbours[n]] * h.weights[n];
+    }
+    after.diffuse[index] = diffuse;
+    after.f0[index] = f0;
+    after.roughness[index] = roughness;
+    provenance.source.push_back(provenance.source[shape]);
+    provenance.moved.push_back(1);
+    h.index = uint32_t(index);
+    report.healed.push_back(std::move(h));
+    ++report.added;
+  }
+  return report;
+}
+
+void continueHealedColours(const HealReport& report, GaussianScene& scene) {
+  for (const HealedGaussian& h : report.healed) {
+    Rgb diffuse(0.0f);
+    for (size_t n = 0; n < h.neighbours.size(); ++n) diffuse += scene.diffuse[h.neighbours[n]] * h.weights[n];
+    scene.diffuse[h.index] = diffuse;
+  }
+}
+
+}  // namespace glint

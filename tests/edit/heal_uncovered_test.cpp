@@ -1,0 +1,213 @@
+// Healing the uncovered surface: a ball resting on a flat floor of Gaussians, with the floor
+// under it never trained (a hole, and a dark contact shadow around it), is moved away; the
+// healing fills the hole with floor continued from the lit ring, and touches nothing else.
+#include "edit/heal_uncovered.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/parallel.h"
+#include "edit/edit_file.h"
+#include "math/quat.h"
+#include "math/sampling.h"
+
+namespace glint {
+namespace {
+
+const Rgb kFloorColour(0.5f, 0.4f, 0.3f), kShadowColour(0.05f, 0.04f, 0.03f), kBallColour(0.8f, 0.1f, 0.1f);
+constexpr float kFloorRoughness = 0.6f, kBallRoughness = 0.1f;
+const Rgb kFloorF0(0.04f), kBallF0(0.9f);
+constexpr float kSpacing = 0.05f, kSigma = 0.04f, kOpacity = 0.9f;
+constexpr float kHoleRadius = 0.12f, kShadowRadius = 0.25f;
+
+void addGaussian(GaussianScene& s, const Vec3f& p, const Vec3f& n, const Rgb& diffuse, float roughness, const Rgb& f0,
+                 const Vec3f& logScale) {
+  const size_t i = s.size();
+  s.resize(i + 1);
+  s.position[i] = p;
+  s.normal[i] = n;
+  s.diffuse[i] = diffuse;
+  s.roughness[i] = roughness;
+  s.f0[i] = f0;
+  s.logScale[i] = logScale;
+  s.opacityLogit[i] = logit(kOpacity);
+}
+
+// The floor y = 0 over [-1, 1]^2: flat discs (thin along y) every 5 cm, none within the hole
+// around the origin and shadow-dark ones around it, as training leaves the floor under a ball.
+// A ball of radius 0.3 at `ballCentre` (resting on the floor at the origin when (0, 0.3, 0)).
+GaussianScene floorAndBall(const Vec3f& ballCentre) {
+  GaussianScene s;
+  const Vec3f flat(std::log(kSigma), std::log(0.004f), std::log(kSigma));
+  for (int x = -20; x <= 20; ++x)
+    for (int z = -20; z <= 20; ++z) {
+      const Vec3f p(float(x) * kSpacing, 0, float(z) * kSpacing);
+      const float r = length(p);
+      if (r < kHoleRadius) continue;
+      addGaussian(s, p, {0, 1, 0}, r < kShadowRadius ? kShadowColour : kFloorColour, kFloorRoughness, kFloorF0, flat);
+    }
+  const Vec3f round(std::log(0.03f));
+  for (int a = 0; a < 24; ++a)
+    for (int b = 0; b < 48; ++b) {
+      const float theta = kPi * (float(a) + 0.5f) / 24.0f, phi = 2.0f * kPi * float(b) / 48.0f;
+      const Vec3f n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      addGaussian(s, ballCentre + n * 0.3f, n, kBallColour, kBallRoughness, kBallF0, round);
+    }
+  return s;
+}
+
+struct Edited {
+  GaussianScene before, after;
+  EditProvenance provenance;
+};
+
+// The scene with an edit of the ball (an operation as in an edit file) applied.
+Edited edit(const Vec3f& ballCentre, const std::string& operation) {
+  Edited e;
+  e.before = floorAndBall(ballCentre);
+  e.after = e.before;
+  e.provenance = EditProvenance::identity(e.before.size());
+  const std::string text = R"({"glint_edits": 1, "selections": {"ball": {"sphere": {"center": [)" +
+                           std::to_string(ballCentre.x) + "," + std::to_string(ballCentre.y) + "," +
+                           std::to_string(ballCentre.z) + R"(], "radius": 0.31}}}, "operations": [)" + operation + "]}";
+  applyEdits(parseEditDocument(nlohmann::json::parse(text), "test.json"), e.after, kDefaultMaxGaussians, &e.provenance);
+  return e;
+}
+
+const Vec3f kResting(0, 0.3f, 0);
+const char* kMoveAway = R"({"op": "translate", "selection": "ball", "offset": [0, 0, 2.5]})";
+
+// Opacity-weighted density of the floor layer at p (Gaussians within 1 cm of y = 0), measured
+// across the floor: what a camera looking down at p sees of it.
+float floorCoverage(const GaussianScene& s, const Vec3f& p) {
+  float transmittance = 1;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (std::abs(s.position[i].y) > 0.01f) continue;
+    const Vec3f d = s.position[i] - p;
+    const Vec3f sigma = s.scale(i);
+    const float q = d.x * d.x / (sigma.x * sigma.x) + d.z * d.z / (sigma.z * sigma.z);
+    transmittance *= 1.0f - s.opacity(i) * std::exp(-0.5f * q);
+  }
+  return 1.0f - transmittance;
+}
+
+void expectBitIdentical(const GaussianScene& a, const GaussianScene& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a.position[i], b.position[i]) << i;
+    EXPECT_EQ(a.logScale[i], b.logScale[i]) << i;
+    EXPECT_EQ(a.opacityLogit[i], b.opacityLogit[i]) << i;
+    EXPECT_EQ(a.diffuse[i], b.diffuse[i]) << i;
+    EXPECT_EQ(a.normal[i], b.normal[i]) << i;
+    EXPECT_EQ(a.roughness[i], b.roughness[i]) << i;
+    EXPECT_EQ(a.f0[i], b.f0[i]) << i;
+    EXPECT_EQ(a.rotation[i].w, b.rotation[i].w) << i;
+  }
+}
+
+TEST(HealUncovered, MovingTheBallAwayFillsTheHoleWithTheLitFloor) {
+  Edited e = edit(kResting, kMoveAway);
+  const Vec3f open(0.6f, 0, 0.6f), contact(0, 0, 0);
+  const float openCoverage = floorCoverage(e.after, open);
+  ASSERT_GT(openCoverage, 0.9f);
+  ASSERT_LT(floorCoverage(e.after, contact), 0.1f);  // the hole
+
+  const size_t count = e.after.size();
+  HealReport report = healUncovered(e.before, e.after, e.provenance);
+  EXPECT_EQ(report.vacated, 24u * 48u);
+  EXPECT_GT(report.added, 0u);
+  EXPECT_EQ(e.after.size(), count + report.added);
+  EXPECT_EQ(e.provenance.source.size(), e.after.size());
+  EXPECT_NEAR(floorCoverage(e.after, contact), openCoverage, 0.1f);
+  for (float x : {-0.08f, 0.0f, 0.08f})
+    for (float z : {-0.08f, 0.0f, 0.08f}) EXPECT_GT(floorCoverage(e.after, {x, 0, z}), 0.8f * openCoverage) << x << " " << z;
+
+  // Every added Gaussian lies on the floor, faces up, and continues the lit floor's material
+  // (the ring), not the dark contact shadow nor the ball.
+  for (size_t i = count; i < e.after.size(); ++i) {
+    EXPECT_NEAR(e.after.position[i].y, 0.0f, 1e-4f);
+    EXPECT_NEAR(e.after.normal[i].y, 1.0f, 1e-4f);
+    EXPECT_NEAR(e.after.diffuse[i].x, kFloorColour.x, 1e-4f);
+    EXPECT_NEAR(e.after.diffuse[i].z, kFloorColour.z, 1e-4f);
+    EXPECT_NEAR(e.after.roughness[i], kFloorRoughness, 1e-4f);
+    EXPECT_NEAR(e.after.f0[i].y, kFloorF0.y, 1e-4f);
+    EXPECT_NEAR(e.after.opacity(i), kOpacity, 1e-4f);
+    EXPECT_EQ(e.provenance.moved[i], 1);  // added: relighting does not take them as receivers
+  }
+  // The shadow-dark floor the ball touched takes the continued colour too.
+  EXPECT_GT(report.recoloured, 0u);
+  for (const HealedGaussian& h : report.healed) {
+    EXPECT_NEAR(e.after.diffuse[h.index].y, kFloorColour.y, 1e-4f);
+    float total = 0;
+    for (float w : h.weights) total += w;
+    EXPECT_NEAR(total, 1.0f, 1e-5f);
+  }
+}
+
+TEST(HealUncovered, ProducesOnlyFiniteValues) {
+  Edited e = edit(kResting, kMoveAway);
+  healUncovered(e.before, e.after, e.provenance);
+  for (size_t i = 0; i < e.after.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_TRUE(std::isfinite(e.after.position[i][k]) && std::isfinite(e.after.logScale[i][k]) &&
+                  std::isfinite(e.after.diffuse[i][k]) && std::isfinite(e.after.normal[i][k]) &&
+                  std::isfinite(e.after.f0[i][k]))
+          << i;
+    }
+    EXPECT_TRUE(std::isfinite(e.after.opacityLogit[i]) && std::isfinite(e.after.roughness[i])) << i;
+  }
+}
+
+TEST(HealUncovered, DeletionLeavesTheFloorOutsideTheHoleAsItWas) {
+  Edited e = edit(kResting, R"({"op": "delete", "selection": "ball"})");
+  const GaussianScene deleted = e.after;
+  HealReport report = healUncovered(e.before, e.after, e.provenance);
+  EXPECT_GT(report.added, 0u);
+  // Gaussians not recoloured keep every bit; the recoloured ones change their diffuse only.
+  std::vector<uint8_t> recoloured(deleted.size(), 0);
+  for (const HealedGaussian& h : report.healed)
+    if (h.index < deleted.size()) recoloured[h.index] = 1;
+  for (size_t i = 0; i < deleted.size(); ++i) {
+    EXPECT_EQ(e.after.position[i], deleted.position[i]);
+    EXPECT_EQ(e.after.roughness[i], deleted.roughness[i]);
+    if (!recoloured[i]) EXPECT_EQ(e.after.diffuse[i], deleted.diffuse[i]) << i;
+  }
+}
+
+TEST(HealUncovered, AnEditThatMovesNothingHealsNothing) {
+  for (const char* operation : {R"({"op": "translate", "selection": "ball", "offset": [0, 0, 0]})",
+                                R"({"op": "roughness", "selection": "ball", "set": 0.5})"}) {
+    Edited e = edit(kResting, operation);
+    const GaussianScene edited = e.after;
+    HealReport report = healUncovered(e.before, e.after, e.provenance);
+    EXPECT_EQ(report.added, 0u) << operation;
+    EXPECT_EQ(report.recoloured, 0u) << operation;
+    expectBitIdentical(e.after, edited);
+  }
+}
+
+TEST(HealUncovered, DeletingABallFarFromAnySurfaceAddsNothing) {
+  Edited e = edit(Vec3f(0, 3.0f, 0), R"({"op": "delete", "selection": "ball"})");
+  const GaussianScene edited = e.after;
+  HealReport report = healUncovered(e.before, e.after, e.provenance);
+  EXPECT_GT(report.vacated, 0u);
+  EXPECT_EQ(report.added, 0u);
+  EXPECT_EQ(report.recoloured, 0u);
+  expectBitIdentical(e.after, edited);
+}
+
+TEST(HealUncovered, IsDeterministicWhateverTheThreads) {
+  Edited a = edit(kResting, kMoveAway), b = a;
+  healUncovered(a.before, a.after, a.provenance);
+  {
+    ThreadLimit one(1);
+    healUncovered(b.before, b.after, b.provenance);
+  }
+  expectBitIdentical(a.after, b.after);
+  EXPECT_EQ(a.provenance.source, b.provenance.source);
+}
+
+}  // namespace
+}  // namespace glint
