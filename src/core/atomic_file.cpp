@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cctype>
 #include <charconv>
 #include <cstring>
 #include <fstream>
@@ -22,15 +23,35 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Temporary files are named ".STEM.tmpPID_N.EXT": the real extension stays last because
-// some writers pick the format from it, and the PID tells whose file it is.
-std::string temporaryName(const fs::path& path, int counter) {
-  return "." + path.stem().string() + ".tmp" + std::to_string(getpid()) + "_" + std::to_string(counter) +
-         path.extension().string();
+// This machine's name as it goes into temporary file names: letters, digits and '-' only
+// (a '.' would end the stem, and a '_' parts of the name).
+const std::string& hostTag() {
+  static const std::string tag = [] {
+    char name[256] = "";
+    if (gethostname(name, sizeof(name) - 1) != 0) return std::string("host");
+    std::string t;
+    for (const char* c = name; *c != '\0'; ++c)
+      t += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' ? *c : '-';
+    return t.empty() ? std::string("host") : t;
+  }();
+  return tag;
 }
 
-// The PID in a temporary file's name, or nothing when the name is not one of ours.
-std::optional<pid_t> temporaryOwner(const std::string& name) {
+// Temporary files are named ".STEM.tmpPID_N_HOST.EXT": the real extension stays last because
+// some writers pick the format from it, and the PID and the machine tell whose file it is
+// (the ranks of an MPI job on several machines write into one shared folder).
+std::string temporaryName(const fs::path& path, int counter) {
+  return "." + path.stem().string() + ".tmp" + std::to_string(getpid()) + "_" + std::to_string(counter) + "_" +
+         hostTag() + path.extension().string();
+}
+
+struct TemporaryOwner {
+  pid_t pid = 0;
+  std::string host;  // empty in the names of Glint before machines were named
+};
+
+// Whose temporary file a name is, or nothing when the name is not one of ours.
+std::optional<TemporaryOwner> temporaryOwner(const std::string& name) {
   if (name.empty() || name[0] != '.') return std::nullopt;
   for (size_t at = name.find(".tmp", 1); at != std::string::npos; at = name.find(".tmp", at + 1)) {
     const char* first = name.data() + at + 4;
@@ -41,7 +62,12 @@ std::optional<pid_t> temporaryOwner(const std::string& name) {
     unsigned counter = 0;
     auto [afterCounter, counterError] = std::from_chars(afterPid + 1, last, counter);
     if (counterError != std::errc() || afterCounter == afterPid + 1) continue;
-    if (afterCounter == last || *afterCounter == '.') return pid;
+    if (afterCounter == last || *afterCounter == '.') return TemporaryOwner{pid, ""};
+    if (*afterCounter != '_') continue;
+    const char* host = afterCounter + 1;
+    const char* hostEnd = host;
+    while (hostEnd != last && (std::isalnum(static_cast<unsigned char>(*hostEnd)) || *hostEnd == '-')) ++hostEnd;
+    if (hostEnd != host && (hostEnd == last || *hostEnd == '.')) return TemporaryOwner{pid, std::string(host, hostEnd)};
   }
   return std::nullopt;
 }
@@ -61,8 +87,9 @@ void removeStaleTemporaries(const fs::path& folder) {
   std::error_code ec;
   for (fs::directory_iterator it(folder.empty() ? fs::path(".") : folder, ec), end; !ec && it != end;
        it.increment(ec)) {
-    std::optional<pid_t> owner = temporaryOwner(it->path().filename().string());
-    if (!owner || !processIsGone(*owner)) continue;
+    // Only this machine's processes can be asked whether they are gone.
+    std::optional<TemporaryOwner> owner = temporaryOwner(it->path().filename().string());
+    if (!owner || (!owner->host.empty() && owner->host != hostTag()) || !processIsGone(owner->pid)) continue;
     std::error_code ignored;
     if (it->is_regular_file(ignored)) fs::remove(it->path(), ignored);
   }

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -169,12 +170,23 @@ TEST_F(AtomicFileTest, RemovesTemporariesOfDeadProcessesAndKeepsLiveOnes) {
   const fs::path staleNoExtension = folder / (".log.tmp" + std::to_string(dead) + "_0");
   const fs::path live = folder / (".state.tmp" + std::to_string(getpid()) + "_99.bin");
   const fs::path notOurs = folder / ".state.tmpfoo_1.bin";  // not a PID: left alone
-  for (const fs::path& p : {stale, staleNoExtension, live, notOurs}) std::ofstream(p) << "partial";
+  char host[256] = "";
+  gethostname(host, sizeof(host) - 1);
+  std::string here;
+  for (const char* c = host; *c != '\0'; ++c) here += std::isalnum((unsigned char)*c) || *c == '-' ? *c : '-';
+  // Named with this machine: its process is gone, so removed. Named with another machine (an
+  // MPI rank elsewhere writing into a shared folder): whether its PID lives cannot be told
+  // from here, so kept.
+  const fs::path staleHere = folder / (".state.tmp" + std::to_string(dead) + "_4_" + here + ".bin");
+  const fs::path elsewhere = folder / (".state.tmp" + std::to_string(dead) + "_5_other-node-7.bin");
+  for (const fs::path& p : {stale, staleNoExtension, live, notOurs, staleHere, elsewhere}) std::ofstream(p) << "partial";
   writeTextAtomically(folder / "state.bin", "complete");
   EXPECT_FALSE(fs::exists(stale));
   EXPECT_FALSE(fs::exists(staleNoExtension));
+  EXPECT_FALSE(fs::exists(staleHere));
   EXPECT_TRUE(fs::exists(live));
   EXPECT_TRUE(fs::exists(notOurs));
+  EXPECT_TRUE(fs::exists(elsewhere));
   EXPECT_EQ(readTextFile(folder / "state.bin"), "complete");
 }
 
