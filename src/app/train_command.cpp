@@ -167,9 +167,13 @@ class TrainPrinter : public TrainingObserver {
     } else {
       std::signal(SIGTERM, onInterrupt);
     }
-    std::fprintf(stderr, "glint train: %zu Gaussians, %zu training views (the first %dx%d), %d rays per step, "
-                 "%d threads\n", trainer.scene().size(), views.viewCount(), views.camera(0).width,
-                 views.camera(0).height, config_.batchRays, maxThreads());
+    const std::string workers = cluster::distributed()
+                                    ? std::to_string(cluster::size()) + " MPI ranks of " + std::to_string(maxThreads()) +
+                                          " threads (each traces 1/" + std::to_string(cluster::size()) + " of the rays)"
+                                    : std::to_string(maxThreads()) + " threads";
+    std::fprintf(stderr, "glint train: %zu Gaussians, %zu training views (the first %dx%d), %d rays per step, %s\n",
+                 trainer.scene().size(), views.viewCount(), views.camera(0).width, views.camera(0).height,
+                 config_.batchRays, workers.c_str());
     const SupervisedBuffers& s = views.supervised();
     if (s.finalColour)
       std::fprintf(stderr, "glint train: colours fitted to the final (render) images%s\n",
