@@ -27,8 +27,11 @@ E="--spp 64 --threads 2"
 "$glint" eval R --dataset D $E --edits edits_null.json --heal -o R/eval/null_heal.json
 for e in move duplicate delete; do
   "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --no-relight --no-heal -o "R/eval/$e.json"
-  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --no-heal -o "R/eval/${e}_relight.json"
-  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --heal -o "R/eval/${e}_heal.json"
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --no-heal --relight-max-ratio 4 \
+    -o "R/eval/${e}_relight.json"
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --heal --relight-max-ratio 4 -o "R/eval/${e}_heal.json"
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" -o "R/eval/${e}_default.json"
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --relight-max-ratio 64 -o "R/eval/${e}_clamp64.json"
 done
 python3 - <<'PY'
 import json
@@ -36,12 +39,13 @@ def m(f):
     d = json.load(open('R/eval/' + f + '.json'))['mean']
     return [d[p]['psnr_tonemapped'] for p in ('diffuse', 'specular', 'final')]
 u = m('unedited')
-print('| edit | relighting | healing | diffuse dB | specular dB | final dB | final drop | diffuse drop |')
+print('| edit | relighting (clamp) | healing | diffuse dB | specular dB | final dB | final drop | diffuse drop |')
 print('| --- | --- | --- | --- | --- | --- | --- | --- |')
 print('| none | - | - | %.2f | %.2f | %.2f | - | - |' % tuple(u))
-rows = [('translate by 0', 'null_relight', 'on', 'off'), ('translate by 0', 'null_heal', 'on', 'on')]
+rows = [('translate by 0', 'null_relight', 'on (16)', 'off'), ('translate by 0', 'null_heal', 'on (16)', 'on')]
 for e in ('move', 'duplicate', 'delete'):
-    rows += [(e, e, 'off', 'off'), (e, e + '_relight', 'on', 'off'), (e, e + '_heal', 'on', 'on')]
+    rows += [(e, e, 'off', 'off'), (e, e + '_relight', 'on (4)', 'off'), (e, e + '_heal', 'on (4)', 'on'),
+             (e, e + '_default', 'on (16), the default', 'on'), (e, e + '_clamp64', 'on (64)', 'on')]
 for name, f, r, h in rows:
     v = m(f)
     print('| %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f |' % (name, r, h, v[0], v[1], v[2], u[2] - v[2], u[0] - v[0]))
