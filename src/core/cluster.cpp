@@ -22,7 +22,7 @@ namespace {
 
 int gRank = 0;
 int gSize = 1;
-bool gJoined = false;
+[[maybe_unused]] bool gJoined = false;  // MPI_Init was called (builds with MPI only)
 int gErrorFd = STDERR_FILENO;  // the stderr this process started with
 
 bool launchedByMpi() {
@@ -118,6 +118,16 @@ void join(int* argc, char*** argv) {
 #else
   (void)argc;
   (void)argv;
+  // Started by a launcher as one of several processes, each would run the whole job alone
+  // and write the same files: refuse.
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "SLURM_NTASKS"}) {
+    const char* value = std::getenv(name);
+    if (value != nullptr && std::atoi(value) > 1 && launchedByMpi()) {
+      std::fprintf(stderr, "glint: error: started as one of %s processes by an MPI launcher, but this glint was built "
+                   "without MPI (install libopenmpi-dev and rebuild, or run it without mpirun)\n", value);
+      std::exit(2);
+    }
+  }
 #endif
 }
 
