@@ -243,7 +243,10 @@ int main(int argc, char** argv) {
   }
 
   // The model: nodes like this machine (its 1-process tracing and backward rate, its Adam
-  // and the rest, which every rank does whole), joined by the stated networks.
+  // and the rest, which every rank does whole), joined by the stated networks. Each
+  // exchange costs its CPU time on this machine (its 2-rank time through shared memory,
+  // which moves bytes far faster than any network) plus the network's time; the sparse
+  // exchange's CPU time grows with the rows every rank adds (N x the rows of one share).
   const int width = exchangeWidth(false);
   const int columns = 10;  // 8 parameters, the blend weight, and the split score on scoring steps
   const Network networks[] = {{"10 Gbit/s, 2 us", 10e9, 2e-6},
@@ -251,11 +254,12 @@ int main(int argc, char** argv) {
                               {"100 Gbit/s, 2 us", 100e9, 2e-6},
                               {"100 Gbit/s, 20 us", 100e9, 20e-6}};
   json model = json::array();
-  std::printf("\nModel: step on N nodes = (trace + backward) / N + Adam + other + exchange(N), the exchange the\n"
-              "cheaper of dense and sparse (as the product's automatic choice); batch* = the batch below which\n"
-              "the exchange takes longer than a node's tracing and backward pass.\n\n");
-  std::printf("| Gaussians | network | nodes | exchange | exchange s | step s | speed-up | batch* |\n");
-  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- |\n");
+  std::printf("\nModel of N nodes like this one: step = (trace + backward) / N + Adam + other + exchange, with the\n"
+              "product's dense exchange; exchange = its CPU time here + the network's. Speed-up of rays per second\n"
+              "at the same batch (%d rays) and at a batch N times larger; batch* = the batch below which the\n"
+              "exchange takes longer than a node's tracing and backward pass.\n\n", o.batchRays);
+  std::printf("| Gaussians | network | nodes | dense exchange s | sparse exchange s | step s | speed-up | speed-up, N x batch | batch* |\n");
+  std::printf("| --- | --- | --- | --- | --- | --- | --- | --- | --- |\n");
   for (size_t s = 0; s < o.sizes.size(); ++s) {
     const json& one = single[s];
     const double n = o.sizes[s];
@@ -263,25 +267,34 @@ int main(int argc, char** argv) {
     const double fixed = one["adam_s"].get<double>() + one["other_s"].get<double>();
     const double perRay = compute / o.batchRays;
     // Touched Gaussians of a share of B / N rays: n (1 - exp(-h B / (N n))), h fitted to the
-    // sparse run's count at R ranks.
-    double touched = 0;
-    for (const json& j : ranks)
-      if (j["gaussians"].get<int>() == o.sizes[s] && j["exchange"] == "sparse") touched = touchedPerRank(j, width);
+    // sparse run's count at R ranks; and each exchange's CPU time there.
+    double touched = 0, denseCpu = 0, sparseCpu = 0;
+    for (const json& j : ranks) {
+      if (j["gaussians"].get<int>() != o.sizes[s]) continue;
+      if (j["exchange"] == "sparse") {
+        touched = touchedPerRank(j, width);
+        sparseCpu = j["exchange_s"].get<double>();
+      } else {
+        denseCpu = j["exchange_s"].get<double>();
+      }
+    }
     const double fraction = std::min(touched / n, 0.999999);
     const double h = -std::log(1.0 - fraction) * n * o.ranks / o.batchRays;
     for (const Network& net : networks)
       for (int N : {4, 16, 64}) {
         const double share = n * (1.0 - std::exp(-h * o.batchRays / (double(N) * n)));
-        const double dense = denseSeconds(n, width, columns, N, net);
-        const double sparse = sparseSeconds(share, width, N, net);
-        const double exchange = std::min(dense, sparse);
-        const double step = compute / N + fixed + exchange;
+        const double dense = denseCpu + denseSeconds(n, width, columns, N, net);
+        const double sparse =
+            sparseCpu * (N * share) / (o.ranks * std::max(touched, 1.0)) + sparseSeconds(share, width, N, net);
+        const double step = compute / N + fixed + dense;
         const double speedup = (compute + fixed) / step;
-        const double batchStar = N * exchange / perRay;
-        std::printf("| %.0f | %s | %d | %s | %.4f | %.3f | %.1f | %.0f |\n", n, net.name, N,
-                    sparse < dense ? "sparse" : "dense", exchange, step, speedup, batchStar);
-        model.push_back({{"gaussians", n}, {"network", net.name}, {"nodes", N}, {"exchange", sparse < dense ? "sparse" : "dense"},
-                         {"exchange_s", exchange}, {"step_s", step}, {"speedup", speedup}, {"batch_star", batchStar}});
+        const double weakSpeedup = N * (compute + fixed) / (compute + fixed + dense);
+        const double batchStar = N * dense / perRay;
+        std::printf("| %.0f | %s | %d | %.4f | %.4f | %.3f | %.1f | %.1f | %.0f |\n", n, net.name, N, dense, sparse, step,
+                    speedup, weakSpeedup, batchStar);
+        model.push_back({{"gaussians", n}, {"network", net.name}, {"nodes", N}, {"dense_exchange_s", dense},
+                         {"sparse_exchange_s", sparse}, {"step_s", step}, {"speedup", speedup},
+                         {"speedup_n_times_batch", weakSpeedup}, {"batch_star", batchStar}});
       }
   }
   if (!o.jsonPath.empty()) {

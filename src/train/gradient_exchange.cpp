@@ -91,24 +91,17 @@ ExchangeStats sumOverRanks(GaussianGradients& gradient, std::span<float> extra, 
   const int N = cluster::size();
   std::vector<Column> columns = columnsOf(gradient, extra);
 
-  // Sparse rows are made first when they may be used: the ranks agree on the mode from
-  // the total count of rows, the same number on every rank.
-  std::vector<std::byte> rows;
-  if (mode != ExchangeMode::Dense) rows = touchedRows(columns, n, width);
-  const uint64_t rowBytes = sizeof(uint32_t) + uint64_t(width) * sizeof(float);
-  int64_t counts[1] = {int64_t(rows.size() / rowBytes)};
-  if (mode != ExchangeMode::Dense) cluster::sumInRankOrder(std::span<int64_t>(counts, 1));
-  const uint64_t denseBytesIn = 2 * uint64_t(N - 1) * uint64_t(n) * uint64_t(width) * sizeof(float) / uint64_t(N);
-  const uint64_t sparseBytesIn = (uint64_t(counts[0]) - rows.size() / rowBytes) * rowBytes;
-  stats.sparse = mode == ExchangeMode::Sparse ||
-                 (mode == ExchangeMode::Auto && uint64_t(counts[0]) * rowBytes < denseBytesIn);
-  stats.touched = uint64_t(counts[0]);
+  stats.sparse = mode == ExchangeMode::Sparse;
   if (stats.sparse) {
-    addRows(cluster::allGather(rows), columns, width);
-    stats.bytesIn = sparseBytesIn;
+    const uint64_t rowBytes = sizeof(uint32_t) + uint64_t(width) * sizeof(float);
+    const std::vector<std::byte> rows = touchedRows(columns, n, width);
+    const std::vector<std::vector<std::byte>> all = cluster::allGather(rows);
+    for (const std::vector<std::byte>& r : all) stats.touched += r.size() / rowBytes;
+    stats.bytesIn = (stats.touched - rows.size() / rowBytes) * rowBytes;
+    addRows(all, columns, width);
   } else {
     for (Column& c : columns) cluster::sumInRankOrder(c.values);
-    stats.bytesIn = denseBytesIn;
+    stats.bytesIn = 2 * uint64_t(N - 1) * uint64_t(n) * uint64_t(width) * sizeof(float) / uint64_t(N);
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return stats;

@@ -10,10 +10,14 @@
 
 namespace glint {
 
+// Training uses Dense unless `glint train --exchange sparse`: bench/cluster_bench measured
+// it faster at 100k and 500k Gaussians on one machine (the sparse exchange moves 2.4 to 4.4
+// times fewer bytes, but finding, packing and adding the rows costs more than that saves
+// through shared memory); its model has sparse ahead at 500k Gaussians on 10 Gbit/s links
+// (README, "Running on a cluster").
 enum class ExchangeMode {
   Dense,   // every Gaussian's entries: a reduce-scatter and an all-gather of the arrays
   Sparse,  // only the Gaussians some ray of the rank touched: an all-gather of (index, entries) rows
-  Auto,    // whichever moves fewer bytes this step (the ranks agree on it first)
 };
 
 struct ExchangeStats {

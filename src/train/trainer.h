@@ -102,7 +102,7 @@ class Trainer {
   TrainConfig config_;
   const TrainingViews& views_;
   std::vector<CameraSphere> spheres_;
-  ExchangeMode exchangeMode_ = ExchangeMode::Auto;
+  ExchangeMode exchangeMode_ = ExchangeMode::Dense;
   GaussianScene scene_;
   float extent_ = 1;
   int64_t step_ = 0;

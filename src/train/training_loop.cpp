@@ -179,6 +179,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     trainer = std::make_unique<Trainer>(config, views, std::move(spheres),
                                         decodeCheckpoint(bytes, "the state rank 0 sent"), session.tracer);
   }
+  trainer->setExchangeMode(session.exchange);
   observer.started(*trainer, dataset, views);
 
   // Rank 0 alone writes the log, checkpoints and scene, and scores the test views.

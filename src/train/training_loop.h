@@ -23,6 +23,8 @@ struct TrainingSession {
   std::string tracer = "fast";  // Gaussian tracer of training and of its test-view score
   int evalViews = 20;           // test views scored (evenly spaced; 0 = none)
   int evalSpp = 4;              // jittered samples per pixel of the score
+  // How the ranks of an MPI job sum their gradients (identical results either way).
+  ExchangeMode exchange = ExchangeMode::Dense;
 };
 
 // Everything the loop reports; each method does nothing unless overridden.
