@@ -66,6 +66,16 @@ int runGlint(int argc, char** argv) {
                  near ? ("; did you mean '" + *near + "'?").c_str() : "", names.c_str());
     return 1;
   }
+  // Under an MPI launcher only the commands that share their work over the ranks run; any
+  // other would run whole on every rank, each writing the same files.
+  const std::vector<std::string> distributable = {"train", "render", "eval", "synth"};
+  if (glint::cluster::distributed() && argv[1][0] != '-' &&
+      std::find(distributable.begin(), distributable.end(), argv[1]) == distributable.end()) {
+    if (glint::cluster::isRoot())
+      std::fprintf(stderr, "glint: error: glint %s runs in one process; start it without mpirun or srun (train, "
+                   "render, eval and synth run over MPI)\n", argv[1]);
+    return 2;
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ExtrasError& e) {
