@@ -1,6 +1,7 @@
 // Dense and sparse exchanges of per-Gaussian sums over the ranks of an MPI job.
 #include "train/gradient_exchange.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 #include <vector>
@@ -36,9 +37,23 @@ bool touched(const std::vector<Column>& columns, size_t i) {
 
 // This rank's touched Gaussians as rows of a uint32 index and `width` floats.
 std::vector<std::byte> touchedRows(const std::vector<Column>& columns, size_t n, int width) {
-  std::vector<uint32_t> ids;
-  for (size_t i = 0; i < n; ++i)
-    if (touched(columns, i)) ids.push_back(uint32_t(i));
+  // The touched indices in increasing order: each chunk of Gaussians counts its own, then
+  // writes them after the chunks before it.
+  constexpr int64_t kChunk = 16384;
+  const int64_t chunks = (int64_t(n) + kChunk - 1) / kChunk;
+  std::vector<size_t> firstOfChunk(size_t(chunks) + 1, 0);
+  parallelFor(chunks, 1, [&](int64_t c) {
+    size_t count = 0;
+    for (size_t i = size_t(c * kChunk); i < std::min(n, size_t((c + 1) * kChunk)); ++i) count += touched(columns, i);
+    firstOfChunk[size_t(c) + 1] = count;
+  });
+  for (size_t c = 0; c < size_t(chunks); ++c) firstOfChunk[c + 1] += firstOfChunk[c];
+  std::vector<uint32_t> ids(firstOfChunk.back());
+  parallelFor(chunks, 1, [&](int64_t c) {
+    size_t at = firstOfChunk[size_t(c)];
+    for (size_t i = size_t(c * kChunk); i < std::min(n, size_t((c + 1) * kChunk)); ++i)
+      if (touched(columns, i)) ids[at++] = uint32_t(i);
+  });
   const size_t rowBytes = sizeof(uint32_t) + size_t(width) * sizeof(float);
   std::vector<std::byte> rows(ids.size() * rowBytes);
   parallelForChunks(int64_t(ids.size()), 4096, [&](int64_t begin, int64_t end) {
