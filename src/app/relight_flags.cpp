@@ -17,6 +17,11 @@ void RelightFlags::add(CLI::App* cmd) {
                   "Rays per Gaussian toward the edited objects for --relight (fewer for Gaussians far from them)")
       ->check(CLI::Range(1, 65536))
       ->capture_default_str();
+  cmd->add_option("--relight-filter", settings_.filterRadius,
+                  "--relight averages each Gaussian's ratio with its neighbours' (facing the same way) within this "
+                  "many of its largest standard deviations; 0 = no filter")
+      ->check(CLI::Range(0.0f, 100.0f))
+      ->capture_default_str();
   cmd->add_option("--relight-max-ratio", settings_.maxRatio,
                   "--relight changes no diffuse colour by more than this factor, up or down")
       ->check(CLI::Range(1.0f, 1000.0f))

@@ -12,46 +12,11 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "math/quat.h"
+#include "scene/gaussian_cell_grid.h"
 
 namespace glint {
 
 namespace {
-
-// Gaussians hashed by the cell of their mean, for radius queries of up to one cell.
-class CellGrid {
- public:
-  CellGrid(const GaussianScene& scene, std::span<const uint32_t> indices, float cell) : scene_(scene), cell_(cell) {
-    for (uint32_t i : indices) cells_[keyOf(scene.position[i])].push_back(i);
-  }
-  // Calls visit(i) for every Gaussian whose mean lies within `radius` (<= cell) of p.
-  template <typename Visit>
-  void near(const Vec3f& p, float radius, Visit&& visit) const {
-    const int64_t cx = coordinate(p.x), cy = coordinate(p.y), cz = coordinate(p.z);
-    const float r2 = radius * radius;
-    for (int64_t dx = -1; dx <= 1; ++dx)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dz = -1; dz <= 1; ++dz) {
-          auto found = cells_.find(key(cx + dx, cy + dy, cz + dz));
-          if (found == cells_.end()) continue;
-          for (uint32_t i : found->second) {
-            Vec3f d = scene_.position[i] - p;
-            if (dot(d, d) <= r2) visit(i);
-          }
-        }
-  }
-
- private:
-  int64_t coordinate(float v) const { return int64_t(std::floor(v / cell_)); }
-  static uint64_t key(int64_t x, int64_t y, int64_t z) {
-    auto bits = [](int64_t v) { return uint64_t(v) & 0x1fffff; };  // 21 bits each
-    return bits(x) | (bits(y) << 21) | (bits(z) << 42);
-  }
-  uint64_t keyOf(const Vec3f& p) const { return key(coordinate(p.x), coordinate(p.y), coordinate(p.z)); }
-
-  const GaussianScene& scene_;
-  float cell_;
-  std::unordered_map<uint64_t, std::vector<uint32_t>> cells_;
-};
 
 // The standard deviations across a Gaussian's two widest axes, as one (geometric mean).
 float inPlaneSpread(const GaussianScene& scene, size_t i) {

@@ -4,8 +4,9 @@
 
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <vector>
+
+#include "scene/gaussian_cell_grid.h"
 
 namespace glint {
 
@@ -25,22 +26,12 @@ bool similar(const Material& a, const Material& b, float tolerance) {
          std::abs(a.roughness - b.roughness) <= tolerance;
 }
 
-// The key of the cell holding integer coordinates (x, y, z).
-uint64_t cellKey(int64_t x, int64_t y, int64_t z) {
-  auto bits = [](int64_t v) { return uint64_t(v) & 0x1fffff; };  // 21 bits each
-  return bits(x) | (bits(y) << 21) | (bits(z) << 42);
-}
-
 }  // namespace
 
 void growSelection(const SelectionGrowth& growth, const GaussianScene& scene, GaussianMask& mask) {
-  const float cell = growth.distance;
-  auto coordinate = [&](float v) { return int64_t(std::floor(v / cell)); };
-  std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
-  for (size_t i = 0; i < scene.size(); ++i) {
-    const Vec3f& p = scene.position[i];
-    grid[cellKey(coordinate(p.x), coordinate(p.y), coordinate(p.z))].push_back(uint32_t(i));
-  }
+  std::vector<uint32_t> all(scene.size());
+  for (size_t i = 0; i < all.size(); ++i) all[i] = uint32_t(i);
+  const CellGrid grid(scene, all, growth.distance);
   std::vector<Material> materials(scene.size());
   for (size_t i = 0; i < scene.size(); ++i) materials[i] = materialOf(scene, i);
   // Breadth-first from every selected Gaussian; the set reached is the closure of the
@@ -48,26 +39,15 @@ void growSelection(const SelectionGrowth& growth, const GaussianScene& scene, Ga
   std::vector<uint32_t> frontier;
   for (size_t i = 0; i < mask.size(); ++i)
     if (mask[i]) frontier.push_back(uint32_t(i));
-  const float distanceSquared = growth.distance * growth.distance;
   while (!frontier.empty()) {
     std::vector<uint32_t> next;
     for (uint32_t i : frontier) {
-      const Vec3f& p = scene.position[i];
       const Material& material = materials[i];
-      const int64_t cx = coordinate(p.x), cy = coordinate(p.y), cz = coordinate(p.z);
-      for (int64_t dx = -1; dx <= 1; ++dx)
-        for (int64_t dy = -1; dy <= 1; ++dy)
-          for (int64_t dz = -1; dz <= 1; ++dz) {
-            auto found = grid.find(cellKey(cx + dx, cy + dy, cz + dz));
-            if (found == grid.end()) continue;
-            for (uint32_t j : found->second) {
-              if (mask[j]) continue;
-              Vec3f d = scene.position[j] - p;
-              if (dot(d, d) > distanceSquared || !similar(material, materials[j], growth.tolerance)) continue;
-              mask[j] = 1;
-              next.push_back(j);
-            }
-          }
+      grid.near(scene.position[i], growth.distance, [&](uint32_t j) {
+        if (mask[j] || !similar(material, materials[j], growth.tolerance)) return;
+        mask[j] = 1;
+        next.push_back(j);
+      });
     }
     frontier = std::move(next);
   }

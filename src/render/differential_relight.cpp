@@ -13,6 +13,7 @@
 #include "math/owen_sobol.h"
 #include "math/rng.h"
 #include "math/sampling.h"
+#include "scene/gaussian_cell_grid.h"
 
 namespace glint {
 
@@ -87,6 +88,49 @@ Rgb irradianceRatio(const Rgb& before, const Rgb& change, float maxRatio, bool* 
   return ratio;
 }
 
+// The filter of RelightSettings::filterRadius over the receivers within reach.
+std::vector<Rgb> filteredRatios(const GaussianScene& scene, std::span<const uint32_t> receivers,
+                                const std::vector<uint8_t>& inReach, const std::vector<Rgb>& ratios,
+                                const RelightSettings& settings) {
+  std::vector<uint32_t> reached;  // indices into receivers
+  std::vector<uint32_t> sceneIndices;
+  float largest = 0;
+  for (size_t i = 0; i < receivers.size(); ++i)
+    if (inReach[i]) {
+      reached.push_back(uint32_t(i));
+      sceneIndices.push_back(receivers[i]);
+      const Vec3f s = scene.scale(receivers[i]);
+      largest = std::max({largest, s.x, s.y, s.z});
+    }
+  if (reached.empty() || !(largest > 0)) return ratios;
+  // Cells as wide as the largest radius any receiver asks for.
+  const float cell = settings.filterRadius * largest;
+  std::vector<uint32_t> receiverOf(scene.size(), UINT32_MAX);
+  for (uint32_t r : reached) receiverOf[receivers[r]] = r;
+  const CellGrid grid(scene, sceneIndices, cell);
+  std::vector<Rgb> filtered = ratios;
+  parallelFor(int64_t(reached.size()), 64, [&](int64_t k) {
+    const uint32_t r = reached[size_t(k)];
+    const uint32_t g = receivers[r];
+    const Vec3f s = scene.scale(g);
+    const float radius = settings.filterRadius * std::max({s.x, s.y, s.z});
+    const float sigma2 = 0.25f * radius * radius;  // the weight falls to e^-2 at the radius
+    const Vec3f n = normalize(scene.normal[g]);
+    Rgb sum(0.0f);
+    float weights = 0;
+    grid.near(scene.position[g], radius, [&](uint32_t j) {
+      if (dot(normalize(scene.normal[j]), n) < settings.filterCosine) return;
+      const Vec3f d = scene.position[j] - scene.position[g];
+      const float w = std::exp(-0.5f * dot(d, d) / sigma2);
+      sum += ratios[receiverOf[j]] * w;
+      weights += w;
+    });
+    // A division, not a product with 1 / weights: ratios that are all 1 stay exactly 1.
+    if (weights > 0) filtered[r] = Rgb(sum.x / weights, sum.y / weights, sum.z / weights);
+  });
+  return filtered;
+}
+
 }  // namespace
 
 std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTracer& after,
@@ -98,6 +142,7 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
                   settings.maxRatio >= 1 && settings.minRelativeChange >= 0,
               "relightRatios: bad settings");
   std::vector<Rgb> ratios(receivers.size(), Rgb(1.0f));
+  std::vector<uint8_t> inReach(receivers.size(), 0);
   std::atomic<size_t> reached = 0, changed = 0, clampedCount = 0;
   std::atomic<uint64_t> rays = 0;
   ProgressBar progress("relight", int64_t(receivers.size()), "Gaussians");
@@ -116,6 +161,7 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     for (int c = 0; c < coneCount; ++c) solidAngle += cones[c].solidAngle, largest = std::max(largest, cones[c].solidAngle);
     if (coneCount == 0 || largest < settings.minSolidAngle) return progress.advance();
     reached.fetch_add(1, std::memory_order_relaxed);
+    inReach[size_t(i)] = 1;
 
     // dE by one-sample MIS over the cones: pick a cone uniformly, a direction in it, and
     // divide by the mean of the densities of every cone that holds the direction.
@@ -175,6 +221,7 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     rays.fetch_add(traced, std::memory_order_relaxed);
     progress.advance();
   });
+  if (settings.filterRadius > 0) ratios = filteredRatios(afterScene, receivers, inReach, ratios, settings);
   if (report) {
     report->receivers = receivers.size();
     report->reached = reached;

@@ -51,6 +51,12 @@ struct RelightSettings {
   float minSolidAngle = 1e-3f;
   // Receivers need a normal at least this long (far-field Gaussians have none).
   float minNormalLength = 0.5f;
+  // The filter across neighbouring Gaussians: each receiver's ratio becomes the mean of the
+  // ratios of the receivers within filterRadius of its largest standard deviations that face
+  // the same way (normals within filterCosine), weighted by a Gaussian of distance; 0 = none.
+  // Only receivers within reach of a changed region take part, so the rest stay as trained.
+  float filterRadius = 0.0f;
+  float filterCosine = 0.8f;
   uint64_t seed = 0;
   // Ray origins move this far along the normal; rays skip back-facing Gaussians this close
   // (as reflected rays do, appendix B of the paper).

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <utility>
 
 #include "math/frame.h"
 #include "math/rng.h"
@@ -97,13 +98,19 @@ size_t floorIndexAt(const Room& room, float x, float y) {
   return best;
 }
 
-TEST(DifferentialRelight, DeletedOccluderLiftsItsShadowToTheOpenFloor) {
+// The room with its plate and its floor baked, and the same room after the plate's deletion:
+// the floor keeps the colours baked under the plate.
+std::pair<Room, Room> deletedPlate() {
   Room before = makeRoom(true);
   bakeFloor(before);
-  // The same room without the plate: the floor keeps the colours baked under it.
   Room after = makeRoom(false);
   for (size_t i = 0; i < before.floor.size(); ++i)
     after.scene.diffuse[after.floor[i]] = before.scene.diffuse[before.floor[i]];
+  return {std::move(before), std::move(after)};
+}
+
+TEST(DifferentialRelight, DeletedOccluderLiftsItsShadowToTheOpenFloor) {
+  auto [before, after] = deletedPlate();
 
   const size_t centre = floorIndexAt(before, 0, 0), open = floorIndexAt(before, 0.45f, 0.45f);
   const float shadowBefore = before.scene.diffuse[before.floor[centre]].x;
@@ -138,10 +145,43 @@ TEST(DifferentialRelight, AnEditThatChangesNothingChangesNoColour) {
   std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(room.scene), afterTracer = tracerOf(edited);
   const ChangedRegion region = changedRegionOf(room.scene, room.plate);
   const ChangedRegion regions[] = {region, region};
-  RelightReport report = relightDiffuse(*beforeTracer, *afterTracer, edited, room.floor, regions, RelightSettings());
-  EXPECT_GT(report.reached, 0u);
-  EXPECT_EQ(report.changed, 0u);
-  for (uint32_t g : room.floor) EXPECT_EQ(edited.diffuse[g], room.scene.diffuse[g]) << g;
+  for (float filter : {0.0f, 3.0f}) {
+    RelightSettings settings;
+    settings.filterRadius = filter;
+    GaussianScene relit = edited;
+    RelightReport report = relightDiffuse(*beforeTracer, *afterTracer, relit, room.floor, regions, settings);
+    EXPECT_GT(report.reached, 0u);
+    EXPECT_EQ(report.changed, 0u);
+    for (uint32_t g : room.floor) EXPECT_EQ(relit.diffuse[g], room.scene.diffuse[g]) << g << " filter " << filter;
+  }
+}
+
+// With few rays per Gaussian the ratios are noisy; the filter across neighbours facing the
+// same way brings them closer to the brute-force answer where the light varies slowly (the
+// open floor left by a deleted occluder).
+TEST(DifferentialRelight, FilterAcrossNeighboursLowersTheNoiseOfFewRays) {
+  auto [before, after] = deletedPlate();
+  std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(before.scene), afterTracer = tracerOf(after.scene);
+  const ChangedRegion regions[] = {changedRegionOf(before.scene, before.plate)};
+  RelightSettings settings;
+  settings.rays = settings.minRays = 2;
+  settings.hemisphereRays = settings.quickRays = 4;
+  double error[2] = {0, 0};
+  for (int filtered = 0; filtered < 2; ++filtered) {
+    settings.filterRadius = filtered ? 3.0f : 0.0f;
+    std::vector<Rgb> ratios =
+        relightRatios(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings);
+    for (size_t i = 0; i < after.floor.size(); i += 5) {
+      const uint32_t g = after.floor[i];
+      const float truth = bruteForceIrradiance(*afterTracer, after.scene, g, 1024).x * kAlbedo / kPi;
+      const float relit = after.scene.diffuse[g].x * ratios[i].x;
+      ASSERT_TRUE(std::isfinite(relit));
+      error[filtered] += std::abs(relit / truth - 1.0f);
+    }
+  }
+  EXPECT_GT(error[0] / 80, 0.02) << "two rays per Gaussian should leave visible noise";
+  EXPECT_LT(error[1], 0.6 * error[0]) << "mean relative error without the filter " << error[0] / 80
+                                     << ", with it " << error[1] / 80;
 }
 
 TEST(DifferentialRelight, RatioStaysFiniteWhereTheUneditedSceneWasDark) {
