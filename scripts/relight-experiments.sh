@@ -30,8 +30,10 @@ for e in move duplicate delete; do
   "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --no-heal --relight-max-ratio 4 \
     -o "R/eval/${e}_relight.json"
   "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --heal --relight-max-ratio 4 -o "R/eval/${e}_heal.json"
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --relight-filter 0 -o "R/eval/${e}_clamp16.json"
+  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --relight-filter 0 --relight-max-ratio 64 \
+    -o "R/eval/${e}_clamp64.json"
   "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" -o "R/eval/${e}_default.json"
-  "$glint" eval R --dataset "D_$e" $E --edits "edits_$e.json" --relight-max-ratio 64 -o "R/eval/${e}_clamp64.json"
 done
 python3 - <<'PY'
 import json
@@ -42,10 +44,11 @@ u = m('unedited')
 print('| edit | relighting (clamp) | healing | diffuse dB | specular dB | final dB | final drop | diffuse drop |')
 print('| --- | --- | --- | --- | --- | --- | --- | --- |')
 print('| none | - | - | %.2f | %.2f | %.2f | - | - |' % tuple(u))
-rows = [('translate by 0', 'null_relight', 'on (16)', 'off'), ('translate by 0', 'null_heal', 'on (16)', 'on')]
+rows = [('translate by 0', 'null_relight', 'on (default)', 'off'), ('translate by 0', 'null_heal', 'on (default)', 'on')]
 for e in ('move', 'duplicate', 'delete'):
     rows += [(e, e, 'off', 'off'), (e, e + '_relight', 'on (4)', 'off'), (e, e + '_heal', 'on (4)', 'on'),
-             (e, e + '_default', 'on (16), the default', 'on'), (e, e + '_clamp64', 'on (64)', 'on')]
+             (e, e + '_clamp16', 'on (16), no filter', 'on'), (e, e + '_clamp64', 'on (64), no filter', 'on'),
+             (e, e + '_default', 'on (16), filter 1: the default', 'on')]
 for name, f, r, h in rows:
     v = m(f)
     print('| %s | %s | %s | %.2f | %.2f | %.2f | %.2f | %.2f |' % (name, r, h, v[0], v[1], v[2], u[2] - v[2], u[0] - v[0]))

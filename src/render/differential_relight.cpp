@@ -221,7 +221,10 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     rays.fetch_add(traced, std::memory_order_relaxed);
     progress.advance();
   });
-  if (settings.filterRadius > 0) ratios = filteredRatios(afterScene, receivers, inReach, ratios, settings);
+  if (settings.filterRadius > 0) {
+    ratios = filteredRatios(afterScene, receivers, inReach, ratios, settings);
+    changed = size_t(std::count_if(ratios.begin(), ratios.end(), [](const Rgb& r) { return r != Rgb(1.0f); }));
+  }
   if (report) {
     report->receivers = receivers.size();
     report->reached = reached;

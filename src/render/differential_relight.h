@@ -55,7 +55,10 @@ struct RelightSettings {
   // ratios of the receivers within filterRadius of its largest standard deviations that face
   // the same way (normals within filterCosine), weighted by a Gaussian of distance; 0 = none.
   // Only receivers within reach of a changed region take part, so the rest stay as trained.
-  float filterRadius = 0.0f;
+  // On builtin:spheres a radius of 1 lowered the final-image drop of a move from 1.18 to
+  // 0.86 dB and of a deletion from 1.21 to 0.75 (a duplication: 1.19 to 1.17); 0.5, 1.5, 2, 3,
+  // 4 and 6 did less (README, "Edits that move shadows").
+  float filterRadius = 1.0f;
   float filterCosine = 0.8f;
   uint64_t seed = 0;
   // Ray origins move this far along the normal; rays skip back-facing Gaussians this close
