@@ -170,61 +170,52 @@ void sumInRankOrder(std::span<float> values) { sumAll(values); }
 void sumInRankOrder(std::span<double> values) { sumAll(values); }
 void sumInRankOrder(std::span<int64_t> values) { sumAll(values); }
 
-std::vector<std::vector<std::byte>> allGather(std::span<const std::byte> mine) {
+namespace {
+
+// Every rank's bytes in rank order, on every rank (toRoot false) or on rank 0 alone (true:
+// the other ranks get an empty list).
+std::vector<std::vector<std::byte>> gatherBytes(std::span<const std::byte> mine, bool toRoot) {
   std::vector<std::vector<std::byte>> all;
   if (!distributed()) {
     all.emplace_back(mine.begin(), mine.end());
     return all;
   }
 #ifdef GLINT_HAVE_MPI
-  GLINT_CHECK(mine.size() < size_t(INT_MAX), "cluster::allGather: more than 2 GB from one rank");
+  GLINT_CHECK(mine.size() < size_t(INT_MAX), "cluster: more than 2 GB gathered from one rank");
+  const bool receives = !toRoot || isRoot();
   int length = int(mine.size());
   std::vector<int> lengths(static_cast<size_t>(gSize), 0), offsets(static_cast<size_t>(gSize), 0);
-  check(MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD), "all-gather");
+  if (toRoot)
+    check(MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "gather");
+  else
+    check(MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD), "all-gather");
   int64_t total = 0;
   for (int r = 0; r < gSize; ++r) {
     offsets[size_t(r)] = int(total);
     total += lengths[size_t(r)];
   }
-  GLINT_CHECK(total < int64_t(INT_MAX), "cluster::allGather: more than 2 GB in all");
-  std::vector<std::byte> joined(static_cast<size_t>(total));
-  check(MPI_Allgatherv(mine.data(), length, MPI_BYTE, joined.data(), lengths.data(), offsets.data(), MPI_BYTE,
-                       MPI_COMM_WORLD),
-        "all-gather");
-  for (int r = 0; r < gSize; ++r)
-    all.emplace_back(joined.begin() + offsets[size_t(r)], joined.begin() + offsets[size_t(r)] + lengths[size_t(r)]);
+  GLINT_CHECK(!receives || total < int64_t(INT_MAX), "cluster: more than 2 GB gathered in all");
+  std::vector<std::byte> joined(receives ? size_t(total) : 0);
+  if (toRoot)
+    check(MPI_Gatherv(mine.data(), length, MPI_BYTE, joined.data(), lengths.data(), offsets.data(), MPI_BYTE, 0,
+                      MPI_COMM_WORLD),
+          "gather");
+  else
+    check(MPI_Allgatherv(mine.data(), length, MPI_BYTE, joined.data(), lengths.data(), offsets.data(), MPI_BYTE,
+                         MPI_COMM_WORLD),
+          "all-gather");
+  if (receives)
+    for (int r = 0; r < gSize; ++r)
+      all.emplace_back(joined.begin() + offsets[size_t(r)], joined.begin() + offsets[size_t(r)] + lengths[size_t(r)]);
 #endif
   return all;
 }
 
-std::vector<std::vector<std::byte>> gatherToRoot(std::span<const std::byte> mine) {
-  std::vector<std::vector<std::byte>> all;
-  if (!distributed()) {
-    all.emplace_back(mine.begin(), mine.end());
-    return all;
-  }
-#ifdef GLINT_HAVE_MPI
-  GLINT_CHECK(mine.size() < size_t(INT_MAX), "cluster::gatherToRoot: more than 2 GB from one rank");
-  int length = int(mine.size());
-  std::vector<int> lengths(static_cast<size_t>(gSize), 0), offsets(static_cast<size_t>(gSize), 0);
-  check(MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD), "gather");
-  int64_t total = 0;
-  for (int r = 0; r < gSize; ++r) {
-    offsets[size_t(r)] = int(total);
-    total += lengths[size_t(r)];
-  }
-  GLINT_CHECK(!isRoot() || total < int64_t(INT_MAX), "cluster::gatherToRoot: more than 2 GB in all");
-  std::vector<std::byte> joined(isRoot() ? size_t(total) : 0);
-  check(MPI_Gatherv(mine.data(), length, MPI_BYTE, joined.data(), lengths.data(), offsets.data(), MPI_BYTE, 0,
-                    MPI_COMM_WORLD),
-        "gather");
-  if (isRoot())
-    for (int r = 0; r < gSize; ++r)
-      all.emplace_back(joined.begin() + offsets[size_t(r)],
-                       joined.begin() + offsets[size_t(r)] + lengths[size_t(r)]);
-#endif
-  return all;
-}
+}  // namespace
+
+std::vector<std::vector<std::byte>> allGather(std::span<const std::byte> mine) { return gatherBytes(mine, false); }
+
+std::vector<std::vector<std::byte>> gatherToRoot(std::span<const std::byte> mine) { return gatherBytes(mine, true); }
 
 void broadcast(std::vector<std::byte>* bytes) {
   if (!distributed()) return;

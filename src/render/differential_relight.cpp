@@ -92,34 +92,38 @@ Rgb irradianceRatio(const Rgb& before, const Rgb& change, float maxRatio, bool* 
 std::vector<Rgb> filteredRatios(const GaussianScene& scene, std::span<const uint32_t> receivers,
                                 const std::vector<uint8_t>& inReach, const std::vector<Rgb>& ratios,
                                 const RelightSettings& settings) {
+  // Each reached receiver's unit normal and filter radius, once (the neighbour loop below
+  // reads every neighbour's normal many times).
   std::vector<uint32_t> reached;  // indices into receivers
   std::vector<uint32_t> sceneIndices;
+  std::vector<float> radii;       // per reached receiver
+  std::vector<Vec3f> unitNormal(receivers.size());
   float largest = 0;
   for (size_t i = 0; i < receivers.size(); ++i)
     if (inReach[i]) {
       reached.push_back(uint32_t(i));
       sceneIndices.push_back(receivers[i]);
       const Vec3f s = scene.scale(receivers[i]);
-      largest = std::max({largest, s.x, s.y, s.z});
+      radii.push_back(settings.filterRadius * std::max({s.x, s.y, s.z}));
+      largest = std::max(largest, radii.back());
+      unitNormal[i] = normalize(scene.normal[receivers[i]]);
     }
   if (reached.empty() || !(largest > 0)) return ratios;
   // Cells as wide as the largest radius any receiver asks for.
-  const float cell = settings.filterRadius * largest;
   std::vector<uint32_t> receiverOf(scene.size(), UINT32_MAX);
   for (uint32_t r : reached) receiverOf[receivers[r]] = r;
-  const CellGrid grid(scene, sceneIndices, cell);
+  const CellGrid grid(scene, sceneIndices, largest);
   std::vector<Rgb> filtered = ratios;
   parallelFor(int64_t(reached.size()), 64, [&](int64_t k) {
     const uint32_t r = reached[size_t(k)];
     const uint32_t g = receivers[r];
-    const Vec3f s = scene.scale(g);
-    const float radius = settings.filterRadius * std::max({s.x, s.y, s.z});
+    const float radius = radii[size_t(k)];
     const float sigma2 = 0.25f * radius * radius;  // the weight falls to e^-2 at the radius
-    const Vec3f n = normalize(scene.normal[g]);
+    const Vec3f n = unitNormal[r];
     Rgb sum(0.0f);
     float weights = 0;
     grid.near(scene.position[g], radius, [&](uint32_t j) {
-      if (dot(normalize(scene.normal[j]), n) < settings.filterCosine) return;
+      if (dot(unitNormal[receiverOf[j]], n) < settings.filterCosine) return;
       const Vec3f d = scene.position[j] - scene.position[g];
       const float w = std::exp(-0.5f * dot(d, d) / sigma2);
       sum += ratios[receiverOf[j]] * w;

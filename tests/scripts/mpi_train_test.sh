@@ -16,14 +16,7 @@
 set -euo pipefail
 glint="$1"
 work="$2"
-if ! command -v mpirun >/dev/null; then
-  echo "SKIPPED: mpirun is not installed (scripts/install-deps.sh installs openmpi-bin)"
-  exit 77
-fi
-if ! "$glint" --version | grep -q "with MPI"; then
-  echo "SKIPPED: $glint was built without MPI"
-  exit 77
-fi
+"$(dirname "$0")/mpi_available.sh" "$glint" || exit $?
 mpi=(mpirun --oversubscribe --allow-run-as-root -np 2)
 rm -rf "$work"
 mkdir -p "$work"
