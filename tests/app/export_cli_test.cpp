@@ -1,17 +1,22 @@
 // `glint export` and 3DGS import end to end: refusal without --force, far-field removal and
 // cropping with their counts, display-referred colour and SH degree, and --input-layout on
-// every command that loads a scene.
+// every command that loads a scene; the exported display colour against Glint's own 8-bit
+// render.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "app/run_glint.h"
+#include "io/image.h"
 #include "io/ply.h"
 #include "io/temp_folder.h"
 #include "io/tonemap.h"
+#include "scene/camera.h"
 #include "scene/dataset.h"
 #include "scene/gaussian_ply.h"
 #include "train/scene_extent.h"
@@ -74,7 +79,7 @@ TEST_F(ExportCliTest, ColourShDegreeAndExposureReachTheFile) {
   for (size_t i = 0; i < scene.size(); ++i)
     EXPECT_NEAR(0.5 + kShC0 * table.column("f_dc_0")[i], tonemapFilmic(2.0f * scene.diffuse[i].x), 1e-6) << i;
 
-  run = runGlint("export " + path("scene.ply") + " -o " + path("linear.ply") + " --colour linear");
+  run = runGlint("export " + path("scene.ply") + " -o " + path("linear.ply"));
   ASSERT_EQ(run.status, 0) << run.output;
   table = readPly(path("linear.ply"));
   EXPECT_FALSE(table.has("f_rest_0"));
@@ -87,6 +92,52 @@ TEST_F(ExportCliTest, ColourShDegreeAndExposureReachTheFile) {
   EXPECT_NE(runGlint("export " + path("scene.ply") + " -o " + path("x.ply") + " --sh-degree 4").status, 0);
   EXPECT_NE(runGlint("export " + path("scene.ply") + " -o " + path("x.ply") + " --exposure 0").status, 0);
   EXPECT_FALSE(fs::exists(path("x.ply")));
+}
+
+// What a 3DGS viewer shows of the export, 0.5 + C0 f_dc, is the colour of Glint's own 8-bit
+// render (`glint render --format png`, the filmic tonemap) of the same Gaussians. Sampled at
+// the projected centre of each of 12 opaque, separate Gaussians, whose colours run from
+// near black to 6 times above the tonemap's knee, so clipping a linear export would show.
+TEST_F(ExportCliTest, DisplayColourMatchesGlintsOwnEightBitRender) {
+  const Camera camera = Camera::fromFieldOfView(Mat4::translation({0.0, 0.0, 3.0}), 0.9, 160, 120);
+  std::ofstream(path("transforms_test.json"))
+      << R"({"camera_angle_x": 0.9, "frames": [{"file_path": "test/render/render_0000", "transform_matrix": )"
+      << R"([[1,0,0,0],[0,1,0,0],[0,0,1,3],[0,0,0,1]]}]})";
+  GaussianScene scene;
+  scene.resize(12);
+  for (size_t i = 0; i < scene.size(); ++i) {
+    scene.position[i] = {-1.05f + 0.7f * float(i % 4), -0.6f + 0.6f * float(i / 4), 0.0f};
+    scene.logScale[i] = {std::log(0.09f), std::log(0.09f), std::log(0.002f)};
+    scene.opacityLogit[i] = 9.0f;  // alpha 0.9999 at the centre
+    const float level = 0.01f * std::pow(600.0f, float(i) / 11.0f);  // 0.01 .. 6
+    scene.diffuse[i] = Rgb(level, 0.5f * level, std::min(1.0f, 3.0f * level));
+    scene.normal[i] = {0.0f, 0.0f, 1.0f};
+    scene.roughness[i] = 0.5f;
+  }
+  writeGaussianPly(path("scene.ply"), scene);
+  Outcome exported = runGlint("export " + path("scene.ply") + " -o " + path("viewer.ply"));
+  ASSERT_EQ(exported.status, 0) << exported.output;
+  Outcome render = runGlint("render " + path("scene.ply") + " --dataset " + root().string() +
+                            " --res 160x120 --bounces 0 --no-jitter --format png -o " + path("out"));
+  ASSERT_EQ(render.status, 0) << render.output;
+
+  const Image shown = readImage(root() / "out" / "render" / "render_0000.png");
+  const PlyTable table = readPly(path("viewer.ply"));
+  const Mat4 worldToCamera = camera.cameraToWorld.inverse();
+  double sum = 0, worst = 0;
+  for (size_t i = 0; i < scene.size(); ++i) {
+    Vec2d pixel;
+    ASSERT_TRUE(camera.project(worldToCamera, Vec3d(scene.position[i]), &pixel)) << i;
+    const int x = int(pixel.x), y = int(pixel.y);
+    for (int k = 0; k < 3; ++k) {
+      const double viewer = 0.5 + kShC0 * table.column("f_dc_" + std::to_string(k))[i];
+      const double difference = 255.0 * std::abs(std::clamp(viewer, 0.0, 1.0) - shown.at(x, y, k));
+      sum += difference;
+      worst = std::max(worst, difference);
+    }
+  }
+  EXPECT_LE(sum / (3.0 * scene.size()), 1.0);  // within 1 level on average
+  EXPECT_LE(worst, 2.0);
 }
 
 TEST_F(ExportCliTest, FarFieldIsDroppedAroundTheTrainingCamerasAndCropKeepsABox) {

@@ -4,8 +4,11 @@
 // (tests/common/splat_check.h).
 //   splat_roundtrip_check make SCENE.ply
 //   splat_roundtrip_check compare REFERENCE.ply DECODED.ply spz|compressed-ply
+//   splat_roundtrip_check import DECODED.ply
 // REFERENCE is the scene in Glint's layout (compared with its tonemapped diffuse colour),
 // or Glint's 3dgs export of it (compared with its SH colours); exit status 1 on a mismatch.
+// `import` reads splat-transform's PLY as a user's file is read (layout detection first)
+// and checks that Glint shows the colour a 3DGS viewer shows.
 #include <algorithm>
 #include <cstdio>
 #include <string>
@@ -14,6 +17,7 @@
 #include "common/splat_check.h"
 #include "core/error.h"
 #include "io/ply.h"
+#include "io/tonemap.h"
 #include "scene/compressed_ply_writer.h"
 #include "scene/gaussian_ply.h"
 
@@ -88,6 +92,55 @@ int compare(const std::string& referencePath, const std::string& decodedPath, co
   return failures.empty() ? 0 : 1;
 }
 
+// splat-transform's PLY read by Glint's loader as `glint render FILE` reads it. A file with
+// f_rest_* can only be 3DGS and must be detected; one without (degree 0) is ambiguous and
+// must be refused naming --input-layout, then read with it. Either way, Glint's 8-bit
+// filmic display of the imported diffuse must be the viewer's 0.5 + C0 f_dc within half a
+// level (1 level where the viewer's colour lies above what the tonemap reaches).
+int importCheck(const std::string& decodedPath) {
+  const test::DecodedSplats viewer = splatsOf(decodedPath, nullptr);
+  GaussianPlyImport import;
+  GaussianScene scene;
+  std::string how = "detected as 3DGS";
+  try {
+    scene = readGaussianPly(decodedPath, PlyLayout::Auto, &import);
+  } catch (const Error& e) {
+    const bool namesFlag = std::string(e.what()).find("--input-layout") != std::string::npos;
+    if (viewer.shDegree != 0 || !namesFlag) {
+      std::printf("%s: MISMATCH: refused: %s\n", decodedPath.c_str(), e.what());
+      return 1;
+    }
+    scene = readGaussianPly(decodedPath, PlyLayout::ThreeDgs, &import);
+    how = "refused as ambiguous naming --input-layout, then read as 3DGS";
+  }
+  if (import.layout != PlyLayout::ThreeDgs || scene.size() != viewer.size()) {
+    std::printf("%s: MISMATCH: read as Glint's layout or with a different count\n", decodedPath.c_str());
+    return 1;
+  }
+  // Above 254.5 / 255 the tonemap saturates (tonemapFilmic(128) is that value), so a brighter
+  // viewer colour can only be approached: those samples get a whole level.
+  double worst = 0, worstSaturated = 0;
+  size_t saturated = 0;
+  for (size_t i = 0; i < scene.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const double shown = 255.0 * tonemapFilmic(scene.diffuse[i][k]);
+      const double wanted = 255.0 * std::clamp(double(viewer.colour[i][k]), 0.0, 1.0);
+      if (wanted > 254.5) {
+        ++saturated;
+        worstSaturated = std::max(worstSaturated, std::abs(shown - wanted));
+      } else {
+        worst = std::max(worst, std::abs(shown - wanted));
+      }
+    }
+  }
+  const bool ok = worst <= 0.5 && worstSaturated <= 1.0;
+  std::printf("%s: SH degree %d, %s; display colour off by at most %.4f of an 8-bit level (%zu saturated "
+              "samples: %.3f), %s\n",
+              decodedPath.c_str(), viewer.shDegree, how.c_str(), worst, saturated, worstSaturated,
+              ok ? "as a 3DGS viewer shows it" : "MISMATCH");
+  return ok ? 0 : 1;
+}
+
 int run(int argc, char** argv) {
   const std::string command = argc > 1 ? argv[1] : "";
   if (command == "make" && argc == 3) {
@@ -97,7 +150,10 @@ int run(int argc, char** argv) {
     return 0;
   }
   if (command == "compare" && argc == 5) return compare(argv[2], argv[3], argv[4]);
-  std::fprintf(stderr, "usage: %s make SCENE.ply | compare REFERENCE.ply DECODED.ply spz|compressed-ply\n", argv[0]);
+  if (command == "import" && argc == 3) return importCheck(argv[2]);
+  std::fprintf(stderr,
+               "usage: %s make SCENE.ply | compare REFERENCE.ply DECODED.ply spz|compressed-ply | import DECODED.ply\n",
+               argv[0]);
   return 2;
 }
 

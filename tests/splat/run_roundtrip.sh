@@ -2,7 +2,8 @@
 # Round trip of Glint's compressed exports through PlayCanvas's splat-transform (CTest:
 # splat_transform_roundtrip): Glint writes a small scene as .spz and .compressed.ply (plain
 # and with baked SH of degree 3), splat-transform converts each to a plain .ply, and
-# splat_roundtrip_check compares those with what Glint wrote. Exits 77 (skipped) when Node
+# splat_roundtrip_check compares those with what Glint wrote, then reads them as a user's
+# 3DGS file (degree 0 and 3) and checks the colours Glint shows. Exits 77 (skipped) when Node
 # or npm is missing; installs splat-transform from the lockfile (npm ci) when node_modules
 # is absent. Usage: run_roundtrip.sh GLINT_BINARY CHECK_BINARY WORK_FOLDER
 set -euo pipefail
@@ -36,6 +37,7 @@ for variant in plain baked; do
     [ "$format" = compressed-ply ] && input="$variant.compressed.ply"
     "$splat_transform" -q -w "$input" "$variant-$format-decoded.ply"
     "$check" compare "$reference" "$variant-$format-decoded.ply" "$format" || status=1
+    "$check" import "$variant-$format-decoded.ply" || status=1
   done
 done
 exit $status
