@@ -65,12 +65,20 @@ export class EditPanel {
     $('gaussians').textContent = `${status.gaussians} Gaussians`;
   }
 
+  // Shows the edit as soon as the server has applied it; when its relighting was deferred,
+  // asks for it next, and the shadows follow when that answers.
   async send(path, body, verb) {
     try {
       const status = await postJson(path, body);
       this.setStatus(status);
-      this.report(`${verb}; ${status.operations} operations${describeTracerUpdate(status.tracer_update)}`, false);
+      const done = `${verb}; ${status.operations} operations${describeTracerUpdate(status.tracer_update)}`;
+      this.report(status.relight_pending ? `${done}\nrelighting...` : done, false);
       this.schedulePreview();
+      if (status.relight_pending) {
+        const relit = await postJson('/api/edits/relight', {});
+        this.setStatus(relit);
+        this.report(`${done}\n${relit.relight}`, false);
+      }
     } catch (error) {
       this.report(error.message, true);
     }

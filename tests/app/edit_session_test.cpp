@@ -116,3 +116,55 @@ TEST(EditSession, RelightsAfterEachEditAndUndoRestoresThePristineColours) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// Deferred (the viewer's way): the edit is shown unrelit with "relight_pending", and
+// relight() then gives exactly the colours an immediate session shows, in a tracer that
+// traces them; with the renderer still holding the scene, a new tracer is built instead.
+TEST(EditSession, DeferredRelightingShowsTheEditFirstThenTheImmediateColours) {
+  const test::PlateRoom room = test::plateRoom();
+  const GaussianScene& pristine = room.scene;
+  TracerUpdateContext context;
+  context.probeCamera =
+      Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0, -3, 1), Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, 32, 24);
+  context.workRays = 1e6;
+  const nlohmann::json move = {
+      {"selection", {{"box", {{"min", {-0.2, -0.2, 0.3}}, {"max", {0.2, 0.2, 0.5}}}}}},
+      {"operation", {{"op", "translate"}, {"offset", {0.6, 0.0, 0.0}}}}};
+  EditSession immediate(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{});
+  immediate.apply(move, context);
+  EXPECT_FALSE(immediate.status()["relight_pending"].get<bool>());
+
+  for (bool rendererHolds : {false, true}) {
+    EditSession deferred(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{}, std::nullopt, true);
+    deferred.apply(move, context);
+    nlohmann::json status = deferred.status();
+    EXPECT_TRUE(status["relight_pending"].get<bool>()) << status;
+    std::shared_ptr<const TracedScene> shown = deferred.current();
+    EXPECT_EQ(shown->scene->diffuse[room.centre], pristine.diffuse[room.centre]);  // not relit yet
+    const GaussianScene* shownScene = shown->scene.get();
+    if (!rendererHolds) shown.reset();
+
+    std::shared_ptr<const TracedScene> relit = deferred.relight(context);
+    status = deferred.status();
+    EXPECT_FALSE(status["relight_pending"].get<bool>());
+    EXPECT_NE(status["relight"].get<std::string>().find("relit"), std::string::npos) << status;
+    const GaussianScene& expected = *immediate.current()->scene;
+    ASSERT_EQ(relit->scene->size(), expected.size());
+    for (size_t i = 0; i < expected.size(); ++i) ASSERT_EQ(relit->scene->diffuse[i], expected.diffuse[i]) << i;
+    EXPECT_NE(relit->scene->diffuse[room.centre], pristine.diffuse[room.centre]);  // the old shadow brightened
+    // Refitted in place when nobody held the shown scene, else traced by a new tracer;
+    // either way the tracer shown traces the relit colours.
+    EXPECT_EQ(relit->scene.get() == shownScene, !rendererHolds);
+    if (rendererHolds) EXPECT_EQ(shown->scene->diffuse[room.centre], pristine.diffuse[room.centre]);  // untouched
+    TraceRay down{pristine.position[room.centre] + Vec3f(0, 0, 0.3f), Vec3f(0, 0, -1), 0.0f};
+    EXPECT_EQ(relit->tracer->trace(down).diffuse, immediate.current()->tracer->trace(down).diffuse);
+    // Nothing waits now: a second call changes nothing.
+    EXPECT_EQ(deferred.relight(context), relit);
+  }
+}
+
+}  // namespace
+}  // namespace glint

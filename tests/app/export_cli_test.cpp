@@ -79,7 +79,7 @@ TEST_F(ExportCliTest, ColourShDegreeAndExposureReachTheFile) {
   for (size_t i = 0; i < scene.size(); ++i)
     EXPECT_NEAR(0.5 + kShC0 * table.column("f_dc_0")[i], tonemapFilmic(2.0f * scene.diffuse[i].x), 1e-6) << i;
 
-  run = runGlint("export " + path("scene.ply") + " -o " + path("linear.ply"));
+  run = runGlint("export " + path("scene.ply") + " -o " + path("linear.ply") + " --colour linear");
   ASSERT_EQ(run.status, 0) << run.output;
   table = readPly(path("linear.ply"));
   EXPECT_FALSE(table.has("f_rest_0"));

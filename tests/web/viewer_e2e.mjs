@@ -189,6 +189,11 @@ try {
   const message = await page.textContent('#message');
   check(/tracer: (refit|rebuild); refit [\d.]+ ms .*rebuild [\d.]+ ms/.test(message),
     `the status line shows the tracer update chosen and both costs (${message.replace('\n', ' / ')})`);
+  // The edit is shown first, then the page asks for its deferred relighting, whose report
+  // replaces "relighting..." on the status line.
+  await page.waitForFunction(() => /\nrelit \d+ of/.test(document.getElementById('message').textContent));
+  check(!(await page.textContent('#message')).includes('relighting...'),
+    'after an edit the page requests its relighting and reports what it did');
   const edited = await accumulatedFrame(shown);
 
   // Where the sphere is: pixels whose roughness buffer changed (mode switch, no re-render).

@@ -1,5 +1,5 @@
-// The viewer's edit endpoints: apply an operation, undo, redo, preview a selection, save
-// the edit file and export the edited scene, all under /api/edits.
+// The viewer's edit endpoints: apply an operation, undo, redo, relight the last edit,
+// preview a selection, save the edit file and export the edited scene, all under /api/edits.
 #include <functional>
 
 #include <httplib.h>
@@ -54,6 +54,11 @@ void ViewerServer::addEditRoutes() {
   });
   http.Post("/api/edits/redo", [this, answer, context](const httplib::Request&, httplib::Response& res) {
     answer(res, [&] { return edits_->redo(context()); });
+  });
+  // The page asks for this after an edit whose status says "relight_pending": the edit is
+  // shown first, its shadows when this answers.
+  http.Post("/api/edits/relight", [this, answer, context](const httplib::Request&, httplib::Response& res) {
+    answer(res, [&] { return edits_->relight(context()); });
   });
   http.Post("/api/edits/preview", [this](const httplib::Request& req, httplib::Response& res) {
     sendJson(res, edits_->preview(parseRequestObject(req.body, kMaxRequestBytes)));

@@ -66,14 +66,16 @@ float attributeValue(const GaussianScene& scene, size_t i, Attribute attribute) 
 }  // namespace
 
 EditSession::EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians,
-                         std::optional<RelightSettings> relight, std::optional<HealSettings> heal)
+                         std::optional<RelightSettings> relight, std::optional<HealSettings> heal,
+                         bool deferRelighting)
     : pristine_(std::make_shared<const GaussianScene>(std::move(pristine))),
       trace_(trace),
       maxGaussians_(maxGaussians),
       shownScene_(std::make_shared<GaussianScene>(*pristine_)),
       current_(traceScene(shownScene_, trace_)),
       relight_(relight),
-      heal_(heal) {}
+      heal_(heal),
+      deferRelighting_(deferRelighting) {}
 
 std::shared_ptr<const TracedScene> EditSession::current() const {
   std::lock_guard lock(mutex_);
@@ -128,14 +130,14 @@ void EditSession::update(const TracerUpdateContext& context) {
   bool refitPossible = previous != nullptr;
   UpdatedTracer updated = updateTracerAfterEdit(std::move(previous), *shownScene_, trace_, kViewerTracer,
                                                 refitPossible, context.probeCamera, context.workRays);
-  if (relight_) {
+  pending_.reset();
+  if (relight_ && deferRelighting_) {
+    pending_ = PendingRelight{std::move(provenance), std::move(healed)};
+    lastRelight_ = "waiting";
+    lastRelightSeconds_ = 0;
+  } else if (relight_) {
     auto started = std::chrono::steady_clock::now();
-    if (!pristineTracer_) {
-      pristineTracer_ = makeGaussianTracer(kViewerTracer);
-      pristineTracer_->build(*pristine_, trace_);
-    }
-    lastRelight_ = relightAfterEdit(*pristineTracer_, *pristine_, *updated.tracer, *shownScene_, provenance, *relight_);
-    continueHealedColours(healed, *shownScene_);  // the filled surface takes its relit surroundings' colour
+    relightColours(*updated.tracer, *shownScene_, provenance, healed);
     updated.tracer->refit();  // tracers may keep copies of the colours
     lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
@@ -144,6 +146,47 @@ void EditSession::update(const TracerUpdateContext& context) {
   next->tracer = std::move(updated.tracer);
   current_ = std::move(next);
   lastUpdate_ = updated.times;
+}
+
+void EditSession::relightColours(const GaussianTracer& editedTracer, GaussianScene& edited,
+                                 const EditProvenance& provenance, const HealReport& healed) {
+  if (!pristineTracer_) {
+    pristineTracer_ = makeGaussianTracer(kViewerTracer);
+    pristineTracer_->build(*pristine_, trace_);
+  }
+  lastRelight_ = relightAfterEdit(*pristineTracer_, *pristine_, editedTracer, edited, provenance, *relight_);
+  continueHealedColours(healed, edited);  // the filled surface takes its relit surroundings' colour
+}
+
+std::shared_ptr<const TracedScene> EditSession::relight(const TracerUpdateContext& context) {
+  std::lock_guard lock(mutex_);
+  if (!pending_) return current_;
+  auto started = std::chrono::steady_clock::now();
+  // On a copy: the renderer traces the shown scene meanwhile. Only the colours differ.
+  GaussianScene relit = *shownScene_;
+  relightColours(*current_->tracer, relit, pending_->provenance, pending_->healed);
+  pending_.reset();
+
+  // As in update: the shown scene is overwritten in place and its tracer refitted only when
+  // nobody else holds them once the renderer has let go.
+  if (context.releaseShown) context.releaseShown();
+  std::unique_ptr<GaussianTracer> tracer;
+  if (current_.use_count() == 1 && shownScene_.use_count() == 2) {
+    std::atomic_thread_fence(std::memory_order_acquire);
+    tracer = std::move(current_->tracer);
+    shownScene_->diffuse = std::move(relit.diffuse);
+    tracer->refit();  // tracers may keep copies of the colours
+  } else {
+    shownScene_ = std::make_shared<GaussianScene>(std::move(relit));
+    tracer = makeGaussianTracer(kViewerTracer);
+    tracer->build(*shownScene_, trace_);
+  }
+  auto next = std::make_shared<TracedScene>();
+  next->scene = shownScene_;
+  next->tracer = std::move(tracer);
+  current_ = std::move(next);
+  lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return current_;
 }
 
 std::shared_ptr<const TracedScene> EditSession::apply(const nlohmann::json& request,
@@ -206,6 +249,7 @@ nlohmann::json EditSession::status() const {
   if (!lastRelight_.empty()) {
     status["relight"] = lastRelight_;
     status["relight_ms"] = 1e3 * lastRelightSeconds_;
+    status["relight_pending"] = pending_.has_value();
   }
   return status;
 }

@@ -40,9 +40,12 @@ class EditSession {
   // maxGaussians: the most Gaussians an edit may leave (gaussian_edits.h). With relight,
   // every edit is followed by differential relighting (app/relight_flags.h) against the
   // pristine scene, whose tracer is built at the first edit. With heal, the surface an edit
-  // uncovered is filled first (edit/heal_uncovered.h).
+  // uncovered is filled first (edit/heal_uncovered.h). With deferRelighting, apply, undo
+  // and redo show the edit at once without relighting it, and relight() then relights it:
+  // the viewer shows a moved object within milliseconds and its shadows seconds later.
   EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians,
-              std::optional<RelightSettings> relight = std::nullopt, std::optional<HealSettings> heal = std::nullopt);
+              std::optional<RelightSettings> relight = std::nullopt, std::optional<HealSettings> heal = std::nullopt,
+              bool deferRelighting = false);
 
   std::shared_ptr<const TracedScene> current() const;
 
@@ -54,12 +57,18 @@ class EditSession {
   // Throw RequestError 409 when there is nothing to undo or redo.
   std::shared_ptr<const TracedScene> undo(const TracerUpdateContext& context);
   std::shared_ptr<const TracedScene> redo(const TracerUpdateContext& context);
+  // Relights the last edit when its relighting was deferred, and returns the relit scene
+  // (the current one when nothing waits). The colours are computed on a copy while the
+  // renderer keeps tracing the shown scene; they replace the shown colours (with a refit)
+  // when the renderer has let go of it (releaseShown), else a new tracer is built.
+  std::shared_ptr<const TracedScene> relight(const TracerUpdateContext& context);
 
   // {"operations", "redoable", "gaussians"} and, after an edit, "tracer_update": {"action":
   // "refit"|"rebuild", "refit_possible", "refit_ms", "rebuild_ms", "refit_probe_ms",
   // "rebuild_probe_ms", "probe_rays", "work_rays", and "no_refit" (why) when no refit was
   // possible} of the last tracer update, and with relighting "relight": what it did and its
-  // time in "relight_ms"; with healing "healed": the Gaussians it added.
+  // time in "relight_ms", and "relight_pending": true while a deferred relighting waits;
+  // with healing "healed": the Gaussians it added.
   nlohmann::json status() const;
   // {"selection": S, "attribute": "roughness"|"f0"|"diffuse"|"metalness", "bins": 1..256}
   // -> {"count", "total", "attribute", "histogram": [...], "range": [lo, hi]}: how many
@@ -84,6 +93,11 @@ class EditSession {
   // builds a new one (mutex_ held). Throws Error when an operation cannot apply; nothing
   // shown has changed then.
   void update(const TracerUpdateContext& context);
+  // Relights `edited` (traced by editedTracer) against the pristine scene, building the
+  // pristine scene's tracer at the first call, and gives healed Gaussians their relit
+  // surroundings' colour (mutex_ held).
+  void relightColours(const GaussianTracer& editedTracer, GaussianScene& edited, const EditProvenance& provenance,
+                      const HealReport& healed);
 
   mutable std::mutex mutex_;
   std::shared_ptr<const GaussianScene> pristine_;
@@ -100,6 +114,14 @@ class EditSession {
   std::optional<RelightSettings> relight_;
   std::unique_ptr<GaussianTracer> pristineTracer_;  // built at the first relit edit
   std::string lastRelight_;                          // what the last relighting did
+  // What a deferred relighting needs of the last update: which Gaussians the edit moved,
+  // added or removed, and what healing added (its colours follow the relit surroundings).
+  struct PendingRelight {
+    EditProvenance provenance;
+    HealReport healed;
+  };
+  std::optional<PendingRelight> pending_;
+  bool deferRelighting_ = false;
   double lastRelightSeconds_ = 0;
   std::optional<HealSettings> heal_;
   size_t lastHealed_ = 0;  // Gaussians the last healing added

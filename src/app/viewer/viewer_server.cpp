@@ -32,8 +32,9 @@ ViewerServer::ViewerServer(ViewerOptions options, GaussianScene scene, const Tra
     throw Error("glint view", "the viewer's resolution must lie between 8x8 and 8192x8192");
   renderer_ = std::make_unique<ProgressiveRenderer>(options_.width, options_.height, options_.maxSamples, options_.path);
   if (options_.editable) {
+    // Relighting deferred: the page shows the edit at once and asks for it (/api/edits/relight).
     edits_ = std::make_unique<EditSession>(std::move(scene), trace_, options_.maxGaussians, options_.relight,
-                                           options_.heal);
+                                           options_.heal, /*deferRelighting=*/true);
     renderer_->setScene(edits_->current());
   } else {
     renderer_->setScene(traceScene(std::make_shared<const GaussianScene>(std::move(scene)), trace_));

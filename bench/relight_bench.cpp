@@ -1,0 +1,186 @@
+// Benchmark of an edit's latency in the viewer (app/viewer/edit_session.h, the code `glint
+// view` runs): the time from an edit request to the edited scene being shown, and to its
+// deferred relighting being shown, with relighting and healing off, healing alone, and both
+// (the default) at several relighting ray counts. Prints a table and writes JSON (--json FILE).
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "app/viewer/edit_session.h"
+#include "bench_timing.h"
+#include "core/error.h"
+#include "core/parallel.h"
+#include "edit/gaussian_edits.h"
+#include "edit/heal_uncovered.h"
+#include "io/json_file.h"
+#include "math/rng.h"
+#include "render/differential_relight.h"
+#include "scene/gaussian_ply.h"
+
+using namespace glint;
+
+namespace {
+
+// The viewer's requests of an edit file: one {"selection", "operation"} per operation, as
+// the page sends them (the operation without its selection's name).
+std::vector<nlohmann::json> requestsOf(const nlohmann::json& document) {
+  std::vector<nlohmann::json> requests;
+  for (nlohmann::json op : document.at("operations")) {
+    const std::string name = op.at("selection");
+    op.erase("selection");
+    requests.push_back({{"selection", document.at("selections").at(name)}, {"operation", op}});
+  }
+  return requests;
+}
+
+// A seeded random subset of `keep` Gaussians (all of them when keep is 0 or not smaller).
+GaussianScene subset(const GaussianScene& scene, size_t keep, uint64_t seed) {
+  if (keep == 0 || keep >= scene.size()) return scene;
+  std::vector<uint32_t> order(scene.size());
+  std::iota(order.begin(), order.end(), 0u);
+  Rng rng(seed);
+  for (size_t i = 0; i < keep; ++i) std::swap(order[i], order[i + size_t(rng.uniform() * double(scene.size() - i))]);
+  order.resize(keep);
+  std::sort(order.begin(), order.end());
+  std::vector<bool> kept(scene.size(), false);
+  for (uint32_t i : order) kept[i] = true;
+  GaussianScene out = scene;
+  out.filter(kept);
+  return out;
+}
+
+// Where the viewer's camera looks and from how far: the per-axis median of the means, and
+// twice the median distance from it (the far field, tens of metres out, left aside).
+void viewOf(const GaussianScene& scene, Vec3d* centre, double* distance) {
+  std::vector<float> values(scene.size());
+  for (int a = 0; a < 3; ++a) {
+    for (size_t i = 0; i < scene.size(); ++i) values[i] = scene.position[i][a];
+    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
+    (*centre)[a] = values[values.size() / 2];
+  }
+  for (size_t i = 0; i < scene.size(); ++i) values[i] = length(Vec3d(scene.position[i]) - *centre);
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
+  *distance = 2.0 * values[values.size() / 2];
+}
+
+struct Row {
+  std::string mode;
+  int rays = 0;
+  double firstShown = 0;  // the first edit shown (relighting deferred, as the viewer does)
+  double firstRelit = 0;  // ... and relit, which also builds the unedited scene's tracer
+  double againShown = 0;  // the last operation again (undo, then redo): shown
+  double againRelit = 0;  // ... and relit
+  std::string relight;    // the session's own line about the relighting
+  size_t healed = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Measures how long the viewer takes to show an edit (glint view's edit session: the edit, healing, the "
+      "tracer's refit or rebuild) and then its relighting, which the viewer defers, with relighting and healing "
+      "off, healing alone, and both at each --rays. Each mode applies the edit file's operations as the page sends "
+      "them, then undoes and redoes the last one: the redo is the latency of an edit once the session has built "
+      "the unedited scene's tracer."};
+  std::string scenePath, editsPath, jsonPath;
+  size_t keep = 0;
+  uint64_t seed = 1;
+  int threads = 2;
+  std::vector<int> rayCounts = {64, 16};
+  app.add_option("scene", scenePath, "Gaussian scene (.ply in Glint's layout)")->required()->check(CLI::ExistingFile);
+  app.add_option("edits", editsPath, "Edit file (docs/edit-files.md) whose operations are applied")
+      ->required()
+      ->check(CLI::ExistingFile);
+  app.add_option("--keep", keep, "Use a seeded random subset of this many Gaussians (0 = all)")->capture_default_str();
+  app.add_option("--seed", seed, "Seed of --keep's subset")->capture_default_str();
+  app.add_option("--rays", rayCounts, "Relighting ray counts to measure (--relight-rays of glint view)")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  app.add_option("--threads", threads, "Worker threads (0 = all)")->check(CLI::Range(0, 256))->capture_default_str();
+  app.add_option("--json", jsonPath, "Also write the results to this JSON file");
+  CLI11_PARSE(app, argc, argv);
+
+  try {
+    ThreadLimit limit(threads);
+    const GaussianScene scene = subset(readGaussianPly(scenePath), keep, seed);
+    const std::vector<nlohmann::json> requests = requestsOf(readJsonFile(editsPath));
+    if (requests.empty()) throw Error(editsPath + ": the edit file holds no operation");
+
+    // The camera the viewer would show: outside the scene's bounds, looking at their centre.
+    Vec3d centre;
+    double distance = 0;
+    viewOf(scene, &centre, &distance);
+    const Vec3d eye = centre + normalize(Vec3d(0.0, 0.5, 1.5)) * distance;
+    TracerUpdateContext context;
+    context.probeCamera = Camera::fromFieldOfView(Mat4::lookAt(eye, centre, {0.0, 1.0, 0.0}), 0.9, 640, 480);
+    context.workRays = 640.0 * 480.0 * 64;
+
+    struct Mode {
+      std::string name;
+      bool relight, heal;
+      int rays;
+    };
+    std::vector<Mode> modes = {{"edit only", false, false, 0}, {"heal", false, true, 0}};
+    for (int rays : rayCounts) modes.push_back({"heal + relight", true, true, rays});
+    std::vector<Row> rows;
+    for (const Mode& mode : modes) {
+      std::optional<RelightSettings> relight;
+      if (mode.relight) {
+        relight = RelightSettings{};
+        relight->rays = relight->hemisphereRays = mode.rays;  // as --relight-rays sets them
+        relight->quickRays = std::max(1, mode.rays / 4);
+      }
+      std::optional<HealSettings> heal;
+      if (mode.heal) heal = HealSettings{};
+      EditSession session(scene, TraceSettings{}, kDefaultMaxGaussians, relight, heal, /*deferRelighting=*/true);
+      Row row{mode.name, mode.rays};
+      row.firstShown = secondsOf([&] {
+        for (const nlohmann::json& request : requests) session.apply(request, context);
+      });
+      row.firstRelit = row.firstShown + secondsOf([&] { session.relight(context); });
+      session.undo(context);
+      session.relight(context);
+      row.againShown = secondsOf([&] { session.redo(context); });
+      row.againRelit = row.againShown + secondsOf([&] { session.relight(context); });
+      const nlohmann::json status = session.status();
+      if (status.contains("relight")) row.relight = status["relight"];
+      if (status.contains("healed")) row.healed = status["healed"];
+      rows.push_back(row);
+      std::fprintf(stderr, "relight_bench: %s (%d rays) done\n", mode.name.c_str(), mode.rays);
+    }
+
+    std::printf("relight_bench: %zu Gaussians (%s%s), %zu operations of %s, %d threads\n\n", scene.size(),
+                scenePath.c_str(), keep ? (", a seeded subset") : "", requests.size(), editsPath.c_str(), maxThreads());
+    std::printf("shown: the edit applied and its tracer updated (what the viewer shows first); relit: and its\n"
+                "shadows (the viewer relights after showing the edit). first: the first edit of the session, which\n"
+                "also builds the unedited scene's tracer; again: the last operation undone and redone\n\n");
+    std::printf("%-16s %6s %9s %9s %9s %9s %7s  %s\n", "mode", "rays", "first", "", "again", "", "healed",
+                "relighting (of the redo)");
+    std::printf("%-16s %6s %9s %9s %9s %9s\n", "", "", "shown s", "relit s", "shown s", "relit s");
+    nlohmann::json json = {{"scene", scenePath}, {"gaussians", scene.size()}, {"edits", editsPath},
+                           {"threads", maxThreads()}, {"rows", nlohmann::json::array()}};
+    for (const Row& r : rows) {
+      std::printf("%-16s %6s %9.3f %9.3f %9.3f %9.3f %7zu  %s\n", r.mode.c_str(),
+                  r.rays ? std::to_string(r.rays).c_str() : "-", r.firstShown, r.firstRelit, r.againShown,
+                  r.againRelit, r.healed, r.relight.c_str());
+      json["rows"].push_back({{"mode", r.mode}, {"rays", r.rays}, {"first_shown_seconds", r.firstShown},
+                              {"first_relit_seconds", r.firstRelit}, {"again_shown_seconds", r.againShown},
+                              {"again_relit_seconds", r.againRelit}, {"healed", r.healed}, {"relight", r.relight}});
+    }
+    if (!jsonPath.empty()) {
+      std::ofstream(jsonPath) << json.dump(2) << "\n";
+      std::printf("\nwrote %s\n", jsonPath.c_str());
+    }
+  } catch (const Error& e) {
+    std::fprintf(stderr, "relight_bench: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
