@@ -12,7 +12,11 @@
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 
+#include "app/heal_flags.h"
+#include "app/relight_flags.h"
+#include "app/scene_source.h"
 #include "app/viewer/edit_session.h"
+#include "app/viewer/viewer_setup.h"
 #include "bench_timing.h"
 #include "core/error.h"
 #include "core/parallel.h"
@@ -21,6 +25,7 @@
 #include "io/json_file.h"
 #include "math/rng.h"
 #include "render/differential_relight.h"
+#include "scene/dataset.h"
 #include "scene/gaussian_ply.h"
 
 using namespace glint;
@@ -55,20 +60,6 @@ GaussianScene subset(const GaussianScene& scene, size_t keep, uint64_t seed) {
   return out;
 }
 
-// Where the viewer's camera looks and from how far: the per-axis median of the means, and
-// twice the median distance from it (the far field, tens of metres out, left aside).
-void viewOf(const GaussianScene& scene, Vec3d* centre, double* distance) {
-  std::vector<float> values(scene.size());
-  for (int a = 0; a < 3; ++a) {
-    for (size_t i = 0; i < scene.size(); ++i) values[i] = scene.position[i][a];
-    std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
-    (*centre)[a] = values[values.size() / 2];
-  }
-  for (size_t i = 0; i < scene.size(); ++i) values[i] = length(Vec3d(scene.position[i]) - *centre);
-  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(values.size() / 2), values.end());
-  *distance = 2.0 * values[values.size() / 2];
-}
-
 struct Row {
   std::string mode;
   int rays = 0;
@@ -94,7 +85,11 @@ int main(int argc, char** argv) {
   uint64_t seed = 1;
   int threads = 2;
   std::vector<int> rayCounts = {64, 16};
-  app.add_option("scene", scenePath, "Gaussian scene (.ply in Glint's layout)")->required()->check(CLI::ExistingFile);
+  app.add_option("scene", scenePath,
+                 "Gaussian scene (.ply) or training run folder, read as glint view reads it (the run's trace and "
+                 "path settings, its dataset's first camera and image size)")
+      ->required()
+      ->check(CLI::ExistingPath);
   app.add_option("edits", editsPath, "Edit file (docs/edit-files.md) whose operations are applied")
       ->required()
       ->check(CLI::ExistingFile);
@@ -109,18 +104,23 @@ int main(int argc, char** argv) {
 
   try {
     ThreadLimit limit(threads);
-    const GaussianScene scene = subset(readGaussianPly(scenePath), keep, seed);
+    // As glint view sets itself up (app/view_command.cpp) with its default flags.
+    SceneSource source = loadSceneSource(scenePath, PlyLayout::Auto);
+    const GaussianScene scene = subset(source.scene, keep, seed);
+    std::optional<Dataset> dataset;
+    if (!source.settings.dataset.empty() && std::filesystem::exists(source.settings.dataset))
+      dataset = Dataset::open(source.settings.dataset, source.settings.datasetReading(/*requireBuffers=*/false));
+    const ViewerOptions viewer = makeViewerOptions(ViewerFlags{}, dataset, scene, "unused");
     const std::vector<nlohmann::json> requests = requestsOf(readJsonFile(editsPath));
     if (requests.empty()) throw Error(editsPath + ": the edit file holds no operation");
 
-    // The camera the viewer would show: outside the scene's bounds, looking at their centre.
-    Vec3d centre;
-    double distance = 0;
-    viewOf(scene, &centre, &distance);
-    const Vec3d eye = centre + normalize(Vec3d(0.0, 0.5, 1.5)) * distance;
+    // The context the viewer's edit routes give (app/viewer/edit_routes.cpp): the camera
+    // shown, and its sample budget at full size, 1 + bounces segments a path.
     TracerUpdateContext context;
-    context.probeCamera = Camera::fromFieldOfView(Mat4::lookAt(eye, centre, {0.0, 1.0, 0.0}), 0.9, 640, 480);
-    context.workRays = 640.0 * 480.0 * 64;
+    context.probeCamera = viewer.initialCamera.camera(viewer.width, viewer.height);
+    context.workRays = double(viewer.width) * viewer.height * viewer.maxSamples * (1 + source.settings.renderPath().bounces);
+    const RelightSettings relightDefaults = RelightFlags{}.settings(source.settings.path());
+    const HealSettings healDefaults = HealFlags{}.settings();
 
     struct Mode {
       std::string name;
@@ -133,13 +133,12 @@ int main(int argc, char** argv) {
     for (const Mode& mode : modes) {
       std::optional<RelightSettings> relight;
       if (mode.relight) {
-        relight = RelightSettings{};
-        relight->rays = relight->hemisphereRays = mode.rays;  // as --relight-rays sets them
-        relight->quickRays = std::max(1, mode.rays / 4);
+        relight = relightDefaults;
+        relight->setRays(mode.rays);  // as --relight-rays sets them
       }
       std::optional<HealSettings> heal;
-      if (mode.heal) heal = HealSettings{};
-      EditSession session(scene, TraceSettings{}, kDefaultMaxGaussians, relight, heal, /*deferRelighting=*/true);
+      if (mode.heal) heal = healDefaults;
+      EditSession session(scene, source.settings.trace, kDefaultMaxGaussians, relight, heal, /*deferRelighting=*/true);
       Row row{mode.name, mode.rays};
       row.firstShown = secondsOf([&] {
         for (const nlohmann::json& request : requests) session.apply(request, context);
@@ -156,8 +155,9 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "relight_bench: %s (%d rays) done\n", mode.name.c_str(), mode.rays);
     }
 
-    std::printf("relight_bench: %zu Gaussians (%s%s), %zu operations of %s, %d threads\n\n", scene.size(),
-                scenePath.c_str(), keep ? (", a seeded subset") : "", requests.size(), editsPath.c_str(), maxThreads());
+    std::printf("relight_bench: %zu Gaussians (%s%s), %zu operations of %s, %d threads; the viewer at %dx%d\n\n",
+                scene.size(), scenePath.c_str(), keep ? (", a seeded subset") : "", requests.size(), editsPath.c_str(),
+                maxThreads(), viewer.width, viewer.height);
     std::printf("shown: the edit applied and its tracer updated (what the viewer shows first); relit: and its\n"
                 "shadows (the viewer relights after showing the edit). first: the first edit of the session, which\n"
                 "also builds the unedited scene's tracer; again: the last operation undone and redone\n\n");

@@ -56,10 +56,9 @@ void runEdit(const EditOptions& o) {
     before->build(unedited, source.settings.trace);
     after->build(source.scene, source.settings.trace);
     std::fprintf(stderr, "glint edit: %s\n",
-                 relightAfterEdit(*before, unedited, *after, source.scene, provenance,
+                 relightAfterEdit(*before, unedited, *after, source.scene, provenance, healed,
                                   o.relight.settings(source.settings.path()))
                      .c_str());
-    continueHealedColours(healed, source.scene);  // the filled surface takes its relit surroundings' colour
   }
   writeGaussianPly(o.output, source.scene);
   std::fprintf(stderr, "glint edit: wrote %s (%zu Gaussians)\n", o.output.c_str(), source.scene.size());

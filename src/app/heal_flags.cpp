@@ -8,9 +8,10 @@ namespace glint {
 
 void HealFlags::add(CLI::App* cmd) {
   cmd->add_flag("--heal,!--no-heal", on_,
-                "Fill the surface a moved or removed object uncovered (on by default; --no-heal leaves it as trained) (a floor no training view saw under it) with "
+                "Fill the surface a moved or removed object uncovered (a floor no training view saw under it) with "
                 "Gaussians continued from the surface around it: colour, normal, roughness, F0, shape; with "
-                "--relight their colour follows the relit surroundings. Heals before relighting");
+                "--relight their colour follows the relit surroundings. Heals before relighting. On by default; "
+                "--no-heal leaves the surface as trained");
   cmd->add_option("--heal-below", settings_.fillBelow,
                   "--heal fills points of the uncovered surface whose coverage is below this fraction of the "
                   "surrounding surface's")
@@ -25,10 +26,10 @@ HealReport healAfterEdit(const GaussianScene& before, GaussianScene& after, Edit
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   char text[256];
   std::snprintf(text, sizeof text,
-                "healed the uncovered surface: %zu Gaussians added at %zu points under %zu vacated ones, %zu hidden ones "
-                "recoloured (%zu support "
-                "Gaussians, spacing %.3g, ring coverage %.2f), %.2f s",
-                r.added, r.candidates, r.vacated, r.recoloured, r.support, double(r.spacing), double(r.ringCoverage), seconds);
+                "healed the uncovered surface: %zu Gaussians added at %zu points under %zu vacated ones, %zu hidden "
+                "ones recoloured (%zu support Gaussians, spacing %.3g, ring coverage %.2f), %.2f s",
+                r.added, r.candidates, r.vacated, r.recoloured, r.support, double(r.spacing), double(r.ringCoverage),
+                seconds);
   *line = text;
   return r;
 }

@@ -1,7 +1,6 @@
 // Declaring the --relight flags and running differential relighting after an edit.
 #include "app/relight_flags.h"
 
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -33,9 +32,7 @@ void RelightFlags::add(CLI::App* cmd) {
 
 RelightSettings RelightFlags::settings(const PathSettings& path) const {
   RelightSettings s = settings_;
-  // One flag scales every ray count, in the proportions of the defaults (64, 64, 16).
-  s.hemisphereRays = s.rays;
-  s.quickRays = std::max(1, s.rays / 4);
+  s.setRays(settings_.rays);  // one flag scales every ray count
   s.normalOffset = path.normalOffset;
   s.backfaceSkip = path.backfaceSkip;
   return s;
@@ -43,11 +40,12 @@ RelightSettings RelightFlags::settings(const PathSettings& path) const {
 
 std::string relightAfterEdit(const GaussianTracer& beforeTracer, const GaussianScene& before,
                              const GaussianTracer& afterTracer, GaussianScene& after, const EditProvenance& provenance,
-                             const RelightSettings& settings) {
+                             const HealReport& healed, const RelightSettings& settings) {
   const ChangedRegion regions[] = {changedRegionOf(before, provenance.movedOrRemoved()),
                                    changedRegionOf(after, provenance.movedOrAdded())};
   auto started = std::chrono::steady_clock::now();
   RelightReport r = relightDiffuse(beforeTracer, afterTracer, after, provenance.unmoved(), regions, settings);
+  continueHealedColours(healed, after);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   char text[256];
   std::snprintf(text, sizeof text,

@@ -7,6 +7,7 @@
 #include <CLI/CLI.hpp>
 
 #include "edit/gaussian_edits.h"
+#include "edit/heal_uncovered.h"
 #include "raytrace/gaussian_tracer.h"
 #include "render/differential_relight.h"
 #include "render/gaussian_path.h"
@@ -32,10 +33,11 @@ class RelightFlags {
 
 // Differential relighting of an edited scene (render/differential_relight.h): its changed
 // regions and receivers from the provenance of the edit, tracing the scene before (with
-// beforeTracer) and after (with afterTracer, which must be refitted afterwards). Returns the
-// line that says what it did and how long it took.
+// beforeTracer) and after (with afterTracer, which must be refitted afterwards). Then the
+// Gaussians that healing added or recoloured (`healed`, empty without healing) take their
+// relit surroundings' colour. Returns the line that says what it did and how long it took.
 std::string relightAfterEdit(const GaussianTracer& beforeTracer, const GaussianScene& before,
                              const GaussianTracer& afterTracer, GaussianScene& after, const EditProvenance& provenance,
-                             const RelightSettings& settings);
+                             const HealReport& healed, const RelightSettings& settings);
 
 }  // namespace glint

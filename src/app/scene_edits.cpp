@@ -53,11 +53,10 @@ std::unique_ptr<GaussianTracer> EditsFlag::prepareTracer(GaussianScene& scene, c
     std::unique_ptr<GaussianTracer> uneditedTracer = makeGaussianTracer(kind);
     uneditedTracer->build(unedited, settings);
     std::fprintf(stderr, "%s: %s\n", command,
-                 relightAfterEdit(*uneditedTracer, unedited, *updated.tracer, scene, provenance,
+                 relightAfterEdit(*uneditedTracer, unedited, *updated.tracer, scene, provenance, healed,
                                   relight_.settings(path))
                      .c_str());
-    continueHealedColours(healed, scene);  // the filled surface takes its relit surroundings' colour
-    updated.tracer->refit();               // tracers may keep copies of the colours
+    updated.tracer->refit();  // tracers may keep copies of the colours
   }
   return std::move(updated.tracer);
 }

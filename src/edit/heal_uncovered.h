@@ -69,8 +69,9 @@ struct HealReport {
 HealReport healUncovered(const GaussianScene& before, GaussianScene& after, EditProvenance& provenance,
                          const HealSettings& settings = {});
 
-// Sets each healed (added or recoloured) Gaussian's diffuse colour to the weighted mean of its ring neighbours' now
-// (after relighting has changed them, so the filled surface is lit like its surroundings).
+// Sets each healed (added or recoloured) Gaussian's diffuse colour to the weighted mean of
+// its ring neighbours' now (after relighting has changed them, so the filled surface is lit
+// like its surroundings).
 void continueHealedColours(const HealReport& report, GaussianScene& scene);
 
 }  // namespace glint

@@ -61,6 +61,12 @@ struct RelightSettings {
   float filterRadius = 1.0f;
   float filterCosine = 0.8f;
   uint64_t seed = 0;
+  // Sets every ray count from one, in the proportions of the defaults (64, 64, 16): n rays
+  // toward the changed regions, n over the hemisphere, n / 4 of them first.
+  void setRays(int n) {
+    rays = hemisphereRays = n;
+    quickRays = n / 4 > 1 ? n / 4 : 1;
+  }
   // Ray origins move this far along the normal; rays skip back-facing Gaussians this close
   // (as reflected rays do, appendix B of the paper).
   float normalOffset = 1e-3f;

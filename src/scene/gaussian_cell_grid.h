@@ -1,6 +1,6 @@
-// Gaussians hashed by the cell of their mean, for radius queries of up to one cell: the
-// neighbourhoods of healing (edit/heal_uncovered) and of relighting's filter
-// (render/differential_relight).
+// A hash grid of Gaussian means for radius queries: the neighbourhoods of healing
+// (edit/heal_uncovered), of relighting's filter (render/differential_relight) and of
+// selection growth (edit/selection_growth).
 #pragma once
 
 #include <cmath>

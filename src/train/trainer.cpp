@@ -148,13 +148,16 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
       count += std::clamp<int64_t>(lane.end - lane.begin - offset, 0, perLane);
     }
     laneStart[size_t(slotCount)] = count;
+    // The batch ray of wavefront entry r of slot s.
+    auto batchRay = [&](int64_t s, int64_t r) -> const BatchRay& {
+      return batch[size_t(lanes[size_t(s)].begin + offset + r - laneStart[size_t(s)])];
+    };
     rays_.resize(size_t(count));
     keys_.resize(size_t(count));
     paths_.resize(size_t(count));
-    // Batch index of wavefront entry r of slot s: lanes[s].begin + offset + (r - laneStart[s]).
     for (int64_t s = 0; s < slotCount; ++s)
       for (int64_t r = laneStart[size_t(s)]; r < laneStart[size_t(s) + 1]; ++r) {
-        const BatchRay& b = batch[size_t(lanes[size_t(s)].begin + offset + r - laneStart[size_t(s)])];
+        const BatchRay& b = batchRay(s, r);
         rays_[size_t(r)] = b.ray;
         keys_[size_t(r)] = {b.view, b.pixel, uint64_t(step_)};
       }
@@ -169,7 +172,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
         if (scoring) slot.splitScore[id] += splitScore(g, sigmaMax_[id]);
       };
       for (int64_t r = laneStart[size_t(s)]; r < laneStart[size_t(s) + 1]; ++r) {
-        const BatchRay& b = batch[size_t(lanes[size_t(s)].begin + offset + r - laneStart[size_t(s)])];
+        const BatchRay& b = batchRay(s, r);
         const PixelTarget target = views_.target(b.view, b.pixel);
         std::span<const PathSegment> path = pathBatch_.path(size_t(r));
         const RayResult& result = path[0].result;

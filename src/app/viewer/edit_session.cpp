@@ -115,13 +115,7 @@ void EditSession::update(const TracerUpdateContext& context) {
   noRefitReason_ = "the Gaussian count changed";
   if (edited.size() == shownScene_->size()) {
     noRefitReason_ = "the shown scene was in use";
-    if (context.releaseShown) context.releaseShown();
-    if (current_.use_count() == 1 && shownScene_.use_count() == 2) {
-      // Pairs with the release of the other holders' reference counts: their reads of the
-      // scene happen before it is overwritten below.
-      std::atomic_thread_fence(std::memory_order_acquire);
-      previous = std::move(current_->tracer);
-    }
+    previous = takeShownTracer(context);
   }
   if (previous)
     *shownScene_ = std::move(edited);  // the same object, which the previous tracer references
@@ -141,11 +135,24 @@ void EditSession::update(const TracerUpdateContext& context) {
     updated.tracer->refit();  // tracers may keep copies of the colours
     lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
+  show(std::move(updated.tracer));
+  lastUpdate_ = updated.times;
+}
+
+std::unique_ptr<GaussianTracer> EditSession::takeShownTracer(const TracerUpdateContext& context) {
+  if (context.releaseShown) context.releaseShown();
+  if (current_.use_count() != 1 || shownScene_.use_count() != 2) return nullptr;
+  // Pairs with the release of the other holders' reference counts: their reads of the scene
+  // happen before the caller overwrites it.
+  std::atomic_thread_fence(std::memory_order_acquire);
+  return std::move(current_->tracer);
+}
+
+void EditSession::show(std::unique_ptr<GaussianTracer> tracer) {
   auto next = std::make_shared<TracedScene>();
   next->scene = shownScene_;
-  next->tracer = std::move(updated.tracer);
+  next->tracer = std::move(tracer);
   current_ = std::move(next);
-  lastUpdate_ = updated.times;
 }
 
 void EditSession::relightColours(const GaussianTracer& editedTracer, GaussianScene& edited,
@@ -154,8 +161,7 @@ void EditSession::relightColours(const GaussianTracer& editedTracer, GaussianSce
     pristineTracer_ = makeGaussianTracer(kViewerTracer);
     pristineTracer_->build(*pristine_, trace_);
   }
-  lastRelight_ = relightAfterEdit(*pristineTracer_, *pristine_, editedTracer, edited, provenance, *relight_);
-  continueHealedColours(healed, edited);  // the filled surface takes its relit surroundings' colour
+  lastRelight_ = relightAfterEdit(*pristineTracer_, *pristine_, editedTracer, edited, provenance, healed, *relight_);
 }
 
 std::shared_ptr<const TracedScene> EditSession::relight(const TracerUpdateContext& context) {
@@ -169,11 +175,8 @@ std::shared_ptr<const TracedScene> EditSession::relight(const TracerUpdateContex
 
   // As in update: the shown scene is overwritten in place and its tracer refitted only when
   // nobody else holds them once the renderer has let go.
-  if (context.releaseShown) context.releaseShown();
-  std::unique_ptr<GaussianTracer> tracer;
-  if (current_.use_count() == 1 && shownScene_.use_count() == 2) {
-    std::atomic_thread_fence(std::memory_order_acquire);
-    tracer = std::move(current_->tracer);
+  std::unique_ptr<GaussianTracer> tracer = takeShownTracer(context);
+  if (tracer) {
     shownScene_->diffuse = std::move(relit.diffuse);
     tracer->refit();  // tracers may keep copies of the colours
   } else {
@@ -181,10 +184,7 @@ std::shared_ptr<const TracedScene> EditSession::relight(const TracerUpdateContex
     tracer = makeGaussianTracer(kViewerTracer);
     tracer->build(*shownScene_, trace_);
   }
-  auto next = std::make_shared<TracedScene>();
-  next->scene = shownScene_;
-  next->tracer = std::move(tracer);
-  current_ = std::move(next);
+  show(std::move(tracer));
   lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return current_;
 }

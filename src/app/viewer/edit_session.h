@@ -18,8 +18,8 @@
 
 #include "app/viewer/progressive_renderer.h"
 #include "edit/edit_document.h"
-#include "raytrace/trace_settings.h"
 #include "edit/heal_uncovered.h"
+#include "raytrace/trace_settings.h"
 #include "render/differential_relight.h"
 #include "render/tracer_update.h"
 #include "scene/camera.h"
@@ -93,6 +93,11 @@ class EditSession {
   // builds a new one (mutex_ held). Throws Error when an operation cannot apply; nothing
   // shown has changed then.
   void update(const TracerUpdateContext& context);
+  // The shown tracer, taken for an update of the shown scene in place, when nobody else holds
+  // the scene once the renderer has let go of it (context.releaseShown); else null.
+  std::unique_ptr<GaussianTracer> takeShownTracer(const TracerUpdateContext& context);
+  // Makes shownScene_, traced by `tracer`, the current scene.
+  void show(std::unique_ptr<GaussianTracer> tracer);
   // Relights `edited` (traced by editedTracer) against the pristine scene, building the
   // pristine scene's tracer at the first call, and gives healed Gaussians their relit
   // surroundings' colour (mutex_ held).
