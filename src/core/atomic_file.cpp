@@ -23,15 +23,18 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// This machine's name as it goes into temporary file names: letters, digits and '-' only
-// (a '.' would end the stem, and a '_' parts of the name).
+// The characters of a machine's name in temporary file names: letters, digits and '-' (a '.'
+// would end the stem, and a '_' parts of the name).
+bool hostTagCharacter(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-'; }
+
+// This machine's name as it goes into temporary file names, other characters as '-'.
 const std::string& hostTag() {
   static const std::string tag = [] {
     char name[256] = "";
     if (gethostname(name, sizeof(name) - 1) != 0) return std::string("host");
     std::string t;
     for (const char* c = name; *c != '\0'; ++c)
-      t += std::isalnum(static_cast<unsigned char>(*c)) || *c == '-' ? *c : '-';
+      t += hostTagCharacter(*c) ? *c : '-';
     return t.empty() ? std::string("host") : t;
   }();
   return tag;
@@ -41,8 +44,12 @@ const std::string& hostTag() {
 // some writers pick the format from it, and the PID and the machine tell whose file it is
 // (the ranks of an MPI job on several machines write into one shared folder).
 std::string temporaryName(const fs::path& path, int counter) {
-  return "." + path.stem().string() + ".tmp" + std::to_string(getpid()) + "_" + std::to_string(counter) + "_" +
-         hostTag() + path.extension().string();
+  // Appended piece by piece: GCC 12 warns (-Wrestrict, falsely) about "." + std::string&&.
+  std::string name = ".";
+  name += path.stem().string();
+  name += ".tmp" + std::to_string(getpid()) + "_" + std::to_string(counter) + "_" + hostTag();
+  name += path.extension().string();
+  return name;
 }
 
 struct TemporaryOwner {
@@ -66,7 +73,7 @@ std::optional<TemporaryOwner> temporaryOwner(const std::string& name) {
     if (*afterCounter != '_') continue;
     const char* host = afterCounter + 1;
     const char* hostEnd = host;
-    while (hostEnd != last && (std::isalnum(static_cast<unsigned char>(*hostEnd)) || *hostEnd == '-')) ++hostEnd;
+    while (hostEnd != last && hostTagCharacter(*hostEnd)) ++hostEnd;
     if (hostEnd != host && (hostEnd == last || *hostEnd == '.')) return TemporaryOwner{pid, std::string(host, hostEnd)};
   }
   return std::nullopt;

@@ -1,10 +1,10 @@
 // Failure path of GLINT_CHECK: reports the broken invariant and aborts.
 #include "core/error.h"
 
-#include "core/cluster.h"
-
 #include <cstdio>
 #include <cstdlib>
+
+#include "core/cluster.h"
 
 namespace glint {
 

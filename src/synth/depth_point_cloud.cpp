@@ -2,22 +2,20 @@
 #include "synth/depth_point_cloud.h"
 
 #include <algorithm>
-#include <cmath>
 #include <cstring>
 #include <span>
 
 #include "core/cluster.h"
 #include "core/error.h"
+#include "io/transfer.h"
 #include "scene/buffers.h"
 
 namespace glint {
 
 namespace {
 
-float srgbEncode(float linear) {
-  linear = std::clamp(linear, 0.0f, 1.0f);
-  return linear <= 0.0031308f ? 12.92f * linear : 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
-}
+// A point's colour: the diffuse colour in [0, 1], sRGB-encoded (io/transfer.h).
+float srgbEncode(float linear) { return toDisplay(Transfer::Srgb, std::clamp(linear, 0.0f, 1.0f)); }
 
 int64_t surfacePixels(const Image& depth) {
   int64_t count = 0;
