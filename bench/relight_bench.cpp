@@ -139,7 +139,9 @@ int main(int argc, char** argv) {
       std::optional<HealSettings> heal;
       if (mode.heal) heal = healDefaults;
       EditSession session(scene, source.settings.trace, kDefaultMaxGaussians, relight, heal, /*deferRelighting=*/true);
-      Row row{mode.name, mode.rays};
+      Row row;
+      row.mode = mode.name;
+      row.rays = mode.rays;
       row.firstShown = secondsOf([&] {
         for (const nlohmann::json& request : requests) session.apply(request, context);
       });

@@ -72,7 +72,8 @@ export class EditPanel {
       const status = await postJson(path, body);
       this.setStatus(status);
       const done = `${verb}; ${status.operations} operations${describeTracerUpdate(status.tracer_update)}`;
-      this.report(status.relight_pending ? `${done}\nrelighting...` : done, false);
+      this.report(status.relight_pending ? `${done}\nrelighting...` : status.relight ? `${done}\n${status.relight}` : done,
+        false);
       this.schedulePreview();
       if (status.relight_pending) {
         const relit = await postJson('/api/edits/relight', {});

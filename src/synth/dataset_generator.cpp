@@ -114,7 +114,9 @@ void generateDataset(const MeshScene& scene, const SynthSettings& settings, cons
     std::vector<Mat4> poses = orbitCameras(*plan.path, plan.count);
     for (int i = 0; i < plan.count; ++i) {
       Camera camera = Camera::fromFieldOfView(poses[i], rig.fovX, settings.width, settings.height);
-      DatasetView view{frameName(plan.name, i), camera};
+      DatasetView view;
+      view.filePath = frameName(plan.name, i);
+      view.camera = camera;
       split.views.push_back(view);
       if (!share.mine(listIndex(plan, i))) continue;
       ViewBuffers buffers = renderView(tracer, camera, splitSettings, (plan.key << 32) | uint64_t(i), &progress);

@@ -158,7 +158,9 @@ TEST(EditSession, DeferredRelightingShowsTheEditFirstThenTheImmediateColours) {
     // Refitted in place when nobody held the shown scene, else traced by a new tracer;
     // either way the tracer shown traces the relit colours.
     EXPECT_EQ(relit->scene.get() == shownScene, !rendererHolds);
-    if (rendererHolds) EXPECT_EQ(shown->scene->diffuse[room.centre], pristine.diffuse[room.centre]);  // untouched
+    if (rendererHolds) {
+      EXPECT_EQ(shown->scene->diffuse[room.centre], pristine.diffuse[room.centre]);  // untouched
+    }
     TraceRay down{pristine.position[room.centre] + Vec3f(0, 0, 0.3f), Vec3f(0, 0, -1), 0.0f};
     EXPECT_EQ(relit->tracer->trace(down).diffuse, immediate.current()->tracer->trace(down).diffuse);
     // Nothing waits now: a second call changes nothing.

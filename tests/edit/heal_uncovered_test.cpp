@@ -172,7 +172,9 @@ TEST(HealUncovered, DeletionLeavesTheFloorOutsideTheHoleAsItWas) {
   for (size_t i = 0; i < deleted.size(); ++i) {
     EXPECT_EQ(e.after.position[i], deleted.position[i]);
     EXPECT_EQ(e.after.roughness[i], deleted.roughness[i]);
-    if (!recoloured[i]) EXPECT_EQ(e.after.diffuse[i], deleted.diffuse[i]) << i;
+    if (!recoloured[i]) {
+      EXPECT_EQ(e.after.diffuse[i], deleted.diffuse[i]) << i;
+    }
   }
 }
 

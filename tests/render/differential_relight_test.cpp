@@ -209,8 +209,12 @@ TEST(DifferentialRelight, RatioStaysFiniteWhereTheUneditedSceneWasDark) {
       ASSERT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) << dim;
       EXPECT_LE(c.x, c0.x * settings.maxRatio) << dim;
     }
-    if (dim == 0.0f) EXPECT_EQ(report.changed, 0u);  // nothing to scale
-    if (dim == 1e-3f) EXPECT_GT(report.clamped, 0u);
+    if (dim == 0.0f) {
+      EXPECT_EQ(report.changed, 0u);  // nothing to scale
+    }
+    if (dim == 1e-3f) {
+      EXPECT_GT(report.clamped, 0u);
+    }
   }
 }
 

@@ -125,7 +125,10 @@ void EditSession::update(const TracerUpdateContext& context) {
   UpdatedTracer updated = updateTracerAfterEdit(std::move(previous), *shownScene_, trace_, kViewerTracer,
                                                 refitPossible, context.probeCamera, context.workRays);
   pending_.reset();
-  if (relight_ && deferRelighting_) {
+  // An edit that moves, adds and removes nothing (a material edit) has no changed region to
+  // relight around: relighting traces no ray, so it is done at once rather than deferred.
+  const bool movesSomething = !provenance.movedOrAdded().empty() || !provenance.movedOrRemoved().empty();
+  if (relight_ && deferRelighting_ && movesSomething) {
     pending_ = PendingRelight{std::move(provenance), std::move(healed)};
     lastRelight_ = "waiting";
     lastRelightSeconds_ = 0;

@@ -41,8 +41,9 @@ class EditSession {
   // every edit is followed by differential relighting (app/relight_flags.h) against the
   // pristine scene, whose tracer is built at the first edit. With heal, the surface an edit
   // uncovered is filled first (edit/heal_uncovered.h). With deferRelighting, apply, undo
-  // and redo show the edit at once without relighting it, and relight() then relights it:
-  // the viewer shows a moved object within milliseconds and its shadows seconds later.
+  // and redo show an edit that moves, adds or removes Gaussians at once without relighting
+  // it, and relight() then relights it: the viewer shows a moved object within milliseconds
+  // and its shadows seconds later.
   EditSession(GaussianScene pristine, const TraceSettings& trace, size_t maxGaussians,
               std::optional<RelightSettings> relight = std::nullopt, std::optional<HealSettings> heal = std::nullopt,
               bool deferRelighting = false);
@@ -126,10 +127,10 @@ class EditSession {
     HealReport healed;
   };
   std::optional<PendingRelight> pending_;
-  bool deferRelighting_ = false;
   double lastRelightSeconds_ = 0;
   std::optional<HealSettings> heal_;
   size_t lastHealed_ = 0;  // Gaussians the last healing added
+  bool deferRelighting_ = false;
   int nextSelectionId_ = 0;
 };
 
