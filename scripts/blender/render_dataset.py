@@ -3,6 +3,14 @@
 # Run: blender -b --factory-startup --python-exit-code 1 -P render_dataset.py -- \
 #        --scene spheres_room --out DIR [--res 160x120 --train-views 100 --test-views 20
 #        --train-spp 256 --test-spp 512 --seed 0 --noise-check]
+#        [--edit translate:OBJECT:DX,DY,DZ | duplicate:OBJECT:DX,DY,DZ | delete:OBJECT ...
+#         --test-only]
+#
+# --edit changes the scene before rendering, in order (the ground truth of an edit that
+# `glint eval --edits` applies to Gaussians); --test-only renders the test split alone.
+# The camera poses do not depend on either: they are drawn from the seed for both splits
+# (in spheres_room, with no mirror-only object, they do not look at the geometry), so an
+# edited scene's test views have the unedited dataset's cameras.
 #
 # Two renders per view: a radiance render (Combined and the light passes Glint's diffuse and
 # specular buffers are built from, box-filtered over the pixel like Glint's) and a 1-sample
@@ -42,10 +50,40 @@ def parse_args():
     p.add_argument("--seed", type=int, default=0)
     p.add_argument("--noise-check", action="store_true",
                    help="re-render the test views with another seed and print the PSNR per pass")
+    p.add_argument("--edit", action="append", default=[],
+                   help="translate:OBJECT:DX,DY,DZ, duplicate:OBJECT:DX,DY,DZ or delete:OBJECT, applied "
+                        "to the scene in order before rendering")
+    p.add_argument("--test-only", action="store_true",
+                   help="render and write the test split alone (the training poses are still drawn, "
+                        "so the test cameras are the full dataset's)")
     args = p.parse_args(argv)
     args.width, args.height = (int(v) for v in args.res.lower().split("x"))
     args.out = os.path.abspath(args.out)
     return args
+
+
+# ---------------------------------------------------------------- edits
+
+def apply_edit(text):
+    """One --edit: moves, copies (offset, sharing the mesh and material) or deletes an object."""
+    parts = text.split(":")
+    op, name = parts[0], parts[1] if len(parts) > 1 else ""
+    obj = bpy.data.objects.get(name)
+    if obj is None or op not in ("translate", "duplicate", "delete") or len(parts) != (2 if op == "delete" else 3):
+        raise SystemExit(f"render_dataset: bad --edit {text!r} (translate:OBJECT:DX,DY,DZ, "
+                         f"duplicate:OBJECT:DX,DY,DZ or delete:OBJECT with an object of the scene)")
+    if op == "delete":
+        bpy.data.objects.remove(obj, do_unlink=True)
+        print(f"edit: deleted {name}")
+        return
+    offset = Vector(tuple(float(v) for v in parts[2].split(",")))
+    if op == "duplicate":
+        copy = obj.copy()
+        copy.name = name + "_copy"
+        bpy.context.scene.collection.objects.link(copy)
+        obj = copy
+    obj.location = obj.location + offset
+    print(f"edit: {op} {name} by {tuple(offset)}: now at {tuple(obj.location)}")
 
 
 # ---------------------------------------------------------------- Cycles settings
@@ -533,6 +571,8 @@ def main():
 
     scene = bpy.context.scene
     spec = scenes.SCENES[args.scene]()
+    for text in args.edit:
+        apply_edit(text)
     configure_cycles(scene, args)
     cam = ensure_camera(scene, args)
     fov_x = math.radians(FOV_X_DEG)
@@ -543,18 +583,19 @@ def main():
     timings["camera_planning_s"] = time.time() - t
     if spec["mirror_only"] is not None:
         write_validation(spec, args.out, hidden_report)
-    for split in ("train", "test"):
+    splits = ("test",) if args.test_only else ("train", "test")
+    for split in splits:
         write_transforms(args.out, split, poses[split], fov_x)
 
     spp = {"train": args.train_spp, "test": args.test_spp}
-    for split in ("train", "test"):
+    for split in splits:
         set_samples(scene, spp[split], 1.0, args.seed)
         radiance_compositor(scene, os.path.join(args.out, split))
         timings[f"{split}_radiance_s"] = render_views(scene, cam, poses[split],
                                                       f"{split} radiance {spp[split]} spp")
     factors = depth_factors(args, focal, is_z_depth)
     raw_dir = os.path.join(args.out, "_gbuffer_raw")
-    for split in ("train", "test"):
+    for split in splits:
         set_samples(scene, 1, GBUFFER_FILTER_WIDTH, args.seed)
         gbuffer_compositor(scene, raw_dir)
         out_dir = os.path.join(args.out, split)
@@ -566,7 +607,7 @@ def main():
     os.rmdir(raw_dir)
 
     print("checks:")
-    for split in ("train", "test"):
+    for split in splits:
         check_sums(args.out, split, len(poses[split]))
         check_gbuffers(scene, args.out, split, poses[split][0], focal)
 
@@ -590,6 +631,7 @@ def main():
     settings = {"scene": args.scene, "resolution": [args.width, args.height],
                 "train_views": args.train_views, "test_views": args.test_views,
                 "train_spp": args.train_spp, "test_spp": args.test_spp, "seed": args.seed,
+                "edits": args.edit, "test_only": args.test_only,
                 "depth_pass_was_z_depth": is_z_depth, "blender": bpy.app.version_string,
                 "timings": timings}
     with open(os.path.join(args.out, "render_settings.json"), "w") as f:
