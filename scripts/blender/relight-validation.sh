@@ -46,11 +46,15 @@ done
 
 E="--spp 64 --threads 2"
 mkdir -p eval
-"$glint" eval "$run" --dataset "$dataset" $E -o eval/unedited.json
+# With the pixels of the original sphere and of its copy scored apart (--region): where the
+# duplication's drop lies.
+"$glint" eval "$run" --dataset "$dataset" $E --region=-1.45,-0.25,0.02,-0.35,0.85,1.05 -o eval/unedited.json
 "$glint" eval "$run" --dataset "$dataset" $E --edits edits_null.json -o eval/null.json
 for e in move duplicate delete; do
   "$glint" eval "$run" --dataset "D_$e" $E --edits "edits_$e.json" --no-relight --no-heal -o "eval/$e.json"
-  "$glint" eval "$run" --dataset "D_$e" $E --edits "edits_$e.json" -o "eval/${e}_default.json"
+  region=()
+  [ "$e" = duplicate ] && region=(--region=0.65,-1.05,0.02,1.75,0.05,1.05)
+  "$glint" eval "$run" --dataset "D_$e" $E --edits "edits_$e.json" "${region[@]}" -o "eval/${e}_default.json"
 done
 python3 - <<'PY'
 import json
