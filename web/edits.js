@@ -76,6 +76,9 @@ export class EditPanel {
         false);
       this.schedulePreview();
       if (status.relight_pending) {
+        const preview = await postJson('/api/edits/relight', { preview: true });
+        this.setStatus(preview);
+        if (preview.relight_pending) this.report(`${done}\n${preview.relight}\nrelighting...`, false);
         const relit = await postJson('/api/edits/relight', {});
         this.setStatus(relit);
         this.report(`${done}\n${relit.relight}`, false);

@@ -24,6 +24,12 @@ void RelightFlags::add(CLI::App* cmd) {
                   "many of its largest standard deviations; 0 = no filter")
       ->check(CLI::Range(0.0f, 100.0f))
       ->capture_default_str();
+  cmd->add_option("--relight-traced", settings_.tracedBudget,
+                  "--relight traces rays from at most this many Gaussians within reach of the edit, spread evenly over "
+                  "them, and the others take their neighbours' ratios: faster on large scenes, coarser shadows (the "
+                  "viewer's preview traces 2000); 0 = every one")
+      ->check(CLI::Range(size_t(0), size_t(1) << 40))
+      ->capture_default_str();
   cmd->add_option("--relight-max-ratio", settings_.maxRatio,
                   "--relight changes no diffuse colour by more than this factor, up or down")
       ->check(CLI::Range(1.0f, 1000.0f))
@@ -47,11 +53,13 @@ std::string relightAfterEdit(const GaussianTracer& beforeTracer, const GaussianS
   RelightReport r = relightDiffuse(beforeTracer, afterTracer, after, provenance.unmoved(), regions, settings);
   continueHealedColours(healed, after);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  char text[256];
+  char traced[64] = "";
+  if (r.traced < r.reached) std::snprintf(traced, sizeof traced, ", %zu of them traced", r.traced);
+  char text[320];
   std::snprintf(text, sizeof text,
-                "relit %zu of the %zu Gaussians left in place (%zu within reach of the edit, %zu at the ratio's "
+                "relit %zu of the %zu Gaussians left in place (%zu within reach of the edit%s, %zu at the ratio's "
                 "clamp), %.2f M rays, %.2f s",
-                r.changed, r.receivers, r.reached, r.clamped, double(r.rays) * 1e-6, seconds);
+                r.changed, r.receivers, r.reached, traced, r.clamped, double(r.rays) * 1e-6, seconds);
   return text;
 }
 

@@ -88,30 +88,95 @@ Rgb irradianceRatio(const Rgb& before, const Rgb& change, float maxRatio, bool* 
   return ratio;
 }
 
-// The filter of RelightSettings::filterRadius over the receivers within reach.
+// Each receiver's unit normal (zero for receivers out of reach, which never use it).
+std::vector<Vec3f> unitNormals(const GaussianScene& scene, std::span<const uint32_t> receivers,
+                               const std::vector<uint8_t>& inReach) {
+  std::vector<Vec3f> normals(receivers.size(), Vec3f(0.0f));
+  for (size_t i = 0; i < receivers.size(); ++i)
+    if (inReach[i]) normals[i] = normalize(scene.normal[receivers[i]]);
+  return normals;
+}
+
+// The receivers (indices into `receivers`) of a cover of those within reach: every one of
+// them has a chosen receiver within `spacing` that faces the same way (normals within
+// `cosine`). Greedy in an order hashed from the seed, so the cover is spread evenly and does
+// not depend on the receivers' order or the thread count.
+std::vector<uint32_t> coverOf(const GaussianScene& scene, std::span<const uint32_t> receivers,
+                              const std::vector<uint32_t>& order, const std::vector<uint32_t>& receiverOf,
+                              const std::vector<Vec3f>& normals, float spacing, float cosine) {
+  CellGrid grid(scene, {}, spacing);  // the chosen receivers
+  std::vector<uint32_t> chosen;
+  for (uint32_t i : order) {
+    bool covered = false;
+    grid.near(scene.position[receivers[i]], spacing,
+              [&](uint32_t g) { covered = covered || dot(normals[receiverOf[g]], normals[i]) >= cosine; });
+    if (covered) continue;
+    grid.add(receivers[i]);
+    chosen.push_back(i);
+  }
+  return chosen;
+}
+
+// The receivers to trace under RelightSettings::tracedBudget: a cover of the receivers within
+// reach with the smallest spacing (to 2%) that keeps it within the budget, and that spacing;
+// every receiver within reach and spacing 0 when they fit the budget.
+std::vector<uint32_t> tracedReceivers(const GaussianScene& scene, std::span<const uint32_t> receivers,
+                                      const std::vector<uint8_t>& inReach, const std::vector<Vec3f>& normals,
+                                      const RelightSettings& settings, float* spacing) {
+  std::vector<uint32_t> reached;
+  for (size_t i = 0; i < receivers.size(); ++i)
+    if (inReach[i]) reached.push_back(uint32_t(i));
+  *spacing = 0;
+  if (settings.tracedBudget == 0 || reached.size() <= settings.tracedBudget) return reached;
+  std::vector<uint64_t> rank(receivers.size());
+  for (uint32_t i : reached) rank[i] = hashKeys({settings.seed, receivers[i], 2});
+  std::sort(reached.begin(), reached.end(), [&](uint32_t a, uint32_t b) { return rank[a] < rank[b]; });
+  std::vector<uint32_t> receiverOf(scene.size(), UINT32_MAX);
+  for (uint32_t i : reached) receiverOf[receivers[i]] = i;
+  Vec3f lo(INFINITY), hi(-INFINITY);
+  for (uint32_t i : reached) lo = min(lo, scene.position[receivers[i]]), hi = max(hi, scene.position[receivers[i]]);
+  // Bisection in log space: one cell spans the whole reach at `high`, the budget is exceeded
+  // at `low` (a cover at spacing 0 holds every receiver).
+  float low = 0, high = std::max(length(hi - lo), 1e-6f);
+  std::vector<uint32_t> best = coverOf(scene, receivers, reached, receiverOf, normals, high, settings.filterCosine);
+  for (int step = 0; step < 40 && (low == 0 || high > 1.02f * low); ++step) {
+    const float middle = low == 0 ? 0.25f * high : std::sqrt(low * high);
+    std::vector<uint32_t> cover = coverOf(scene, receivers, reached, receiverOf, normals, middle, settings.filterCosine);
+    if (cover.size() <= settings.tracedBudget) {
+      high = middle;
+      best = std::move(cover);
+    } else {
+      low = middle;
+    }
+  }
+  *spacing = high;
+  std::sort(best.begin(), best.end());
+  return best;
+}
+
+// The filter of RelightSettings::filterRadius over the receivers within reach: each takes the
+// weighted mean of the ratios of the traced receivers near it that face the same way, within
+// filterRadius of its largest standard deviations or `spacing`, whichever is wider. Without
+// a budget every receiver within reach is traced and spacing is 0.
 std::vector<Rgb> filteredRatios(const GaussianScene& scene, std::span<const uint32_t> receivers,
-                                const std::vector<uint8_t>& inReach, const std::vector<Rgb>& ratios,
-                                const RelightSettings& settings) {
-  // Each reached receiver's unit normal and filter radius, once (the neighbour loop below
-  // reads every neighbour's normal many times).
+                                const std::vector<uint8_t>& inReach, std::span<const uint32_t> traced,
+                                const std::vector<Vec3f>& normals, const std::vector<Rgb>& ratios,
+                                const RelightSettings& settings, float spacing) {
   std::vector<uint32_t> reached;  // indices into receivers
-  std::vector<uint32_t> sceneIndices;
   std::vector<float> radii;       // per reached receiver
-  std::vector<Vec3f> unitNormal(receivers.size());
   float largest = 0;
   for (size_t i = 0; i < receivers.size(); ++i)
     if (inReach[i]) {
       reached.push_back(uint32_t(i));
-      sceneIndices.push_back(receivers[i]);
       const Vec3f s = scene.scale(receivers[i]);
-      radii.push_back(settings.filterRadius * std::max({s.x, s.y, s.z}));
+      radii.push_back(std::max(settings.filterRadius * std::max({s.x, s.y, s.z}), spacing));
       largest = std::max(largest, radii.back());
-      unitNormal[i] = normalize(scene.normal[receivers[i]]);
     }
   if (reached.empty() || !(largest > 0)) return ratios;
-  // Cells as wide as the largest radius any receiver asks for.
+  // Cells as wide as the largest radius any receiver asks for, over the traced receivers.
+  std::vector<uint32_t> sceneIndices;
   std::vector<uint32_t> receiverOf(scene.size(), UINT32_MAX);
-  for (uint32_t r : reached) receiverOf[receivers[r]] = r;
+  for (uint32_t r : traced) sceneIndices.push_back(receivers[r]), receiverOf[receivers[r]] = r;
   const CellGrid grid(scene, sceneIndices, largest);
   std::vector<Rgb> filtered = ratios;
   parallelFor(int64_t(reached.size()), 64, [&](int64_t k) {
@@ -119,11 +184,11 @@ std::vector<Rgb> filteredRatios(const GaussianScene& scene, std::span<const uint
     const uint32_t g = receivers[r];
     const float radius = radii[size_t(k)];
     const float sigma2 = 0.25f * radius * radius;  // the weight falls to e^-2 at the radius
-    const Vec3f n = unitNormal[r];
+    const Vec3f n = normals[r];
     Rgb sum(0.0f);
     float weights = 0;
     grid.near(scene.position[g], radius, [&](uint32_t j) {
-      if (dot(unitNormal[receiverOf[j]], n) < settings.filterCosine) return;
+      if (dot(normals[receiverOf[j]], n) < settings.filterCosine) return;
       const Vec3f d = scene.position[j] - scene.position[g];
       const float w = std::exp(-0.5f * dot(d, d) / sigma2);
       sum += ratios[receiverOf[j]] * w;
@@ -146,26 +211,44 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
                   settings.maxRatio >= 1 && settings.minRelativeChange >= 0,
               "relightRatios: bad settings");
   std::vector<Rgb> ratios(receivers.size(), Rgb(1.0f));
+  // Which receivers the edit can reach: those with a normal that see a changed region above
+  // their horizon under minSolidAngle or more.
   std::vector<uint8_t> inReach(receivers.size(), 0);
-  std::atomic<size_t> reached = 0, changed = 0, clampedCount = 0;
+  auto receiverFrame = [&](size_t i, Vec3f* p, Vec3f* n, Cone* cones, float* solidAngle) {
+    const uint32_t g = receivers[i];
+    const float normalLength = length(afterScene.normal[g]);
+    if (!(normalLength >= settings.minNormalLength)) return 0;
+    *n = afterScene.normal[g] / normalLength, *p = afterScene.position[g];
+    const int coneCount = conesToward(*p, *n, regions, cones);
+    float largest = 0;
+    *solidAngle = 0;
+    for (int c = 0; c < coneCount; ++c) *solidAngle += cones[c].solidAngle, largest = std::max(largest, cones[c].solidAngle);
+    return largest < settings.minSolidAngle ? 0 : coneCount;
+  };
+  parallelFor(int64_t(receivers.size()), 256, [&](int64_t i) {
+    Vec3f p, n;
+    Cone cones[kMaxRegions];
+    float solidAngle = 0;
+    inReach[size_t(i)] = receiverFrame(size_t(i), &p, &n, cones, &solidAngle) > 0;
+  });
+  const std::vector<Vec3f> normals = unitNormals(afterScene, receivers, inReach);
+  float spacing = 0;
+  const std::vector<uint32_t> traced = tracedReceivers(afterScene, receivers, inReach, normals, settings, &spacing);
+
+  std::atomic<size_t> changed = 0, clampedCount = 0;
   std::atomic<uint64_t> rays = 0;
-  ProgressBar progress("relight", int64_t(receivers.size()), "Gaussians");
+  ProgressBar progress("relight", int64_t(traced.size()), "Gaussians");
   auto radiance = [&](const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const Vec3f& w) {
     TraceRay ray{p + n * settings.normalOffset, w, 0.0f, settings.backfaceSkip};
     return tracer.trace(ray).diffuse;
   };
-  parallelFor(int64_t(receivers.size()), 16, [&](int64_t i) {
-    const uint32_t g = receivers[size_t(i)];
-    float normalLength = length(afterScene.normal[g]);
-    if (!(normalLength >= settings.minNormalLength)) return progress.advance();
-    const Vec3f n = afterScene.normal[g] / normalLength, p = afterScene.position[g];
+  parallelFor(int64_t(traced.size()), 16, [&](int64_t t) {
+    const size_t i = traced[size_t(t)];
+    const uint32_t g = receivers[i];
+    Vec3f p, n;
     Cone cones[kMaxRegions];
-    int coneCount = conesToward(p, n, regions, cones);
-    float solidAngle = 0, largest = 0;
-    for (int c = 0; c < coneCount; ++c) solidAngle += cones[c].solidAngle, largest = std::max(largest, cones[c].solidAngle);
-    if (coneCount == 0 || largest < settings.minSolidAngle) return progress.advance();
-    reached.fetch_add(1, std::memory_order_relaxed);
-    inReach[size_t(i)] = 1;
+    float solidAngle = 0;
+    const int coneCount = receiverFrame(i, &p, &n, cones, &solidAngle);
 
     // dE by one-sample MIS over the cones: pick a cone uniformly, a direction in it, and
     // divide by the mean of the densities of every cone that holds the direction.
@@ -173,7 +256,7 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
                            settings.rays);
     const uint64_t stream = hashKeys({settings.seed, g, 0});
     Rgb change(0.0f);
-    uint64_t traced = 0;
+    uint64_t raysTraced = 0;
     for (int k = 0; k < count; ++k) {
       Vec2f u = stratifiedSample2(stream, uint32_t(k));
       int pick = std::min(int(u.x * float(coneCount)), coneCount - 1);
@@ -187,12 +270,12 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
       pdf /= float(coneCount);
       if (!(pdf > 0)) continue;
       Rgb difference = radiance(after, p, n, w) - radiance(before, p, n, w);
-      traced += 2;
+      raysTraced += 2;
       change += difference * (cosine / pdf);
     }
     change = change * (1.0f / float(count));
     if (change == Rgb(0.0f)) {  // every ray met the same radiance in both scenes
-      rays.fetch_add(traced, std::memory_order_relaxed);
+      rays.fetch_add(raysTraced, std::memory_order_relaxed);
       return progress.advance();
     }
 
@@ -205,14 +288,14 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
       for (int k = begin; k < end; ++k)
         sum += radiance(before, p, n,
                         normalize(frame.toWorld(sampleCosineHemisphere(stratifiedSample2(hemisphere, uint32_t(k))))));
-      traced += uint64_t(end - begin);
+      raysTraced += uint64_t(end - begin);
     };
     const int quick = std::min(settings.quickRays, settings.hemisphereRays);
     addRays(0, quick);
     const float quickLuminance = luminance(sum * (kPi / float(quick)));
     const float largestChange = std::max({std::abs(change.x), std::abs(change.y), std::abs(change.z)});
     if (largestChange < settings.minRelativeChange * quickLuminance) {
-      rays.fetch_add(traced, std::memory_order_relaxed);
+      rays.fetch_add(raysTraced, std::memory_order_relaxed);
       return progress.advance();
     }
     addRays(quick, settings.hemisphereRays);
@@ -222,16 +305,17 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     ratios[size_t(i)] = irradianceRatio(irradiance, change, settings.maxRatio, &clamped);
     if (ratios[size_t(i)] != Rgb(1.0f)) changed.fetch_add(1, std::memory_order_relaxed);
     if (clamped) clampedCount.fetch_add(1, std::memory_order_relaxed);
-    rays.fetch_add(traced, std::memory_order_relaxed);
+    rays.fetch_add(raysTraced, std::memory_order_relaxed);
     progress.advance();
   });
-  if (settings.filterRadius > 0) {
-    ratios = filteredRatios(afterScene, receivers, inReach, ratios, settings);
+  if (settings.filterRadius > 0 || spacing > 0) {
+    ratios = filteredRatios(afterScene, receivers, inReach, traced, normals, ratios, settings, spacing);
     changed = size_t(std::count_if(ratios.begin(), ratios.end(), [](const Rgb& r) { return r != Rgb(1.0f); }));
   }
   if (report) {
     report->receivers = receivers.size();
-    report->reached = reached;
+    report->reached = size_t(std::count(inReach.begin(), inReach.end(), uint8_t(1)));
+    report->traced = traced.size();
     report->changed = changed;
     report->clamped = clampedCount;
     report->rays = rays;

@@ -60,6 +60,11 @@ struct RelightSettings {
   // 4 and 6 did less (README, "Edits that move shadows").
   float filterRadius = 1.0f;
   float filterCosine = 0.8f;
+  // At most this many receivers within reach are traced (0: all of them): a spatially
+  // stratified subset (one per cell and normal direction, the cells as small as the budget
+  // allows), whose ratios the others take by the filter's weights over a radius of two cells.
+  // The viewer's first look at an edit's shadows, before the full relighting.
+  size_t tracedBudget = 0;
   uint64_t seed = 0;
   // Sets every ray count from one, in the proportions of the defaults (64, 64, 16): n rays
   // toward the changed regions, n over the hemisphere, n / 4 of them first.
@@ -78,7 +83,8 @@ constexpr float kFullRaysSolidAngle = 0.5f;
 
 struct RelightReport {
   size_t receivers = 0;  // Gaussians considered
-  size_t reached = 0;    // ... within reach of a changed region (rays traced)
+  size_t reached = 0;    // ... within reach of a changed region
+  size_t traced = 0;     // ... of which rays were traced from (all, without tracedBudget)
   size_t changed = 0;    // ... whose diffuse colour changed
   size_t clamped = 0;    // ... whose ratio hit the clamp in some channel
   uint64_t rays = 0;     // rays traced, both scenes together

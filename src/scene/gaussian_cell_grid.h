@@ -1,6 +1,6 @@
 // A hash grid of Gaussian means for radius queries: the neighbourhoods of healing
-// (edit/heal_uncovered), of relighting's filter (render/differential_relight) and of
-// selection growth (edit/selection_growth).
+// (edit/heal_uncovered), of relighting's filter and of its cover of the receivers to trace
+// (render/differential_relight), and of selection growth (edit/selection_growth).
 #pragma once
 
 #include <cmath>
@@ -18,8 +18,9 @@ namespace glint {
 class CellGrid {
  public:
   CellGrid(const GaussianScene& scene, std::span<const uint32_t> indices, float cell) : scene_(scene), cell_(cell) {
-    for (uint32_t i : indices) cells_[keyOf(scene.position[i])].push_back(i);
+    for (uint32_t i : indices) add(i);
   }
+  void add(uint32_t i) { cells_[keyOf(scene_.position[i])].push_back(i); }
   // Calls visit(i) for every Gaussian whose mean lies within `radius` (<= cell) of p.
   template <typename Visit>
   void near(const Vec3f& p, float radius, Visit&& visit) const {

@@ -120,19 +120,29 @@ TEST(EditSession, RelightsAfterEachEditAndUndoRestoresThePristineColours) {
 namespace glint {
 namespace {
 
+// The camera and work of the plate room's sessions, and the request that moves its plate
+// sideways (uncovering the floor's shadow under it).
+TracerUpdateContext plateRoomContext() {
+  TracerUpdateContext context;
+  context.probeCamera =
+      Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0, -3, 1), Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, 32, 24);
+  context.workRays = 1e6;
+  return context;
+}
+
+nlohmann::json plateMove() {
+  return {{"selection", {{"box", {{"min", {-0.2, -0.2, 0.3}}, {"max", {0.2, 0.2, 0.5}}}}}},
+          {"operation", {{"op", "translate"}, {"offset", {0.6, 0.0, 0.0}}}}};
+}
+
 // Deferred (the viewer's way): the edit is shown unrelit with "relight_pending", and
 // relight() then gives exactly the colours an immediate session shows, in a tracer that
 // traces them; with the renderer still holding the scene, a new tracer is built instead.
 TEST(EditSession, DeferredRelightingShowsTheEditFirstThenTheImmediateColours) {
   const test::PlateRoom room = test::plateRoom();
   const GaussianScene& pristine = room.scene;
-  TracerUpdateContext context;
-  context.probeCamera =
-      Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0, -3, 1), Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, 32, 24);
-  context.workRays = 1e6;
-  const nlohmann::json move = {
-      {"selection", {{"box", {{"min", {-0.2, -0.2, 0.3}}, {"max", {0.2, 0.2, 0.5}}}}}},
-      {"operation", {{"op", "translate"}, {"offset", {0.6, 0.0, 0.0}}}}};
+  const TracerUpdateContext context = plateRoomContext();
+  const nlohmann::json move = plateMove();
   EditSession immediate(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{});
   immediate.apply(move, context);
   EXPECT_FALSE(immediate.status()["relight_pending"].get<bool>());
@@ -166,6 +176,52 @@ TEST(EditSession, DeferredRelightingShowsTheEditFirstThenTheImmediateColours) {
     // Nothing waits now: a second call changes nothing.
     EXPECT_EQ(deferred.relight(context), relit);
   }
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// A preview shows relit colours over a tracer of its own while the relighting stays
+// pending; the full relighting after it still gives exactly the immediate session's colours
+// (it traces the unrelit scene the preview kept, not the preview's colours).
+TEST(EditSession, PreviewThenFullRelightingGivesTheImmediateColours) {
+  const test::PlateRoom room = test::plateRoom();
+  const GaussianScene& pristine = room.scene;
+  const TracerUpdateContext context = plateRoomContext();
+  const nlohmann::json move = plateMove();
+  EditSession immediate(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{});
+  immediate.apply(move, context);
+
+  EditSession deferred(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{}, std::nullopt, true);
+  EXPECT_EQ(deferred.relightPreview(), deferred.current());  // nothing waits
+  deferred.apply(move, context);
+  const std::shared_ptr<const TracedScene> unrelit = deferred.current();
+  std::shared_ptr<const TracedScene> preview = deferred.relightPreview();
+  nlohmann::json status = deferred.status();
+  EXPECT_TRUE(status["relight_pending"].get<bool>()) << status;
+  EXPECT_TRUE(status["relight_preview"].get<bool>()) << status;
+  EXPECT_EQ(status["relight"].get<std::string>().rfind("preview: relit", 0), 0u) << status;
+  EXPECT_NE(preview, unrelit);
+  EXPECT_GT(preview->scene->diffuse[room.centre].x, 1.1f * pristine.diffuse[room.centre].x);
+  EXPECT_EQ(unrelit->scene->diffuse[room.centre], pristine.diffuse[room.centre]);  // kept as it was
+  TraceRay down{pristine.position[room.centre] + Vec3f(0, 0, 0.3f), Vec3f(0, 0, -1), 0.0f};
+  EXPECT_GT(preview->tracer->trace(down).diffuse.x, 1.1f * pristine.diffuse[room.centre].x);
+  EXPECT_EQ(deferred.relightPreview(), preview);  // shown already
+
+  const GaussianScene* previewScene = preview->scene.get();
+  preview.reset();  // the renderer lets go: the preview's scene is refitted in place
+  std::shared_ptr<const TracedScene> relit = deferred.relight(context);
+  status = deferred.status();
+  EXPECT_FALSE(status["relight_pending"].get<bool>());
+  EXPECT_FALSE(status["relight_preview"].get<bool>());
+  EXPECT_EQ(relit->scene.get(), previewScene);
+  const GaussianScene& expected = *immediate.current()->scene;
+  ASSERT_EQ(relit->scene->size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) ASSERT_EQ(relit->scene->diffuse[i], expected.diffuse[i]) << i;
+  EXPECT_EQ(relit->tracer->trace(down).diffuse, immediate.current()->tracer->trace(down).diffuse);
 }
 
 }  // namespace

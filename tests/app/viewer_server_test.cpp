@@ -165,8 +165,9 @@ TEST_F(ServerFixture, SurvivesTenThousandMalformedRequests) {
   EXPECT_EQ(frame->status, 200);
   EXPECT_EQ(frame->get_header_value("Content-Type"), "image/png");
   long grown = residentKilobytes() - baseline;
-  if (test::kMemoryIsMeasurable)
+  if (test::kMemoryIsMeasurable) {
     EXPECT_LT(grown, 64 * 1024) << "resident memory grew by " << grown << " kB over the requests";
+  }
 }
 
 // Bounce modes exist up to the bounce count: beyond it, or beyond kMaxBounces, a request is

@@ -145,15 +145,48 @@ TEST(DifferentialRelight, AnEditThatChangesNothingChangesNoColour) {
   std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(room.scene), afterTracer = tracerOf(edited);
   const ChangedRegion region = changedRegionOf(room.scene, room.plate);
   const ChangedRegion regions[] = {region, region};
-  for (float filter : {0.0f, 3.0f}) {
-    RelightSettings settings;
-    settings.filterRadius = filter;
-    GaussianScene relit = edited;
-    RelightReport report = relightDiffuse(*beforeTracer, *afterTracer, relit, room.floor, regions, settings);
-    EXPECT_GT(report.reached, 0u);
-    EXPECT_EQ(report.changed, 0u);
-    for (uint32_t g : room.floor) EXPECT_EQ(relit.diffuse[g], room.scene.diffuse[g]) << g << " filter " << filter;
+  for (size_t budget : {size_t(0), size_t(30)})
+    for (float filter : {0.0f, 3.0f}) {
+      RelightSettings settings;
+      settings.filterRadius = filter;
+      settings.tracedBudget = budget;
+      GaussianScene relit = edited;
+      RelightReport report = relightDiffuse(*beforeTracer, *afterTracer, relit, room.floor, regions, settings);
+      EXPECT_GT(report.reached, 0u);
+      EXPECT_EQ(report.changed, 0u);
+      for (uint32_t g : room.floor)
+        EXPECT_EQ(relit.diffuse[g], room.scene.diffuse[g]) << g << " filter " << filter << " budget " << budget;
+    }
+}
+
+// Under a budget, a spread-out subset of the receivers is traced and the others take their
+// neighbours' ratios: the lifted shadow still follows the brute-force answer, less closely.
+TEST(DifferentialRelight, BudgetTracesAnEvenSubsetAndTheRestFollowIt) {
+  auto [before, after] = deletedPlate();
+  std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(before.scene), afterTracer = tracerOf(after.scene);
+  const ChangedRegion regions[] = {changedRegionOf(before.scene, before.plate)};
+  RelightSettings settings;
+  settings.tracedBudget = 60;
+  RelightReport report;
+  std::vector<Rgb> ratios =
+      relightRatios(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings, &report);
+  EXPECT_EQ(report.reached, after.floor.size());
+  EXPECT_LE(report.traced, settings.tracedBudget);
+  EXPECT_GE(report.traced, settings.tracedBudget / 2) << "the spacing should come close to the budget";
+  EXPECT_GT(report.changed, after.floor.size() / 2);
+  double worst = 0, mean = 0;
+  int count = 0;
+  for (size_t i = 0; i < after.floor.size(); i += 7, ++count) {
+    const uint32_t g = after.floor[i];
+    const float truth = bruteForceIrradiance(*afterTracer, after.scene, g, 1024).x * kAlbedo / kPi;
+    const double error = std::abs(double(after.scene.diffuse[g].x * ratios[i].x) / truth - 1.0);
+    ASSERT_TRUE(std::isfinite(error));
+    worst = std::max(worst, error);
+    mean += error;
   }
+  // Measured: 38 traced of 400, mean error 1.1%, worst 7.7% (all 400 traced: worst < 8%).
+  EXPECT_LT(mean / count, 0.03);
+  EXPECT_LT(worst, 0.15);
 }
 
 // With few rays per Gaussian the ratios are noisy; the filter across neighbours facing the

@@ -3,7 +3,8 @@
 // compares it with `glint render` of the same camera (PSNR >= 30 dB), shows the first
 // bounce alone, drags a face of the selection box and the translate gizmo over the frame,
 // makes the green sphere rough through the page's controls and checks that the frame
-// changes there and in its reflections only, then undoes and checks the frame returns exactly.
+// changes there and in its reflections only, then undoes and checks the frame returns exactly;
+// then moves it and checks that the page asks for a preview of the relighting, then the full one.
 // Usage: node viewer_e2e.mjs GLINT_BINARY WORK_FOLDER. Exit 77 (CTest: skipped) without Chromium.
 import { spawn, execFileSync } from 'node:child_process';
 import { existsSync, mkdtempSync, readFileSync, readdirSync, rmSync } from 'node:fs';
@@ -224,6 +225,22 @@ try {
   check(objectMean > 3 * outsideMean, `the change concentrates on the sphere (mean elsewhere ${outsideMean.toFixed(1)} levels)`);
   const back = Math.max(...pixelDifferences(restored, before));
   check(back <= 1, `undo restores the frame (largest difference ${back})`);
+
+  // A move is shown at once, then relit twice: a preview first, then in full.
+  const relightBodies = [];
+  page.on('request', (r) => { if (r.url().endsWith('/api/edits/relight')) relightBodies.push(r.postData()); });
+  const reports = [];
+  await page.exposeFunction('glintReport', (text) => reports.push(text));
+  await page.evaluate(() => new MutationObserver(() => window.glintReport(document.getElementById('message').textContent))
+    .observe(document.getElementById('message'), { childList: true, characterData: true, subtree: true }));
+  await page.selectOption('#op-kind', 'translate');
+  await page.fill('#op-offset-x', '0.2');
+  await page.click('#apply');
+  await page.waitForFunction(() => /\nrelit \d+ of/.test(document.getElementById('message').textContent));
+  check(JSON.stringify(relightBodies) === JSON.stringify(['{"preview":true}', '{}']),
+    `a move asks for a preview of its relighting, then the full one (${JSON.stringify(relightBodies)})`);
+  check(reports.some((t) => /\npreview: relit \d+ of[^]*\nrelighting\.\.\./.test(t)),
+    'the page reports the preview while the full relighting runs');
   console.log('PASSED');
 } finally {
   if (browser) await browser.close();

@@ -56,9 +56,13 @@ void ViewerServer::addEditRoutes() {
     answer(res, [&] { return edits_->redo(context()); });
   });
   // The page asks for this after an edit whose status says "relight_pending": the edit is
-  // shown first, its shadows when this answers.
-  http.Post("/api/edits/relight", [this, answer, context](const httplib::Request&, httplib::Response& res) {
-    answer(res, [&] { return edits_->relight(context()); });
+  // shown first, a preview of its shadows when {"preview": true} answers (in about a second),
+  // and the full relighting when {} answers.
+  http.Post("/api/edits/relight", [this, answer, context](const httplib::Request& req, httplib::Response& res) {
+    nlohmann::json request = parseRequestObject(req.body.empty() ? "{}" : req.body, kMaxRequestBytes);
+    requireOnlyFields(request, {"preview"});
+    const bool preview = request.contains("preview") && readBool(request, "preview");
+    answer(res, [&] { return preview ? edits_->relightPreview() : edits_->relight(context()); });
   });
   http.Post("/api/edits/preview", [this](const httplib::Request& req, httplib::Response& res) {
     sendJson(res, edits_->preview(parseRequestObject(req.body, kMaxRequestBytes)));

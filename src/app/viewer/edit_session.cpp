@@ -129,12 +129,12 @@ void EditSession::update(const TracerUpdateContext& context) {
   // relight around: relighting traces no ray, so it is done at once rather than deferred.
   const bool movesSomething = !provenance.movedOrAdded().empty() || !provenance.movedOrRemoved().empty();
   if (relight_ && deferRelighting_ && movesSomething) {
-    pending_ = PendingRelight{std::move(provenance), std::move(healed)};
+    pending_ = PendingRelight{std::move(provenance), std::move(healed), nullptr};
     lastRelight_ = "waiting";
     lastRelightSeconds_ = 0;
   } else if (relight_) {
     auto started = std::chrono::steady_clock::now();
-    relightColours(*updated.tracer, *shownScene_, provenance, healed);
+    relightColours(*updated.tracer, *shownScene_, provenance, healed, *relight_);
     updated.tracer->refit();  // tracers may keep copies of the colours
     lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   }
@@ -159,22 +159,45 @@ void EditSession::show(std::unique_ptr<GaussianTracer> tracer) {
 }
 
 void EditSession::relightColours(const GaussianTracer& editedTracer, GaussianScene& edited,
-                                 const EditProvenance& provenance, const HealReport& healed) {
+                                 const EditProvenance& provenance, const HealReport& healed,
+                                 const RelightSettings& settings) {
   if (!pristineTracer_) {
     pristineTracer_ = makeGaussianTracer(kViewerTracer);
     pristineTracer_->build(*pristine_, trace_);
   }
-  lastRelight_ = relightAfterEdit(*pristineTracer_, *pristine_, editedTracer, edited, provenance, healed, *relight_);
+  lastRelight_ = relightAfterEdit(*pristineTracer_, *pristine_, editedTracer, edited, provenance, healed, settings);
+}
+
+std::shared_ptr<const TracedScene> EditSession::relightPreview() {
+  std::lock_guard lock(mutex_);
+  if (!pending_ || pending_->unrelit) return current_;
+  auto started = std::chrono::steady_clock::now();
+  // On a copy, shown over a tracer of its own: the unrelit scene and its tracer are kept for
+  // the full relighting, which must trace the colours as the edit left them.
+  RelightSettings preview = *relight_;
+  preview.tracedBudget = kPreviewTraced;
+  GaussianScene relit = *shownScene_;
+  relightColours(*current_->tracer, relit, pending_->provenance, pending_->healed, preview);
+  pending_->unrelit = current_;
+  shownScene_ = std::make_shared<GaussianScene>(std::move(relit));
+  std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(kViewerTracer);
+  tracer->build(*shownScene_, trace_);
+  show(std::move(tracer));
+  lastRelight_ = "preview: " + lastRelight_;
+  lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  return current_;
 }
 
 std::shared_ptr<const TracedScene> EditSession::relight(const TracerUpdateContext& context) {
   std::lock_guard lock(mutex_);
   if (!pending_) return current_;
   auto started = std::chrono::steady_clock::now();
-  // On a copy: the renderer traces the shown scene meanwhile. Only the colours differ.
-  GaussianScene relit = *shownScene_;
-  relightColours(*current_->tracer, relit, pending_->provenance, pending_->healed);
-  pending_.reset();
+  // On a copy of the unrelit scene (the shown one unless a preview is shown): the renderer
+  // traces the shown scene meanwhile. Only the colours differ.
+  const TracedScene& unrelit = pending_->unrelit ? *pending_->unrelit : *current_;
+  GaussianScene relit = *unrelit.scene;
+  relightColours(*unrelit.tracer, relit, pending_->provenance, pending_->healed, *relight_);
+  pending_.reset();  // and with it the unrelit scene a preview kept
 
   // As in update: the shown scene is overwritten in place and its tracer refitted only when
   // nobody else holds them once the renderer has let go.
@@ -253,6 +276,7 @@ nlohmann::json EditSession::status() const {
     status["relight"] = lastRelight_;
     status["relight_ms"] = 1e3 * lastRelightSeconds_;
     status["relight_pending"] = pending_.has_value();
+    status["relight_preview"] = pending_ && pending_->unrelit;
   }
   return status;
 }

@@ -63,13 +63,21 @@ class EditSession {
   // renderer keeps tracing the shown scene; they replace the shown colours (with a refit)
   // when the renderer has let go of it (releaseShown), else a new tracer is built.
   std::shared_ptr<const TracedScene> relight(const TracerUpdateContext& context);
+  // A first look at the deferred relighting: the last edit relit from kPreviewTraced
+  // Gaussians spread over those within its reach (RelightSettings::tracedBudget), shown over
+  // a new tracer. The relighting stays pending: relight() then computes the full one from
+  // the unrelit colours, exactly as without a preview. Returns the current scene when
+  // nothing waits or the preview is shown already.
+  std::shared_ptr<const TracedScene> relightPreview();
+  static constexpr size_t kPreviewTraced = 2000;
 
   // {"operations", "redoable", "gaussians"} and, after an edit, "tracer_update": {"action":
   // "refit"|"rebuild", "refit_possible", "refit_ms", "rebuild_ms", "refit_probe_ms",
   // "rebuild_probe_ms", "probe_rays", "work_rays", and "no_refit" (why) when no refit was
   // possible} of the last tracer update, and with relighting "relight": what it did and its
   // time in "relight_ms", and "relight_pending": true while a deferred relighting waits;
-  // with healing "healed": the Gaussians it added.
+  // "relight_preview": true while a preview of it is shown; with healing "healed": the
+  // Gaussians it added.
   nlohmann::json status() const;
   // {"selection": S, "attribute": "roughness"|"f0"|"diffuse"|"metalness", "bins": 1..256}
   // -> {"count", "total", "attribute", "histogram": [...], "range": [lo, hi]}: how many
@@ -103,7 +111,7 @@ class EditSession {
   // pristine scene's tracer at the first call, and gives healed Gaussians their relit
   // surroundings' colour (mutex_ held).
   void relightColours(const GaussianTracer& editedTracer, GaussianScene& edited, const EditProvenance& provenance,
-                      const HealReport& healed);
+                      const HealReport& healed, const RelightSettings& settings);
 
   mutable std::mutex mutex_;
   std::shared_ptr<const GaussianScene> pristine_;
@@ -125,6 +133,8 @@ class EditSession {
   struct PendingRelight {
     EditProvenance provenance;
     HealReport healed;
+    // The edited scene with its colours not yet relit, while a preview is shown instead.
+    std::shared_ptr<const TracedScene> unrelit;
   };
   std::optional<PendingRelight> pending_;
   double lastRelightSeconds_ = 0;
