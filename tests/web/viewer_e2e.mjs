@@ -97,7 +97,9 @@ try {
   await page.waitForFunction(() => window.glintViewer !== undefined);
   await page.selectOption('#format', 'png');
   await page.selectOption('#training-camera', '0');
-  await page.click('#snap');
+  // The frames to compare come after the server has the snapped camera: at 64x48 the first
+  // camera's 64 samples can accumulate before the snap arrives.
+  await Promise.all([page.waitForResponse((r) => r.url().endsWith('/api/camera')), page.click('#snap')]);
 
   const frameId = () => page.evaluate(() => window.glintViewer.frames.frameId);
   // Waits for a fully accumulated frame newer than `after`, returns the canvas's RGBA pixels.
@@ -112,7 +114,7 @@ try {
       return Array.from(c.getContext('2d').getImageData(0, 0, c.width, c.height).data);
     });
   }
-  const before = await accumulatedFrame(0);
+  const before = await accumulatedFrame(await frameId());
 
   // Not blank: bright enough and with contrast.
   const { mean, spread } = statistics(before);
@@ -236,7 +238,7 @@ try {
   await page.selectOption('#op-kind', 'translate');
   await page.fill('#op-offset-x', '0.2');
   await page.click('#apply');
-  await page.waitForFunction(() => /\nrelit \d+ of/.test(document.getElementById('message').textContent));
+  await page.waitForFunction(() => /^applied; 1 operations[^]*\nrelit \d+ of/.test(document.getElementById('message').textContent));
   check(JSON.stringify(relightBodies) === JSON.stringify(['{"preview":true}', '{}']),
     `a move asks for a preview of its relighting, then the full one (${JSON.stringify(relightBodies)})`);
   check(reports.some((t) => /\npreview: relit \d+ of[^]*\nrelighting\.\.\./.test(t)),
