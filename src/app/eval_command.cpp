@@ -288,7 +288,7 @@ void runEval(const EvalOptions& o) {
 
   nlohmann::json report = {
       {"scene", o.run},
-      {"dataset", datasetPath.string()},
+      {"dataset", fs::absolute(datasetPath).lexically_normal().string()},  // glint report finds it from anywhere
       {"split", o.split},
       {"downscale", reading.downscale},
       {"background", choiceName(reading.background)},

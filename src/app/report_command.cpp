@@ -86,9 +86,21 @@ std::string viewsMismatch(const EvalMetrics& m, const DatasetSplit& split, const
   return "";
 }
 
-// The dataset: --dataset, else the "dataset" of RUN/config.json (written by glint train).
-fs::path datasetFolder(const ReportOptions& o, const fs::path& configFile, const std::optional<TrainConfig>& config) {
+// The dataset: --dataset, else the one the metrics were evaluated on ("dataset" of
+// metrics.json: `glint eval --dataset D_EDITED --edits` scores against another dataset than
+// the run's), else the "dataset" of RUN/config.json (written by glint train).
+fs::path datasetFolder(const ReportOptions& o, const fs::path& configFile, const std::optional<TrainConfig>& config,
+                       const EvalMetrics& metrics, const fs::path& metricsFile) {
   if (!o.dataset.empty()) return o.dataset;
+  if (metrics.all.contains("dataset") && metrics.all["dataset"].is_string()) {
+    const fs::path evaluated = metrics.all["dataset"].get<std::string>();
+    if (!evaluated.empty()) {
+      if (!fs::exists(evaluated))
+        throw Error(metricsFile.string(), "evaluated the dataset " + evaluated.string() +
+                                              ", which is not found; pass --dataset");
+      return evaluated;
+    }
+  }
   if (!config || config->dataset.empty())
     throw Error(configFile.string(), "key \"dataset\" is missing; pass --dataset");
   return config->dataset;
@@ -97,7 +109,8 @@ fs::path datasetFolder(const ReportOptions& o, const fs::path& configFile, const
 // The ground truth and our rendering of one view's radiance passes (those the dataset has).
 ReportView loadViewImages(const Dataset& dataset, const DatasetSplit& split, size_t v, const fs::path& imagesFolder,
                           const ViewMetrics& metrics, const std::string& run) {
-  ReportView view{split.views[v].filePath, {}};
+  ReportView view;
+  view.name = split.views[v].filePath;
   const std::pair<const char*, Buffer> passes[] = {
       {"diffuse", Buffer::Diffuse}, {"specular", Buffer::Specular}, {"final", Buffer::Render}};
   for (const auto& [name, buffer] : passes) {
@@ -242,7 +255,7 @@ void runReport(const ReportOptions& o) {
     std::fprintf(stderr, "glint report: warning: %s is older than scene.ply; re-run `glint eval %s --save-images`\n",
                  metricsFile.string().c_str(), o.run.c_str());
 
-  const fs::path datasetPath = datasetFolder(o, configFile, config);
+  const fs::path datasetPath = datasetFolder(o, configFile, config, metrics, metricsFile);
   // Read as the evaluation read it: the run's settings, and the --downscale and --background
   // that metrics.json records.
   DatasetReading reading = config ? config->datasetReading(/*requireBuffers=*/true) : DatasetReading{};
@@ -310,7 +323,7 @@ void addReportCommand(CLI::App& app) {
       "--save-images`).");
   cmd->add_option("run", o->run, "Training run folder")->required();
   cmd->add_option("-o,--output", o->output, "Page to write (default RUN/report.html, rewritten each time), atomically");
-  cmd->add_option("--dataset", o->dataset, "Dataset with the ground truth; default: the dataset of RUN/config.json");
+  cmd->add_option("--dataset", o->dataset, "Dataset with the ground truth; default: the dataset RUN/eval/metrics.json was evaluated on (as glint eval --dataset gave it), else the dataset of RUN/config.json");
   cmd->add_option("--views", o->views, "Show the images of the first N views only (default: every evaluated view)")
       ->check(CLI::Range(0, 1 << 20));
   cmd->add_flag("--force", o->force, "Overwrite an existing -o FILE (RUN/report.html is always rewritten)");

@@ -194,3 +194,45 @@ TEST_F(ReportCliTest, CorruptInputsAreNamed) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// An evaluation against another dataset than the run's (an edited scene's ground truth) is
+// reported against that dataset's images, which metrics.json names; when it has gone,
+// the message says so and --dataset points elsewhere.
+TEST_F(ReportCliTest, ShowsTheDatasetTheMetricsWereEvaluatedOn) {
+  const std::string run = path("R_other");
+  fs::copy(path("R"), run, fs::copy_options::recursive | fs::copy_options::overwrite_existing);
+  fs::remove_all(run + "/eval");
+  Outcome synth = runGlint("synth builtin:spheres -o " + path("D_other") + " --train 6 --test 2 --res 32x24 --spp 2");
+  ASSERT_EQ(synth.status, 0) << synth.output;
+  // From another working folder, with a relative path: metrics.json records where it is.
+  const fs::path here = fs::current_path();
+  fs::current_path(*root_);
+  Outcome eval = runGlint("eval " + run + " --dataset D_other --spp 2 --save-images");
+  fs::current_path(here);
+  ASSERT_EQ(eval.status, 0) << eval.output;
+  nlohmann::json metrics = nlohmann::json::parse(readBytes(run + "/eval/metrics.json"));
+  EXPECT_EQ(fs::path(metrics["dataset"].get<std::string>()), fs::path(path("D_other")));
+
+  Outcome report = runGlint("report " + run);
+  ASSERT_EQ(report.status, 0) << report.output;
+  std::string html = readBytes(run + "/report.html");
+  EXPECT_NE(html.find(path("D_other") + " (test split"), std::string::npos);
+  EXPECT_EQ(html.find(path("D") + " (test split"), std::string::npos);
+
+  fs::rename(path("D_other"), path("D_moved"));
+  Outcome gone = runGlint("report " + run);
+  EXPECT_NE(gone.status, 0);
+  EXPECT_NE(gone.output.find("metrics.json: evaluated the dataset " + path("D_other") +
+                             ", which is not found; pass --dataset"),
+            std::string::npos)
+      << gone.output;
+  Outcome pointed = runGlint("report " + run + " --dataset " + path("D_moved"));
+  ASSERT_EQ(pointed.status, 0) << pointed.output;
+  EXPECT_NE(readBytes(run + "/report.html").find(path("D_moved") + " (test split"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace glint
