@@ -3,10 +3,12 @@
 // deferred relighting being shown, with relighting and healing off, healing alone, and both
 // (the default) at several relighting ray counts. Prints a table and writes JSON (--json FILE).
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <numeric>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -68,6 +70,7 @@ struct Row {
   double againShown = 0;    // the last operation again (undo, then redo): shown
   double againPreview = 0;  // ... its relighting previewed (EditSession::relightPreview)
   double againRelit = 0;    // ... and relit in full after the preview
+  double editDuring = 0;    // an undo sent 0.5 s into a full relighting: shown after (it cancels it)
   std::string relight;    // the session's own line about the relighting
   size_t healed = 0;
 };
@@ -154,6 +157,15 @@ int main(int argc, char** argv) {
       const std::string preview = session.status().value("relight", "");
       row.againRelit = row.againPreview + secondsOf([&] { session.relight(context); });
       const nlohmann::json status = session.status();
+      if (mode.relight) {
+        // The viewer's case of a user who edits again while the shadows are computed.
+        session.undo(context);
+        session.redo(context);
+        std::thread relighting([&] { session.relight(context); });
+        std::this_thread::sleep_for(std::chrono::milliseconds(500));
+        row.editDuring = secondsOf([&] { session.undo(context); });
+        relighting.join();
+      }
       if (status.contains("relight")) row.relight = preview + "; then " + status["relight"].get<std::string>();
       if (status.contains("healed")) row.healed = status["healed"];
       rows.push_back(row);
@@ -167,20 +179,23 @@ int main(int argc, char** argv) {
                 "shadows (the viewer relights after showing the edit); preview: a first look at them, from %zu\n"
                 "Gaussians within reach, which the viewer shows before the full relighting (whose time\n"
                 "includes the preview's). first: the first edit of the session, which also builds the unedited\n"
-                "scene's tracer; again: the last operation undone and redone\n\n",
+                "scene's tracer; again: the last operation undone and redone; edit during: an undo sent 0.5 s\n"
+                "into the full relighting of the redo, shown after (it cancels the relighting)\n\n",
                 EditSession::kPreviewTraced);
-    std::printf("%-16s %6s %9s %9s %9s %9s %9s %7s  %s\n", "mode", "rays", "first", "", "again", "", "", "healed",
-                "relighting (of the redo)");
-    std::printf("%-16s %6s %9s %9s %9s %9s %9s\n", "", "", "shown s", "relit s", "shown s", "preview s", "relit s");
+    std::printf("%-16s %6s %9s %9s %9s %9s %9s %9s %7s  %s\n", "mode", "rays", "first", "", "again", "", "",
+                "edit", "healed", "relighting (of the redo)");
+    std::printf("%-16s %6s %9s %9s %9s %9s %9s %9s\n", "", "", "shown s", "relit s", "shown s", "preview s", "relit s",
+                "during s");
     nlohmann::json json = {{"scene", scenePath}, {"gaussians", scene.size()}, {"edits", editsPath},
                            {"threads", maxThreads()}, {"rows", nlohmann::json::array()}};
     for (const Row& r : rows) {
-      std::printf("%-16s %6s %9.3f %9.3f %9.3f %9.3f %9.3f %7zu  %s\n", r.mode.c_str(),
+      std::printf("%-16s %6s %9.3f %9.3f %9.3f %9.3f %9.3f %9.3f %7zu  %s\n", r.mode.c_str(),
                   r.rays ? std::to_string(r.rays).c_str() : "-", r.firstShown, r.firstRelit, r.againShown,
-                  r.againPreview, r.againRelit, r.healed, r.relight.c_str());
+                  r.againPreview, r.againRelit, r.editDuring, r.healed, r.relight.c_str());
       json["rows"].push_back({{"mode", r.mode}, {"rays", r.rays}, {"first_shown_seconds", r.firstShown},
                               {"first_relit_seconds", r.firstRelit}, {"again_shown_seconds", r.againShown},
                               {"again_preview_seconds", r.againPreview}, {"again_relit_seconds", r.againRelit},
+                              {"edit_during_relighting_seconds", r.editDuring},
                               {"healed", r.healed}, {"relight", r.relight}});
     }
     if (!jsonPath.empty()) {

@@ -76,10 +76,14 @@ export class EditPanel {
         false);
       this.schedulePreview();
       if (status.relight_pending) {
+        // A newer edit cancels a relighting under way (the answer still says pending, with
+        // no preview shown): that edit then reports and relights itself.
         const preview = await postJson('/api/edits/relight', { preview: true });
+        if (preview.relight_pending && !preview.relight_preview) return;
         this.setStatus(preview);
         if (preview.relight_pending) this.report(`${done}\n${preview.relight}\nrelighting...`, false);
         const relit = await postJson('/api/edits/relight', {});
+        if (relit.relight_pending) return;
         this.setStatus(relit);
         this.report(`${done}\n${relit.relight}`, false);
       }

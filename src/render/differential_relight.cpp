@@ -310,7 +310,9 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     TraceRay ray{p + n * settings.normalOffset, w, 0.0f, settings.backfaceSkip};
     return tracer.trace(ray).diffuse;
   };
+  auto cancelled = [&] { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); };
   parallelFor(int64_t(traced.size()), 16, [&](int64_t t) {
+    if (cancelled()) return;
     const size_t i = traced[size_t(t)];
     const uint32_t g = receivers[i];
     Vec3f p, n;
@@ -383,6 +385,7 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     rays.fetch_add(raysTraced, std::memory_order_relaxed);
     progress.advance();
   });
+  if (cancelled()) throw RelightCancelled();
   if (settings.filterRadius > 0 || spacing > 0)
     ratios = filteredRatios(afterScene, receivers, inReach, traced, normals, ratios, settings, spacing);
   if (settings.albedoNeighbours > 0) {

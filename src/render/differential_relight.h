@@ -5,7 +5,9 @@
 // exactly as trained.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
+#include <exception>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -76,6 +78,9 @@ struct RelightSettings {
   // The viewer's first look at an edit's shadows, before the full relighting.
   size_t tracedBudget = 0;
   uint64_t seed = 0;
+  // When set and true, relightRatios stops tracing and throws RelightCancelled (the viewer
+  // cancels a relighting that a newer edit made stale).
+  const std::atomic<bool>* cancel = nullptr;
   // Sets every ray count from one, in the proportions of the defaults (64, 64, 16): n rays
   // toward the changed regions, n over the hemisphere, n / 4 of them first.
   void setRays(int n) {
@@ -86,6 +91,11 @@ struct RelightSettings {
   // (as reflected rays do, appendix B of the paper).
   float normalOffset = 1e-3f;
   float backfaceSkip = 0.1f;
+};
+
+// Thrown by relightRatios when RelightSettings::cancel turned true.
+struct RelightCancelled : std::exception {
+  const char* what() const noexcept override { return "relighting cancelled"; }
 };
 
 // A receiver that sees changed regions with this solid angle or more gets settings.rays.

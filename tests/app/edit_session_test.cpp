@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
+#include <thread>
+
 #include "common/random_gaussians.h"
 #include "edit/gaussian_edits.h"
 #include "render/gaussian_layers.h"
@@ -222,6 +225,43 @@ TEST(EditSession, PreviewThenFullRelightingGivesTheImmediateColours) {
   ASSERT_EQ(relit->scene->size(), expected.size());
   for (size_t i = 0; i < expected.size(); ++i) ASSERT_EQ(relit->scene->diffuse[i], expected.diffuse[i]) << i;
   EXPECT_EQ(relit->tracer->trace(down).diffuse, immediate.current()->tracer->trace(down).diffuse);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// An edit that arrives while a deferred relighting runs cancels it rather than waiting for
+// it; whichever happens first, the session ends consistent: undone to the pristine colours,
+// nothing pending, and the relighting request answered without an error.
+TEST(EditSession, AnEditDuringADeferredRelightingCancelsIt) {
+  const test::PlateRoom room = test::plateRoom();
+  const GaussianScene& pristine = room.scene;
+  const TracerUpdateContext context = plateRoomContext();
+  RelightSettings slow;
+  slow.setRays(65536);  // about 8 s of tracing here, uncancelled
+  EditSession session(pristine, TraceSettings{}, kDefaultMaxGaussians, slow, std::nullopt, true);
+  session.apply(plateMove(), context);
+  ASSERT_TRUE(session.status()["relight_pending"].get<bool>());
+  std::shared_ptr<const TracedScene> answered;
+  std::thread relighting([&] { answered = session.relight(context); });
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  const auto started = std::chrono::steady_clock::now();
+  session.undo(context);
+  const double undoSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  relighting.join();
+  ASSERT_TRUE(answered);
+  // Cancelled (or, had the undo come first, found nothing waiting): no relit colour was shown.
+  EXPECT_EQ(answered->scene->diffuse[room.centre], pristine.diffuse[room.centre]);
+  const nlohmann::json status = session.status();
+  EXPECT_FALSE(status["relight_pending"].get<bool>()) << status;
+  EXPECT_EQ(status["operations"], 0);
+  std::shared_ptr<const TracedScene> shown = session.current();
+  for (size_t i = 0; i < pristine.size(); ++i) ASSERT_EQ(shown->scene->diffuse[i], pristine.diffuse[i]) << i;
+  // Seconds of tracing left, not waited for (a loose bound: the point is not to wait them).
+  EXPECT_LT(undoSeconds, 2.0);
 }
 
 }  // namespace

@@ -275,6 +275,22 @@ TEST(DifferentialRelight, FloorBeyondTheClampTakesItsNeighboursAlbedo) {
   }
 }
 
+// A relighting whose cancel flag is set stops with RelightCancelled; with the flag clear it
+// gives exactly the ratios of one without a flag.
+TEST(DifferentialRelight, CancelFlagStopsTheRelighting) {
+  auto [before, after] = deletedPlate();
+  std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(before.scene), afterTracer = tracerOf(after.scene);
+  const ChangedRegion regions[] = {changedRegionOf(before.scene, before.plate)};
+  RelightSettings settings;
+  const std::vector<Rgb> plain = relightRatios(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings);
+  std::atomic<bool> cancel = false;
+  settings.cancel = &cancel;
+  EXPECT_EQ(relightRatios(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings), plain);
+  cancel = true;
+  EXPECT_THROW(relightRatios(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings),
+               RelightCancelled);
+}
+
 TEST(DifferentialRelight, RatioStaysFiniteWhereTheUneditedSceneWasDark) {
   // Before: a floor Gaussian (the receiver) in a room whose every other Gaussian sends
   // (almost) no light; after: a bright plate added over it. The ratio of light after to

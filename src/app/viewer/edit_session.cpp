@@ -168,16 +168,40 @@ void EditSession::relightColours(const GaussianTracer& editedTracer, GaussianSce
   lastRelight_ = relightAfterEdit(*pristineTracer_, *pristine_, editedTracer, edited, provenance, healed, settings);
 }
 
+std::unique_lock<std::mutex> EditSession::lockForEdit() {
+  cancelRelight_.store(true);
+  std::unique_lock lock(mutex_);
+  cancelRelight_.store(false);
+  return lock;
+}
+
+RelightSettings EditSession::cancellable() const {
+  RelightSettings settings = *relight_;
+  settings.cancel = &cancelRelight_;
+  return settings;
+}
+
+bool EditSession::relightDeferred(const GaussianTracer& editedTracer, GaussianScene& edited,
+                                  const RelightSettings& settings) {
+  try {
+    relightColours(editedTracer, edited, pending_->provenance, pending_->healed, settings);
+    return true;
+  } catch (const RelightCancelled&) {
+    lastRelight_ = "cancelled by a newer edit";
+    return false;
+  }
+}
+
 std::shared_ptr<const TracedScene> EditSession::relightPreview() {
   std::lock_guard lock(mutex_);
   if (!pending_ || pending_->unrelit) return current_;
   auto started = std::chrono::steady_clock::now();
   // On a copy, shown over a tracer of its own: the unrelit scene and its tracer are kept for
   // the full relighting, which must trace the colours as the edit left them.
-  RelightSettings preview = *relight_;
+  RelightSettings preview = cancellable();
   preview.tracedBudget = kPreviewTraced;
   GaussianScene relit = *shownScene_;
-  relightColours(*current_->tracer, relit, pending_->provenance, pending_->healed, preview);
+  if (!relightDeferred(*current_->tracer, relit, preview)) return current_;
   pending_->unrelit = current_;
   shownScene_ = std::make_shared<GaussianScene>(std::move(relit));
   std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(kViewerTracer);
@@ -196,7 +220,7 @@ std::shared_ptr<const TracedScene> EditSession::relight(const TracerUpdateContex
   // traces the shown scene meanwhile. Only the colours differ.
   const TracedScene& unrelit = pending_->unrelit ? *pending_->unrelit : *current_;
   GaussianScene relit = *unrelit.scene;
-  relightColours(*unrelit.tracer, relit, pending_->provenance, pending_->healed, *relight_);
+  if (!relightDeferred(*unrelit.tracer, relit, cancellable())) return current_;
   pending_.reset();  // and with it the unrelit scene a preview kept
 
   // As in update: the shown scene is overwritten in place and its tracer refitted only when
@@ -218,7 +242,7 @@ std::shared_ptr<const TracedScene> EditSession::relight(const TracerUpdateContex
 std::shared_ptr<const TracedScene> EditSession::apply(const nlohmann::json& request,
                                                       const TracerUpdateContext& context) {
   EditDocument single = parseSingleOperation(request, true);
-  std::lock_guard lock(mutex_);
+  std::unique_lock lock = lockForEdit();
   if (steps_.size() >= kMaxOperations)
     throw RequestError(409, "the edit stack holds " + std::to_string(kMaxOperations) + " operations; save and restart");
   Step step{"selection_" + std::to_string(nextSelectionId_++), single.selections.at("s"), single.operations[0]};
@@ -238,7 +262,7 @@ std::shared_ptr<const TracedScene> EditSession::apply(const nlohmann::json& requ
 }
 
 std::shared_ptr<const TracedScene> EditSession::undo(const TracerUpdateContext& context) {
-  std::lock_guard lock(mutex_);
+  std::unique_lock lock = lockForEdit();
   if (steps_.empty()) throw RequestError(409, "nothing to undo");
   redo_.push_back(std::move(steps_.back()));
   steps_.pop_back();
@@ -247,7 +271,7 @@ std::shared_ptr<const TracedScene> EditSession::undo(const TracerUpdateContext& 
 }
 
 std::shared_ptr<const TracedScene> EditSession::redo(const TracerUpdateContext& context) {
-  std::lock_guard lock(mutex_);
+  std::unique_lock lock = lockForEdit();
   if (redo_.empty()) throw RequestError(409, "nothing to redo");
   steps_.push_back(std::move(redo_.back()));
   redo_.pop_back();

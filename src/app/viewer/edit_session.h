@@ -6,6 +6,7 @@
 // --edits` does.
 #pragma once
 
+#include <atomic>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -59,7 +60,8 @@ class EditSession {
   std::shared_ptr<const TracedScene> undo(const TracerUpdateContext& context);
   std::shared_ptr<const TracedScene> redo(const TracerUpdateContext& context);
   // Relights the last edit when its relighting was deferred, and returns the relit scene
-  // (the current one when nothing waits). The colours are computed on a copy while the
+  // (the current one when nothing waits, or when an edit request arriving meanwhile cancelled
+  // it: the edit then goes ahead at once instead of waiting for a stale relighting). The colours are computed on a copy while the
   // renderer keeps tracing the shown scene; they replace the shown colours (with a refit)
   // when the renderer has let go of it (releaseShown), else a new tracer is built.
   std::shared_ptr<const TracedScene> relight(const TracerUpdateContext& context);
@@ -137,6 +139,15 @@ class EditSession {
     std::shared_ptr<const TracedScene> unrelit;
   };
   std::optional<PendingRelight> pending_;
+  // Set by an edit request before it waits for the lock: a deferred relighting that holds it
+  // stops (RelightSettings::cancel), since the edit makes it stale.
+  std::atomic<bool> cancelRelight_{false};
+  // The session's lock for an edit, taken after cancelling a deferred relighting that holds it.
+  std::unique_lock<std::mutex> lockForEdit();
+  // The deferred relighting's settings: the flags', cancellable by a newer edit.
+  RelightSettings cancellable() const;
+  // relightColours for a deferred relighting: false when a newer edit cancelled it.
+  bool relightDeferred(const GaussianTracer& editedTracer, GaussianScene& edited, const RelightSettings& settings);
   double lastRelightSeconds_ = 0;
   std::optional<HealSettings> heal_;
   size_t lastHealed_ = 0;  // Gaussians the last healing added
