@@ -177,11 +177,11 @@ int main(int argc, char** argv) {
                 maxThreads(), viewer.width, viewer.height);
     std::printf("shown: the edit applied and its tracer updated (what the viewer shows first); relit: and its\n"
                 "shadows (the viewer relights after showing the edit); preview: a first look at them, from %zu\n"
-                "Gaussians within reach, which the viewer shows before the full relighting (whose time\n"
+                "Gaussians within reach at up to %d rays, which the viewer shows before the full relighting (whose time\n"
                 "includes the preview's). first: the first edit of the session, which also builds the unedited\n"
                 "scene's tracer; again: the last operation undone and redone; edit during: an undo sent 0.5 s\n"
                 "into the full relighting of the redo, shown after (it cancels the relighting)\n\n",
-                EditSession::kPreviewTraced);
+                EditSession::kPreviewTraced, EditSession::kPreviewRays);
     std::printf("%-16s %6s %9s %9s %9s %9s %9s %9s %7s  %s\n", "mode", "rays", "first", "", "again", "", "",
                 "edit", "healed", "relighting (of the redo)");
     std::printf("%-16s %6s %9s %9s %9s %9s %9s %9s\n", "", "", "shown s", "relit s", "shown s", "preview s", "relit s",

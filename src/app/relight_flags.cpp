@@ -27,7 +27,7 @@ void RelightFlags::add(CLI::App* cmd) {
   cmd->add_option("--relight-traced", settings_.tracedBudget,
                   "--relight traces rays from at most this many Gaussians within reach of the edit, spread evenly over "
                   "them, and the others take their neighbours' ratios: faster on large scenes, coarser shadows (the "
-                  "viewer's preview traces 2000); 0 = every one")
+                  "viewer's preview traces 4000 at 32 rays); 0 = every one")
       ->check(CLI::Range(size_t(0), size_t(1) << 40))
       ->capture_default_str();
   cmd->add_option("--relight-albedo", settings_.albedoNeighbours,

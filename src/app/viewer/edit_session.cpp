@@ -200,6 +200,7 @@ std::shared_ptr<const TracedScene> EditSession::relightPreview() {
   // the full relighting, which must trace the colours as the edit left them.
   RelightSettings preview = cancellable();
   preview.tracedBudget = kPreviewTraced;
+  preview.setRays(std::min(kPreviewRays, relight_->rays));
   GaussianScene relit = *shownScene_;
   if (!relightDeferred(*current_->tracer, relit, preview)) return current_;
   pending_->unrelit = current_;
