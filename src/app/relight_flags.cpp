@@ -30,13 +30,6 @@ void RelightFlags::add(CLI::App* cmd) {
                   "viewer's preview traces 4000 at 32 rays); 0 = every one")
       ->check(CLI::Range(size_t(0), size_t(1) << 40))
       ->capture_default_str();
-  cmd->add_option("--relight-albedo", settings_.albedoNeighbours,
-                  "--relight gives a Gaussian so dark before the edit that its light grows more than 16-fold (a "
-                  "contact shadow the edit uncovered) the albedo of this many well-lit neighbours times its new "
-                  "light, instead of the clamped ratio: right on plain surfaces, wrong on textured ones (their "
-                  "texture is averaged away); 0 = off")
-      ->check(CLI::Range(0, 256))
-      ->capture_default_str();
   cmd->add_option("--relight-max-ratio", settings_.maxRatio,
                   "--relight changes no diffuse colour by more than this factor, up or down")
       ->check(CLI::Range(1.0f, 1000.0f))
@@ -60,15 +53,13 @@ std::string relightAfterEdit(const GaussianTracer& beforeTracer, const GaussianS
   RelightReport r = relightDiffuse(beforeTracer, afterTracer, after, provenance.unmoved(), regions, settings);
   continueHealedColours(healed, after);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  char traced[64] = "", albedo[64] = "";
+  char traced[64] = "";
   if (r.traced < r.reached) std::snprintf(traced, sizeof traced, ", %zu of them traced", r.traced);
-  if (settings.albedoNeighbours > 0)
-    std::snprintf(albedo, sizeof albedo, ", %zu from their neighbours' albedo", r.fromAlbedo);
   char text[320];
   std::snprintf(text, sizeof text,
                 "relit %zu of the %zu Gaussians left in place (%zu within reach of the edit%s, %zu at the ratio's "
-                "clamp%s), %.2f M rays, %.2f s",
-                r.changed, r.receivers, r.reached, traced, r.clamped, albedo, double(r.rays) * 1e-6, seconds);
+                "clamp), %.2f M rays, %.2f s",
+                r.changed, r.receivers, r.reached, traced, r.clamped, double(r.rays) * 1e-6, seconds);
   return text;
 }
 

@@ -200,70 +200,6 @@ std::vector<Rgb> filteredRatios(const GaussianScene& scene, std::span<const uint
   return filtered;
 }
 
-// How a receiver's ratio came out: not estimated in full, within kAlbedoSourceRatio, below
-// the clamp, cut by it downward or in a channel, or so dark before the edit that its
-// luminance ratio exceeds RelightSettings::albedoAboveRatio.
-enum ReceiverState : uint8_t { kUnknown, kWellLit, kLit, kClamped, kDark };
-
-// The albedo of dark receivers comes from neighbours whose light grows at most this much:
-// their E_before is estimated well. Taking every one below the clamp favours those whose
-// few rays overestimated E_before, and so underestimates the albedo (by 13% on the floor of
-// the test of a wide plate deleted).
-constexpr float kAlbedoSourceRatio = 4.0f;
-
-// Receivers lit so little before the edit that the clamped ratio cannot bring them to their
-// new light (a contact shadow that a move uncovers: trained colours of 0.001 there) take an
-// albedo from their neighbours instead: the mean of diffuse / E_before over the nearest
-// RelightSettings::albedoNeighbours receivers estimated in full within kAlbedoSourceRatio,
-// facing the same way, within `reach`; their ratio becomes albedo x E_after / diffuse. A receiver with
-// no such neighbour keeps the clamped ratio. Returns how many were relit so.
-size_t relightDarkFromAlbedo(const GaussianScene& scene, std::span<const uint32_t> receivers,
-                             const std::vector<Vec3f>& normals, const std::vector<uint8_t>& state,
-                             const std::vector<Rgb>& irradianceBefore, const std::vector<Rgb>& irradianceAfter,
-                             const RelightSettings& settings, float reach, std::vector<Rgb>& ratios) {
-  std::vector<uint32_t> dark, lit;
-  std::vector<uint32_t> receiverOf(scene.size(), UINT32_MAX);
-  for (size_t i = 0; i < receivers.size(); ++i) {
-    if (state[i] == kDark) dark.push_back(uint32_t(i));
-    const Rgb& e = irradianceBefore[i];
-    if (state[i] == kWellLit && e.x > 0 && e.y > 0 && e.z > 0) lit.push_back(receivers[i]), receiverOf[receivers[i]] = uint32_t(i);
-  }
-  if (dark.empty() || lit.empty() || !(reach > 0)) return 0;
-  const CellGrid grid(scene, lit, reach);
-  std::vector<uint8_t> relit(dark.size(), 0);
-  parallelFor(int64_t(dark.size()), 16, [&](int64_t k) {
-    const uint32_t i = dark[size_t(k)];
-    const uint32_t g = receivers[i];
-    std::vector<std::pair<float, uint32_t>> near;  // distance, receiver
-    grid.near(scene.position[g], reach, [&](uint32_t j) {
-      const uint32_t r = receiverOf[j];
-      if (dot(normals[r], normals[i]) >= settings.filterCosine) near.push_back({length(scene.position[j] - scene.position[g]), r});
-    });
-    if (near.empty()) return;
-    const size_t count = std::min(near.size(), size_t(settings.albedoNeighbours));
-    std::partial_sort(near.begin(), near.begin() + std::ptrdiff_t(count), near.end());
-    Rgb albedo(0.0f);  // diffuse per unit of irradiance
-    for (size_t n = 0; n < count; ++n) {
-      const uint32_t r = near[n].second;
-      const Rgb& d = scene.diffuse[receivers[r]];
-      const Rgb& e = irradianceBefore[r];
-      albedo += Rgb(d.x / e.x, d.y / e.y, d.z / e.z);
-    }
-    albedo = albedo * (1.0f / float(count));
-    const Rgb target = albedo * irradianceAfter[i];
-    const Rgb& d = scene.diffuse[g];
-    Rgb ratio;
-    for (int c = 0; c < 3; ++c) {
-      // A channel trained to (almost) nothing cannot be scaled to the target: it keeps the
-      // clamped ratio.
-      ratio[c] = d[c] > 1e-6f && std::isfinite(target[c]) && target[c] >= 0 ? target[c] / d[c] : ratios[i][c];
-    }
-    ratios[i] = ratio;
-    relit[size_t(k)] = 1;
-  });
-  return size_t(std::count(relit.begin(), relit.end(), uint8_t(1)));
-}
-
 }  // namespace
 
 std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTracer& after,
@@ -301,10 +237,6 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
 
   std::atomic<size_t> changed = 0, clampedCount = 0;
   std::atomic<uint64_t> rays = 0;
-  // E_before and E_after of the receivers whose irradiance was estimated in full, and how
-  // their ratio came out (kUnknown: not estimated).
-  std::vector<Rgb> irradianceBefore(receivers.size()), irradianceAfter(receivers.size());
-  std::vector<uint8_t> state(receivers.size(), kUnknown);
   ProgressBar progress("relight", int64_t(traced.size()), "Gaussians");
   auto radiance = [&](const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const Vec3f& w) {
     TraceRay ray{p + n * settings.normalOffset, w, 0.0f, settings.backfaceSkip};
@@ -373,30 +305,16 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
 
     bool clamped = false;
     ratios[size_t(i)] = irradianceRatio(irradiance, change, settings.maxRatio, &clamped);
-    irradianceBefore[i] = irradiance;
-    irradianceAfter[i] = irradiance + change;
-    const float lumBefore = luminance(irradiance), lumAfter = luminance(irradiance + change);
-    state[i] = lumAfter > settings.albedoAboveRatio * std::max(lumBefore, 0.0f) && lumAfter > 0 ? kDark
-               : clamped                                                                 ? kClamped
-               : lumAfter <= kAlbedoSourceRatio * lumBefore                              ? kWellLit
-                                                                                         : kLit;
     if (ratios[size_t(i)] != Rgb(1.0f)) changed.fetch_add(1, std::memory_order_relaxed);
     if (clamped) clampedCount.fetch_add(1, std::memory_order_relaxed);
     rays.fetch_add(raysTraced, std::memory_order_relaxed);
     progress.advance();
   });
   if (cancelled()) throw RelightCancelled();
-  if (settings.filterRadius > 0 || spacing > 0)
+  if (settings.filterRadius > 0 || spacing > 0) {
     ratios = filteredRatios(afterScene, receivers, inReach, traced, normals, ratios, settings, spacing);
-  if (settings.albedoNeighbours > 0) {
-    const float reach = std::max_element(regions.begin(), regions.end(), [](const auto& a, const auto& b) {
-                          return a.radius < b.radius;
-                        })->radius;
-    size_t relit = relightDarkFromAlbedo(afterScene, receivers, normals, state, irradianceBefore, irradianceAfter,
-                                         settings, reach, ratios);
-    if (report) report->fromAlbedo = relit;
+    changed = size_t(std::count_if(ratios.begin(), ratios.end(), [](const Rgb& r) { return r != Rgb(1.0f); }));
   }
-  changed = size_t(std::count_if(ratios.begin(), ratios.end(), [](const Rgb& r) { return r != Rgb(1.0f); }));
   if (report) {
     report->receivers = receivers.size();
     report->reached = size_t(std::count(inReach.begin(), inReach.end(), uint8_t(1)));

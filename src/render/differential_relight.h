@@ -48,16 +48,6 @@ struct RelightSettings {
   // move from 1.48 to 1.18 dB and of a deletion from 2.09 to 1.21 (with healing), and 64
   // did no better (1.19, 1.23; README, "Edits that move shadows").
   float maxRatio = 16.0f;
-  // Receivers whose luminance ratio exceeds albedoAboveRatio (lit so little before the edit
-  // that the clamp cannot bring them to their new light: the trained colour of a contact
-  // shadow is near 0.001) take instead the albedo (diffuse / E_before) of this many nearest
-  // well-lit receivers, times their own E_after; 0 = clamp them (the default). On a plain
-  // floor under a deleted wide plate this lifts the floor under its middle to the open
-  // floor's light (the test), but the neighbours' mean albedo loses a texture: on
-  // builtin:spheres' checker floor it raised a move's diffuse drop from 2.88 to 3.01 dB and
-  // a deletion's from 5.09 to 6.00 (README, "Edits that move shadows").
-  int albedoNeighbours = 0;
-  float albedoAboveRatio = 16.0f;
   // Receivers that see every changed region under less solid angle than this (steradians)
   // keep their colour: an object 56 radii away changes their irradiance by < 0.03%.
   float minSolidAngle = 1e-3f;
@@ -72,10 +62,11 @@ struct RelightSettings {
   // 4 and 6 did less (README, "Edits that move shadows").
   float filterRadius = 1.0f;
   float filterCosine = 0.8f;
-  // At most this many receivers within reach are traced (0: all of them): a spatially
-  // stratified subset (one per cell and normal direction, the cells as small as the budget
-  // allows), whose ratios the others take by the filter's weights over a radius of two cells.
-  // The viewer's first look at an edit's shadows, before the full relighting.
+  // At most this many receivers within reach are traced (0: all of them): a cover of them,
+  // every receiver having a traced one within a spacing that faces the same way (the smallest
+  // spacing within the budget), whose ratios the others take by the filter's weights over a
+  // radius of at least that spacing. The viewer's first look at an edit's shadows, before the
+  // full relighting.
   size_t tracedBudget = 0;
   uint64_t seed = 0;
   // When set and true, relightRatios stops tracing and throws RelightCancelled (the viewer
@@ -107,7 +98,6 @@ struct RelightReport {
   size_t traced = 0;     // ... of which rays were traced from (all, without tracedBudget)
   size_t changed = 0;    // ... whose diffuse colour changed
   size_t clamped = 0;    // ... whose ratio hit the clamp in some channel
-  size_t fromAlbedo = 0; // ... of which, relit from their neighbours' albedo (albedoNeighbours)
   uint64_t rays = 0;     // rays traced, both scenes together
 };
 

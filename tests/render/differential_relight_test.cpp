@@ -10,7 +10,6 @@
 #include <numeric>
 #include <utility>
 
-#include "core/parallel.h"
 #include "math/frame.h"
 #include "math/rng.h"
 #include "math/sampling.h"
@@ -216,63 +215,6 @@ TEST(DifferentialRelight, FilterAcrossNeighboursLowersTheNoiseOfFewRays) {
   EXPECT_GT(error[0] / 80, 0.02) << "two rays per Gaussian should leave visible noise";
   EXPECT_LT(error[1], 0.6 * error[0]) << "mean relative error without the filter " << error[0] / 80
                                      << ", with it " << error[1] / 80;
-}
-
-// A wide black plate just above a 2 m floor leaves the floor under its middle almost no
-// light (E_before about 1/26 of the open floor's); deleting it, the clamp of 16 alone leaves
-// that floor dark, while the albedo of the lit floor around it (diffuse / E_before) times the
-// new light brings it to the open floor's level.
-TEST(DifferentialRelight, FloorBeyondTheClampTakesItsNeighboursAlbedo) {
-  Room before, after;
-  LayerLook ceiling;
-  ceiling.diffuse = Rgb(kCeilingRadiance);
-  ceiling.normal = Vec3f(0, 0, -1);
-  LayerLook floor;
-  LayerLook plate;
-  plate.normal = Vec3f(0, 0, -1);
-  for (Room* room : {&before, &after}) {
-    addLayer(&room->scene, 0, 0, 1.5f, 40, 40, 0.4f, ceiling);
-    const size_t floorBegin = room->scene.size();
-    addLayer(&room->scene, 0, 0, 0, 40, 40, 0.05f, floor);
-    room->floor = indicesFrom(floorBegin, room->scene.size());
-  }
-  const size_t plateBegin = before.scene.size();
-  addLayer(&before.scene, 0, 0, 0.1f, 20, 20, 0.05f, plate);
-  before.plate = indicesFrom(plateBegin, before.scene.size());
-  // Baked as trained: albedo / pi x E_before (fewer rays than bakeFloor, over 1,600 Gaussians).
-  {
-    std::unique_ptr<GaussianTracer> tracer = tracerOf(before.scene);
-    std::vector<Rgb> baked(before.floor.size());
-    parallelFor(int64_t(baked.size()), 16, [&](int64_t i) {
-      baked[size_t(i)] = bruteForceIrradiance(*tracer, before.scene, before.floor[size_t(i)], 256) * (kAlbedo / kPi);
-    });
-    for (size_t i = 0; i < baked.size(); ++i) before.scene.diffuse[before.floor[i]] = after.scene.diffuse[after.floor[i]] = baked[i];
-  }
-  const size_t centre = floorIndexAt(after, 0, 0), open = floorIndexAt(after, 0.9f, 0.9f);
-  const float openFloor = after.scene.diffuse[after.floor[open]].x;
-  const float shadow = after.scene.diffuse[after.floor[centre]].x;
-  ASSERT_GT(shadow, 0.0f) << "light should reach under the plate's edges";
-  ASSERT_LT(shadow, openFloor / 20) << "the plate should leave almost no light";
-
-  std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(before.scene), afterTracer = tracerOf(after.scene);
-  const ChangedRegion regions[] = {changedRegionOf(before.scene, before.plate)};
-  const float truth = bruteForceIrradiance(*afterTracer, after.scene, after.floor[centre], 4096).x * kAlbedo / kPi;
-  for (int neighbours : {0, 16}) {
-    RelightSettings settings;
-    settings.albedoNeighbours = neighbours;
-    RelightReport report;
-    std::vector<Rgb> ratios =
-        relightRatios(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings, &report);
-    const float relit = after.scene.diffuse[after.floor[centre]].x * ratios[centre].x;
-    ASSERT_TRUE(std::isfinite(relit));
-    if (neighbours == 0) {
-      EXPECT_EQ(report.fromAlbedo, 0u);
-      EXPECT_LT(relit, 0.6f * truth) << "the clamp alone should leave the middle dark";
-    } else {
-      EXPECT_GT(report.fromAlbedo, 0u);
-      EXPECT_NEAR(relit, truth, 0.1f * truth) << "open floor " << openFloor;
-    }
-  }
 }
 
 // A relighting whose cancel flag is set stops with RelightCancelled; with the flag clear it
