@@ -90,10 +90,9 @@ Rgb irradianceRatio(const Rgb& before, const Rgb& change, float maxRatio, bool* 
 
 // Each receiver's unit normal (zero for receivers out of reach, which never use it).
 std::vector<Vec3f> unitNormals(const GaussianScene& scene, std::span<const uint32_t> receivers,
-                               const std::vector<uint8_t>& inReach) {
+                               std::span<const uint32_t> reached) {
   std::vector<Vec3f> normals(receivers.size(), Vec3f(0.0f));
-  for (size_t i = 0; i < receivers.size(); ++i)
-    if (inReach[i]) normals[i] = normalize(scene.normal[receivers[i]]);
+  for (uint32_t i : reached) normals[i] = normalize(scene.normal[receivers[i]]);
   return normals;
 }
 
@@ -121,11 +120,8 @@ std::vector<uint32_t> coverOf(const GaussianScene& scene, std::span<const uint32
 // reach with the smallest spacing (to 2%) that keeps it within the budget, and that spacing;
 // every receiver within reach and spacing 0 when they fit the budget.
 std::vector<uint32_t> tracedReceivers(const GaussianScene& scene, std::span<const uint32_t> receivers,
-                                      const std::vector<uint8_t>& inReach, const std::vector<Vec3f>& normals,
+                                      std::vector<uint32_t> reached, const std::vector<Vec3f>& normals,
                                       const RelightSettings& settings, float* spacing) {
-  std::vector<uint32_t> reached;
-  for (size_t i = 0; i < receivers.size(); ++i)
-    if (inReach[i]) reached.push_back(uint32_t(i));
   *spacing = 0;
   if (settings.tracedBudget == 0 || reached.size() <= settings.tracedBudget) return reached;
   std::vector<uint64_t> rank(receivers.size());
@@ -159,19 +155,16 @@ std::vector<uint32_t> tracedReceivers(const GaussianScene& scene, std::span<cons
 // filterRadius of its largest standard deviations or `spacing`, whichever is wider. Without
 // a budget every receiver within reach is traced and spacing is 0.
 std::vector<Rgb> filteredRatios(const GaussianScene& scene, std::span<const uint32_t> receivers,
-                                const std::vector<uint8_t>& inReach, std::span<const uint32_t> traced,
+                                std::span<const uint32_t> reached, std::span<const uint32_t> traced,
                                 const std::vector<Vec3f>& normals, const std::vector<Rgb>& ratios,
                                 const RelightSettings& settings, float spacing) {
-  std::vector<uint32_t> reached;  // indices into receivers
-  std::vector<float> radii;       // per reached receiver
+  std::vector<float> radii;  // per reached receiver
   float largest = 0;
-  for (size_t i = 0; i < receivers.size(); ++i)
-    if (inReach[i]) {
-      reached.push_back(uint32_t(i));
-      const Vec3f s = scene.scale(receivers[i]);
-      radii.push_back(std::max(settings.filterRadius * std::max({s.x, s.y, s.z}), spacing));
-      largest = std::max(largest, radii.back());
-    }
+  for (uint32_t i : reached) {
+    const Vec3f s = scene.scale(receivers[i]);
+    radii.push_back(std::max(settings.filterRadius * std::max({s.x, s.y, s.z}), spacing));
+    largest = std::max(largest, radii.back());
+  }
   if (reached.empty() || !(largest > 0)) return ratios;
   // Cells as wide as the largest radius any receiver asks for, over the traced receivers.
   std::vector<uint32_t> sceneIndices;
@@ -231,9 +224,12 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     float solidAngle = 0;
     inReach[size_t(i)] = receiverFrame(size_t(i), &p, &n, cones, &solidAngle) > 0;
   });
-  const std::vector<Vec3f> normals = unitNormals(afterScene, receivers, inReach);
+  std::vector<uint32_t> reached;  // indices into receivers
+  for (size_t i = 0; i < receivers.size(); ++i)
+    if (inReach[i]) reached.push_back(uint32_t(i));
+  const std::vector<Vec3f> normals = unitNormals(afterScene, receivers, reached);
   float spacing = 0;
-  const std::vector<uint32_t> traced = tracedReceivers(afterScene, receivers, inReach, normals, settings, &spacing);
+  const std::vector<uint32_t> traced = tracedReceivers(afterScene, receivers, reached, normals, settings, &spacing);
 
   std::atomic<size_t> changed = 0, clampedCount = 0;
   std::atomic<uint64_t> rays = 0;
@@ -312,12 +308,12 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
   });
   if (cancelled()) throw RelightCancelled();
   if (settings.filterRadius > 0 || spacing > 0) {
-    ratios = filteredRatios(afterScene, receivers, inReach, traced, normals, ratios, settings, spacing);
+    ratios = filteredRatios(afterScene, receivers, reached, traced, normals, ratios, settings, spacing);
     changed = size_t(std::count_if(ratios.begin(), ratios.end(), [](const Rgb& r) { return r != Rgb(1.0f); }));
   }
   if (report) {
     report->receivers = receivers.size();
-    report->reached = size_t(std::count(inReach.begin(), inReach.end(), uint8_t(1)));
+    report->reached = reached.size();
     report->traced = traced.size();
     report->changed = changed;
     report->clamped = clampedCount;
