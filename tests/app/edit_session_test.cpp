@@ -79,11 +79,21 @@ TEST(EditSession, RefitsInPlaceOnlyWhenTheCountStaysAndTheSceneIsFree) {
   EXPECT_EQ(session.current()->scene->roughness[3], pristine.roughness[3]);
 }
 
-}  // namespace
-}  // namespace glint
 
-namespace glint {
-namespace {
+// The camera and work of the plate room's sessions, and the request that moves its plate
+// sideways (uncovering the floor's shadow under it).
+TracerUpdateContext plateRoomContext() {
+  TracerUpdateContext context;
+  context.probeCamera =
+      Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0, -3, 1), Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, 32, 24);
+  context.workRays = 1e6;
+  return context;
+}
+
+nlohmann::json plateMove() {
+  return {{"selection", {{"box", {{"min", {-0.2, -0.2, 0.3}}, {"max", {0.2, 0.2, 0.5}}}}}},
+          {"operation", {{"op", "translate"}, {"offset", {0.6, 0.0, 0.0}}}}};
+}
 
 // With relighting, deleting a plate that shades a floor brightens the floor under it; undo
 // returns every colour to the pristine scene's exactly.
@@ -91,10 +101,7 @@ TEST(EditSession, RelightsAfterEachEditAndUndoRestoresThePristineColours) {
   const test::PlateRoom room = test::plateRoom();
   const GaussianScene& pristine = room.scene;
   EditSession session(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{});
-  TracerUpdateContext context;
-  context.probeCamera =
-      Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0, -3, 1), Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, 32, 24);
-  context.workRays = 1e6;
+  const TracerUpdateContext context = plateRoomContext();
 
   session.apply({{"selection", {{"box", {{"min", {-0.2, -0.2, 0.3}}, {"max", {0.2, 0.2, 0.5}}}}}},
                  {"operation", {{"op", "delete"}}}},
@@ -117,37 +124,23 @@ TEST(EditSession, RelightsAfterEachEditAndUndoRestoresThePristineColours) {
   for (size_t i = 0; i < pristine.size(); ++i) ASSERT_EQ(shown->scene->diffuse[i], pristine.diffuse[i]) << i;
 }
 
-}  // namespace
-}  // namespace glint
 
-namespace glint {
-namespace {
-
-// The camera and work of the plate room's sessions, and the request that moves its plate
-// sideways (uncovering the floor's shadow under it).
-TracerUpdateContext plateRoomContext() {
-  TracerUpdateContext context;
-  context.probeCamera =
-      Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0, -3, 1), Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, 32, 24);
-  context.workRays = 1e6;
-  return context;
-}
-
-nlohmann::json plateMove() {
-  return {{"selection", {{"box", {{"min", {-0.2, -0.2, 0.3}}, {"max", {0.2, 0.2, 0.5}}}}}},
-          {"operation", {{"op", "translate"}, {"offset", {0.6, 0.0, 0.0}}}}};
-}
-
-// Deferred (the viewer's way): the edit is shown unrelit with "relight_pending", and
-// relight() then gives exactly the colours an immediate session shows, in a tracer that
-// traces them; with the renderer still holding the scene, a new tracer is built instead.
-TEST(EditSession, DeferredRelightingShowsTheEditFirstThenTheImmediateColours) {
+// The plate moved sideways in a session that relights at once: what a deferred session
+// must end up showing.
+class PlateMove : public ::testing::Test {
+ protected:
+  PlateMove() { immediate.apply(move, context); }
   const test::PlateRoom room = test::plateRoom();
   const GaussianScene& pristine = room.scene;
   const TracerUpdateContext context = plateRoomContext();
   const nlohmann::json move = plateMove();
-  EditSession immediate(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{});
-  immediate.apply(move, context);
+  EditSession immediate{pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{}};
+};
+
+// Deferred (the viewer's way): the edit is shown unrelit with "relight_pending", and
+// relight() then gives exactly the colours an immediate session shows, in a tracer that
+// traces them; with the renderer still holding the scene, a new tracer is built instead.
+TEST_F(PlateMove, DeferredRelightingShowsTheEditFirstThenTheImmediateColours) {
   EXPECT_FALSE(immediate.status()["relight_pending"].get<bool>());
 
   for (bool rendererHolds : {false, true}) {
@@ -181,22 +174,11 @@ TEST(EditSession, DeferredRelightingShowsTheEditFirstThenTheImmediateColours) {
   }
 }
 
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
 
 // A preview shows relit colours over a tracer of its own while the relighting stays
 // pending; the full relighting after it still gives exactly the immediate session's colours
 // (it traces the unrelit scene the preview kept, not the preview's colours).
-TEST(EditSession, PreviewThenFullRelightingGivesTheImmediateColours) {
-  const test::PlateRoom room = test::plateRoom();
-  const GaussianScene& pristine = room.scene;
-  const TracerUpdateContext context = plateRoomContext();
-  const nlohmann::json move = plateMove();
-  EditSession immediate(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{});
-  immediate.apply(move, context);
+TEST_F(PlateMove, PreviewThenFullRelightingGivesTheImmediateColours) {
 
   EditSession deferred(pristine, TraceSettings{}, kDefaultMaxGaussians, RelightSettings{}, std::nullopt, true);
   EXPECT_EQ(deferred.relightPreview(), deferred.current());  // nothing waits
@@ -227,11 +209,6 @@ TEST(EditSession, PreviewThenFullRelightingGivesTheImmediateColours) {
   EXPECT_EQ(relit->tracer->trace(down).diffuse, immediate.current()->tracer->trace(down).diffuse);
 }
 
-}  // namespace
-}  // namespace glint
-
-namespace glint {
-namespace {
 
 // An edit that arrives while a deferred relighting runs cancels it rather than waiting for
 // it; whichever happens first, the session ends consistent: undone to the pristine colours,
