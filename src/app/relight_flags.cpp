@@ -30,6 +30,12 @@ void RelightFlags::add(CLI::App* cmd) {
                   "viewer's preview traces 4000 at 32 rays); 0 = every one")
       ->check(CLI::Range(size_t(0), size_t(1) << 40))
       ->capture_default_str();
+  cmd->add_option("--relight-bounces", settings_.path.bounces,
+                  "--relight counts, in the light a ray brings to a Gaussian, the blended diffuse colour it meets and "
+                  "this many reflected segments from there, as the renderer traces them: a mirror's light on the floor "
+                  "is its reflection (0 = the diffuse colour alone)")
+      ->check(CLI::Range(0, 8))
+      ->capture_default_str();
   cmd->add_option("--relight-max-ratio", settings_.maxRatio,
                   "--relight changes no diffuse colour by more than this factor, up or down")
       ->check(CLI::Range(1.0f, 1000.0f))
@@ -39,8 +45,9 @@ void RelightFlags::add(CLI::App* cmd) {
 RelightSettings RelightFlags::settings(const PathSettings& path) const {
   RelightSettings s = settings_;
   s.setRays(settings_.rays);  // one flag scales every ray count
-  s.normalOffset = path.normalOffset;
-  s.backfaceSkip = path.backfaceSkip;
+  const int bounces = s.path.bounces;
+  s.path = path;  // the run's reflection settings
+  s.path.bounces = bounces;
   return s;
 }
 

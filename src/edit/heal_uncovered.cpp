@@ -158,24 +158,32 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
     bool valid = false;
   };
   std::vector<Candidate> projected(vacated.size());
+  // A vacated Gaussian amid a wide hole (a disc of floor that the selection took along with
+  // the object) has no support within reach: its fit widens, doubling up to widestFitSpacings.
+  const float widestFit = std::max(settings.widestFitSpacings, settings.fitSpacings) * spacing;
   parallelFor(int64_t(vacated.size()), 64, [&](int64_t v) {
     const Vec3f c = before.position[vacated[size_t(v)]];
     double weightSum = 0;
     Vec3d pointSum(0.0), normalSum(0.0);
     int count = 0;
-    supportGrid.near(c, reach, [&](uint32_t j) {
-      const float q = 1.0f - dot(after.position[j] - c, after.position[j] - c) / (reach * reach);
-      const double w = double(after.opacity(j)) * double(q * q);
-      weightSum += w;
-      pointSum += Vec3d(after.position[j]) * w;
-      normalSum += Vec3d(normalize(after.normal[j])) * w;
-      ++count;
-    });
+    float fit = reach;
+    for (;; fit *= 2) {
+      weightSum = 0, pointSum = normalSum = Vec3d(0.0), count = 0;
+      supportGrid.near(c, fit, [&](uint32_t j) {
+        const float q = 1.0f - dot(after.position[j] - c, after.position[j] - c) / (fit * fit);
+        const double w = double(after.opacity(j)) * double(q * q);
+        weightSum += w;
+        pointSum += Vec3d(after.position[j]) * w;
+        normalSum += Vec3d(normalize(after.normal[j])) * w;
+        ++count;
+      });
+      if (count >= settings.minSupport || fit * 2 > widestFit) break;
+    }
     if (count < settings.minSupport || !(weightSum > 0) || !(length(normalSum) > 0.5 * weightSum)) return;
     Plane plane{Vec3f(pointSum * (1.0 / weightSum)), Vec3f(normalize(normalSum)), true};
     double residual = 0;
-    supportGrid.near(c, reach, [&](uint32_t j) {
-      const float q = 1.0f - dot(after.position[j] - c, after.position[j] - c) / (reach * reach);
+    supportGrid.near(c, fit, [&](uint32_t j) {
+      const float q = 1.0f - dot(after.position[j] - c, after.position[j] - c) / (fit * fit);
       const double h = dot(after.position[j] - plane.point, plane.normal);
       residual += double(after.opacity(j)) * double(q * q) * h * h;
     });

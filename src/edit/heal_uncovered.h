@@ -22,6 +22,9 @@ struct HealSettings {
   // vacated Gaussian, which must itself lie within that distance of the plane.
   float fitSpacings = 4.0f;
   int minSupport = 4;
+  // Where fewer than minSupport lie within fitSpacings (amid a wide hole), the fit widens,
+  // doubling, up to this many spacings.
+  float widestFitSpacings = 32.0f;
   // A fitted plane whose support strays from it by more than this (weighted RMS) is no flat
   // surface to continue.
   float maxResidualSpacings = 1.0f;

@@ -234,9 +234,27 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
   std::atomic<size_t> changed = 0, clampedCount = 0;
   std::atomic<uint64_t> rays = 0;
   ProgressBar progress("relight", int64_t(traced.size()), "Gaussians");
-  auto radiance = [&](const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const Vec3f& w) {
-    TraceRay ray{p + n * settings.normalOffset, w, 0.0f, settings.backfaceSkip};
-    return tracer.trace(ray).diffuse;
+  // The radiance arriving at p from direction w: what the ray meets, and its reflected
+  // light. Keys (receiver, sequence, sample) give both scenes the same reflected directions.
+  auto radiance = [&](const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const Vec3f& w, uint32_t g,
+                      uint64_t sequence, uint32_t k, uint64_t* raysTraced) {
+    TraceRay ray{p + n * settings.path.normalOffset, w, 0.0f, settings.path.backfaceSkip};
+    RayResult hit = tracer.trace(ray);
+    ++*raysTraced;
+    Rgb light = hit.diffuse, throughput(1.0f);
+    const PathKey key{g, sequence, k};
+    for (int segment = 1; segment <= settings.path.bounces; ++segment) {
+      if (std::max({hit.f0.x, hit.f0.y, hit.f0.z}) < settings.minReflectance) break;
+      TraceRay next;
+      Rgb weight;
+      if (!continuePath(ray, hit, settings.path, settings.seed, key, segment, &next, &weight)) break;
+      throughput *= weight;
+      ray = next;
+      hit = tracer.trace(ray);
+      ++*raysTraced;
+      light += throughput * hit.diffuse;
+    }
+    return light;
   };
   auto cancelled = [&] { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); };
   parallelFor(int64_t(traced.size()), 16, [&](int64_t t) {
@@ -267,8 +285,8 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
         if (cones[c].contains(w)) pdf += cones[c].pdf();
       pdf /= float(coneCount);
       if (!(pdf > 0)) continue;
-      Rgb difference = radiance(after, p, n, w) - radiance(before, p, n, w);
-      raysTraced += 2;
+      Rgb difference = radiance(after, p, n, w, g, 0, uint32_t(k), &raysTraced) -
+                       radiance(before, p, n, w, g, 0, uint32_t(k), &raysTraced);
       change += difference * (cosine / pdf);
     }
     change = change * (1.0f / float(count));
@@ -285,8 +303,8 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     auto addRays = [&](int begin, int end) {
       for (int k = begin; k < end; ++k)
         sum += radiance(before, p, n,
-                        normalize(frame.toWorld(sampleCosineHemisphere(stratifiedSample2(hemisphere, uint32_t(k))))));
-      raysTraced += uint64_t(end - begin);
+                        normalize(frame.toWorld(sampleCosineHemisphere(stratifiedSample2(hemisphere, uint32_t(k))))),
+                        g, 1, uint32_t(k), &raysTraced);
     };
     const int quick = std::min(settings.quickRays, settings.hemisphereRays);
     addRays(0, quick);

@@ -14,6 +14,7 @@
 
 #include "math/vec.h"
 #include "raytrace/gaussian_tracer.h"
+#include "render/gaussian_path.h"
 #include "scene/gaussians.h"
 
 namespace glint {
@@ -78,10 +79,21 @@ struct RelightSettings {
     rays = hemisphereRays = n;
     quickRays = n / 4 > 1 ? n / 4 : 1;
   }
-  // Ray origins move this far along the normal; rays skip back-facing Gaussians this close
-  // (as reflected rays do, appendix B of the paper).
-  float normalOffset = 1e-3f;
-  float backfaceSkip = 0.1f;
+  // How each ray from a receiver continues where it meets a surface, as the renderer's
+  // reflected segments do (the run's normal offset, back-face skip, invalid-normal length
+  // and roughness floor): the radiance a ray brings is the blended diffuse colour it meets
+  // plus the light of up to path.bounces reflected segments from there (0: the diffuse
+  // colour alone). A mirror's diffuse colour is nearly black; the light it sends onto the
+  // floor is its reflection, and the trained floor under it holds that light.
+  PathSettings path = relightPathDefaults();
+  // A reflected segment is traced only from surfaces whose blended F0 reaches this in some
+  // channel (metals, mirrors): a dielectric reflects a few percent, and most rays meet one.
+  float minReflectance = 0.1f;
+  static PathSettings relightPathDefaults() {
+    PathSettings p;
+    p.bounces = 1;
+    return p;
+  }
 };
 
 // Thrown by relightRatios when RelightSettings::cancel turned true.

@@ -3,6 +3,7 @@
 // (render/differential_relight), and of selection growth (edit/selection_growth).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <span>
@@ -14,21 +15,22 @@
 
 namespace glint {
 
-// Gaussians hashed by the cell of their mean, for radius queries of up to one cell.
+// Gaussians hashed by the cell of their mean, for radius queries (fastest up to one cell).
 class CellGrid {
  public:
   CellGrid(const GaussianScene& scene, std::span<const uint32_t> indices, float cell) : scene_(scene), cell_(cell) {
     for (uint32_t i : indices) add(i);
   }
   void add(uint32_t i) { cells_[keyOf(scene_.position[i])].push_back(i); }
-  // Calls visit(i) for every Gaussian whose mean lies within `radius` (<= cell) of p.
+  // Calls visit(i) for every Gaussian whose mean lies within `radius` of p.
   template <typename Visit>
   void near(const Vec3f& p, float radius, Visit&& visit) const {
     const int64_t cx = coordinate(p.x), cy = coordinate(p.y), cz = coordinate(p.z);
     const float r2 = radius * radius;
-    for (int64_t dx = -1; dx <= 1; ++dx)
-      for (int64_t dy = -1; dy <= 1; ++dy)
-        for (int64_t dz = -1; dz <= 1; ++dz) {
+    const int64_t span = std::max<int64_t>(1, int64_t(std::ceil(radius / cell_)));
+    for (int64_t dx = -span; dx <= span; ++dx)
+      for (int64_t dy = -span; dy <= span; ++dy)
+        for (int64_t dz = -span; dz <= span; ++dz) {
           auto found = cells_.find(key(cx + dx, cy + dy, cz + dz));
           if (found == cells_.end()) continue;
           for (uint32_t i : found->second) {

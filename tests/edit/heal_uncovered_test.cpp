@@ -64,14 +64,15 @@ struct Edited {
 };
 
 // The scene with an edit of the ball (an operation as in an edit file) applied.
-Edited edit(const Vec3f& ballCentre, const std::string& operation) {
+Edited edit(const Vec3f& ballCentre, const std::string& operation, float selectionRadius = 0.31f) {
   Edited e;
   e.before = floorAndBall(ballCentre);
   e.after = e.before;
   e.provenance = EditProvenance::identity(e.before.size());
   const std::string text = R"({"glint_edits": 1, "selections": {"ball": {"sphere": {"center": [)" +
                            std::to_string(ballCentre.x) + "," + std::to_string(ballCentre.y) + "," +
-                           std::to_string(ballCentre.z) + R"(], "radius": 0.31}}}, "operations": [)" + operation + "]}";
+                           std::to_string(ballCentre.z) + R"(], "radius": )" + std::to_string(selectionRadius) +
+                           R"(}}}, "operations": [)" + operation + "]}";
   applyEdits(parseEditDocument(nlohmann::json::parse(text), "test.json"), e.after, kDefaultMaxGaussians, &e.provenance);
   return e;
 }
@@ -143,6 +144,25 @@ TEST(HealUncovered, MovingTheBallAwayFillsTheHoleWithTheLitFloor) {
     float total = 0;
     for (float w : h.weights) total += w;
     EXPECT_NEAR(total, 1.0f, 1e-5f);
+  }
+}
+
+// A selection sphere wider than the ball takes a disc of floor along with it (radius 0.34
+// here, twice the plane fit's reach of 4 spacings): the middle of the hole has no floor within
+// reach and is filled all the same, by a wider fit.
+TEST(HealUncovered, FillsTheMiddleOfAHoleWiderThanThePlaneFit) {
+  Edited e = edit(kResting, kMoveAway, 0.45f);
+  const Vec3f open(0.7f, 0, 0.7f);
+  const float openCoverage = floorCoverage(e.after, open);
+  ASSERT_LT(floorCoverage(e.after, {0.2f, 0, 0}), 0.1f);  // the disc went with the ball
+  const size_t count = e.after.size();
+  HealReport report = healUncovered(e.before, e.after, e.provenance);
+  EXPECT_GT(report.added, 0u);
+  for (float x : {-0.2f, -0.1f, 0.0f, 0.1f, 0.2f})
+    for (float z : {-0.2f, 0.0f, 0.2f}) EXPECT_GT(floorCoverage(e.after, {x, 0, z}), 0.8f * openCoverage) << x << " " << z;
+  for (size_t i = count; i < e.after.size(); ++i) {
+    EXPECT_NEAR(e.after.position[i].y, 0.0f, 1e-4f);
+    EXPECT_NEAR(e.after.diffuse[i].y, kFloorColour.y, 1e-4f);
   }
 }
 

@@ -58,16 +58,22 @@ Room makeRoom(bool withPlate) {
   return room;
 }
 
-// Brute-force irradiance at Gaussian g: pi x the mean blended diffuse of many independent
-// cosine-distributed rays (the obviously correct estimator, with its own random numbers).
-Rgb bruteForceIrradiance(const GaussianTracer& tracer, const GaussianScene& scene, uint32_t g, int rays) {
+// Brute-force irradiance at Gaussian g: pi x the mean radiance of many independent
+// cosine-distributed rays (the obviously correct estimator, with its own random numbers):
+// the blended diffuse colour each meets, plus `bounces` reflected segments from there as
+// the renderer traces them.
+Rgb bruteForceIrradiance(const GaussianTracer& tracer, const GaussianScene& scene, uint32_t g, int rays,
+                         int bounces = 0) {
   Vec3f n = normalize(scene.normal[g]);
   Framef frame = Framef::fromNormal(n);
   Rng rng = Rng::forKeys({77, g});
+  PathSettings path;
+  path.bounces = bounces;
   Rgb sum(0.0f);
   for (int k = 0; k < rays; ++k) {
     Vec3f w = normalize(frame.toWorld(sampleCosineHemisphere({rng.uniform(), rng.uniform()})));
-    sum += tracer.trace({scene.position[g] + n * 1e-3f, w, 0.0f, 0.1f}).diffuse;
+    const PathResult r = tracePath(tracer, {scene.position[g] + n * 1e-3f, w, 0.0f, 0.1f}, path, 79, g, 0, uint64_t(k));
+    sum += r.first.diffuse + r.specular;
   }
   return sum * (kPi / float(rays));
 }
@@ -231,6 +237,71 @@ TEST(DifferentialRelight, CancelFlagStopsTheRelighting) {
   cancel = true;
   EXPECT_THROW(relightRatios(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings),
                RelightCancelled);
+}
+
+// A floor lit through a mirror: a 2 m mirror (black diffuse, F0 1) at z = 0.3 faces down
+// over the floor and shows it a bright patch lying on the floor beside it, and hides a dim
+// ceiling. The floor is baked with that light, reflected segment included.
+struct MirrorRoom {
+  GaussianScene scene;
+  std::vector<uint32_t> floor, mirror;
+};
+
+MirrorRoom mirrorRoom(bool withMirror) {
+  MirrorRoom room;
+  LayerLook ceiling;
+  ceiling.diffuse = Rgb(0.3f);
+  ceiling.normal = Vec3f(0, 0, -1);
+  addLayer(&room.scene, 0, 0, 1.5f, 24, 24, 0.4f, ceiling);
+  LayerLook patch;
+  patch.diffuse = Rgb(2.0f);
+  addLayer(&room.scene, 0.6f, 0, 0, 16, 40, 0.05f, patch);  // x in [0.2, 1], y in [-1, 1]
+  const size_t floorBegin = room.scene.size();
+  LayerLook floor;
+  floor.diffuse = Rgb(0.1f);
+  addLayer(&room.scene, -0.2f, 0, 0, 8, 8, 0.05f, floor);  // x in [-0.4, 0]
+  room.floor = indicesFrom(floorBegin, room.scene.size());
+  if (withMirror) {
+    const size_t mirrorBegin = room.scene.size();
+    LayerLook mirror;
+    mirror.normal = Vec3f(0, 0, -1);
+    mirror.roughness = 0.02f;
+    mirror.f0 = Rgb(1.0f);
+    addLayer(&room.scene, 0, 0, 0.3f, 40, 40, 0.05f, mirror);
+    room.mirror = indicesFrom(mirrorBegin, room.scene.size());
+  }
+  return room;
+}
+
+// Deleting the mirror: the floor loses the patch's reflected light and gains the ceiling's.
+// Relighting finds that only through the reflected segment of its rays (the mirror's own
+// diffuse colour is black); without it (bounces 0) the floor is far off.
+TEST(DifferentialRelight, LightAMirrorSentFollowsTheMirror) {
+  MirrorRoom before = mirrorRoom(true), after = mirrorRoom(false);
+  std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(before.scene), afterTracer = tracerOf(after.scene);
+  for (size_t i = 0; i < before.floor.size(); ++i) {
+    const uint32_t g = before.floor[i];
+    after.scene.diffuse[g] = bruteForceIrradiance(*beforeTracer, before.scene, g, 1024, 1) * (kAlbedo / kPi);
+  }
+  const ChangedRegion regions[] = {changedRegionOf(before.scene, before.mirror)};
+  double error[2] = {0, 0};
+  for (int bounces : {0, 1}) {
+    RelightSettings settings;
+    settings.setRays(1024);  // the patch's image is a small bright source: few rays are noisy
+    settings.path.bounces = bounces;
+    GaussianScene relit = after.scene;
+    relightDiffuse(*beforeTracer, *afterTracer, relit, after.floor, regions, settings);
+    for (uint32_t g : after.floor) {
+      const float truth = bruteForceIrradiance(*afterTracer, after.scene, g, 1024).x * kAlbedo / kPi;
+      ASSERT_TRUE(std::isfinite(relit.diffuse[g].x));
+      error[bounces] += std::abs(relit.diffuse[g].x / truth - 1.0f) / float(after.floor.size());
+    }
+  }
+  // Measured: 6.6% (the noise of 1024 rays, and of the baked colours), against 15-fold too
+  // bright without the reflected segment (the clamp's 16 over the mirror's black).
+  EXPECT_LT(error[1], 0.1) << "mean relative error with the reflected segment";
+  EXPECT_GT(error[0], 2.0) << "mean relative error with the diffuse colour alone";
+  EXPECT_EQ(RelightSettings().path.bounces, 1) << "the default counts the reflected segment";
 }
 
 TEST(DifferentialRelight, RatioStaysFiniteWhereTheUneditedSceneWasDark) {
