@@ -161,15 +161,17 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
   // A vacated Gaussian amid a wide hole (a disc of floor that the selection took along with
   // the object) has no support within reach: its fit widens, doubling up to widestFitSpacings.
   const float widestFit = std::max(settings.widestFitSpacings, settings.fitSpacings) * spacing;
+  const CellGrid wideGrid(after, support, widestFit);  // wide queries visit 27 cells, not thousands
   parallelFor(int64_t(vacated.size()), 64, [&](int64_t v) {
     const Vec3f c = before.position[vacated[size_t(v)]];
     double weightSum = 0;
     Vec3d pointSum(0.0), normalSum(0.0);
     int count = 0;
     float fit = reach;
+    auto grid = [&]() -> const CellGrid& { return fit > reach ? wideGrid : supportGrid; };
     for (;; fit *= 2) {
       weightSum = 0, pointSum = normalSum = Vec3d(0.0), count = 0;
-      supportGrid.near(c, fit, [&](uint32_t j) {
+      grid().near(c, fit, [&](uint32_t j) {
         const float q = 1.0f - dot(after.position[j] - c, after.position[j] - c) / (fit * fit);
         const double w = double(after.opacity(j)) * double(q * q);
         weightSum += w;
@@ -182,7 +184,7 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
     if (count < settings.minSupport || !(weightSum > 0) || !(length(normalSum) > 0.5 * weightSum)) return;
     Plane plane{Vec3f(pointSum * (1.0 / weightSum)), Vec3f(normalize(normalSum)), true};
     double residual = 0;
-    supportGrid.near(c, fit, [&](uint32_t j) {
+    grid().near(c, fit, [&](uint32_t j) {
       const float q = 1.0f - dot(after.position[j] - c, after.position[j] - c) / (fit * fit);
       const double h = dot(after.position[j] - plane.point, plane.normal);
       residual += double(after.opacity(j)) * double(q * q) * h * h;
