@@ -17,7 +17,7 @@ namespace glint {
 class RelightFlags {
  public:
   // Declares --relight / --no-relight (on by default), --relight-rays, --relight-filter,
-  // --relight-traced and --relight-max-ratio on cmd.
+  // --relight-traced, --relight-bounces and --relight-max-ratio on cmd.
   void add(CLI::App* cmd);
   bool on() const { return on_; }
   // The settings of the flags, with the ray offsets of the scene's reflected rays.

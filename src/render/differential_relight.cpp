@@ -236,25 +236,14 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
   ProgressBar progress("relight", int64_t(traced.size()), "Gaussians");
   // The radiance arriving at p from direction w: what the ray meets, and its reflected
   // light. Keys (receiver, sequence, sample) give both scenes the same reflected directions.
+  PathSettings path = settings.path;
+  path.minReflectance = settings.minReflectance;
   auto radiance = [&](const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const Vec3f& w, uint32_t g,
                       uint64_t sequence, uint32_t k, uint64_t* raysTraced) {
-    TraceRay ray{p + n * settings.path.normalOffset, w, 0.0f, settings.path.backfaceSkip};
-    RayResult hit = tracer.trace(ray);
-    ++*raysTraced;
-    Rgb light = hit.diffuse, throughput(1.0f);
-    const PathKey key{g, sequence, k};
-    for (int segment = 1; segment <= settings.path.bounces; ++segment) {
-      if (std::max({hit.f0.x, hit.f0.y, hit.f0.z}) < settings.minReflectance) break;
-      TraceRay next;
-      Rgb weight;
-      if (!continuePath(ray, hit, settings.path, settings.seed, key, segment, &next, &weight)) break;
-      throughput *= weight;
-      ray = next;
-      hit = tracer.trace(ray);
-      ++*raysTraced;
-      light += throughput * hit.diffuse;
-    }
-    return light;
+    const TraceRay ray{p + n * path.normalOffset, w, 0.0f, path.backfaceSkip};
+    const PathResult light = tracePath(tracer, ray, path, settings.seed, g, sequence, k);
+    *raysTraced += uint64_t(light.segments);
+    return light.first.diffuse + light.specular;
   };
   auto cancelled = [&] { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); };
   parallelFor(int64_t(traced.size()), 16, [&](int64_t t) {

@@ -89,15 +89,11 @@ struct RelightSettings {
   // but raised a deletion's on the Blender spheres_room by 0.49 dB and a duplication's by
   // 0.33 (the noise of a chrome sphere's reflected lamps outweighs the light it adds; README,
   // "Edits that move shadows").
-  PathSettings path = relightPathDefaults();
+  PathSettings path;
   // A reflected segment is traced only from surfaces whose blended F0 reaches this in some
-  // channel (metals, mirrors): a dielectric reflects a few percent, and most rays meet one.
+  // channel (metals, mirrors; PathSettings::minReflectance): a dielectric reflects a few
+  // percent, and most rays meet one.
   float minReflectance = 0.1f;
-  static PathSettings relightPathDefaults() {
-    PathSettings p;
-    p.bounces = 0;
-    return p;
-  }
 };
 
 // Thrown by relightRatios when RelightSettings::cancel turned true.

@@ -18,6 +18,8 @@ namespace glint {
 bool continuePath(const TraceRay& ray, const RayResult& result, const PathSettings& settings, uint64_t seed,
                   const PathKey& key, int k, TraceRay* next, Rgb* weight) {
   if (!(result.normalLength >= settings.invalidNormalLength)) return false;
+  if (settings.minReflectance > 0 && std::max({result.f0.x, result.f0.y, result.f0.z}) < settings.minReflectance)
+    return false;
   Vec3f n = result.normal / result.normalLength;
   // Blended normals may face away from the incoming ray (Gaussians seen from behind);
   // the surface is then taken as seen from the ray's side.

@@ -33,6 +33,9 @@ struct PathSettings {
   float normalOffset = 1e-3f;  // reflection origins move this far along the normal
   // Reflection rays ignore back-facing Gaussians this close to their origin (appendix B).
   float backfaceSkip = 0.1f;
+  // A path ends where the blended F0 it meets is below this in every channel (0: never).
+  // Relighting ends its rays at dielectrics, which reflect a few percent.
+  float minReflectance = 0.0f;
   size_t hitListCapacity = 512;  // of the hit lists recorded in PathSegment
   ReflectedRayOrder reflectedOrder = ReflectedRayOrder::OriginAndOctant;  // PathBatch only; no effect on results
   // PathBatch only, no effect on results: the first segments are camera rays of whole

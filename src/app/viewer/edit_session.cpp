@@ -201,7 +201,7 @@ std::shared_ptr<const TracedScene> EditSession::relightPreview() {
   RelightSettings preview = cancellable();
   preview.tracedBudget = kPreviewTraced;
   preview.setRays(std::min(kPreviewRays, relight_->rays));
-  preview.path.bounces = std::min(kPreviewBounces, relight_->path.bounces);
+  preview.path.bounces = kPreviewBounces;
   GaussianScene relit = *shownScene_;
   if (!relightDeferred(*current_->tracer, relit, preview)) return current_;
   pending_->unrelit = current_;
