@@ -238,7 +238,10 @@ try {
   await page.selectOption('#op-kind', 'translate');
   await page.fill('#op-offset-x', '0.2');
   await page.click('#apply');
-  await page.waitForFunction(() => /^applied; 1 operations[^]*\nrelit \d+ of/.test(document.getElementById('message').textContent));
+  // The preview and the full relighting take about 30 s under the sanitizers on 2 busy cores
+  // (CI of stop 34 timed out at 30 s), so this wait allows as long as a frame's.
+  await page.waitForFunction(() => /^applied; 1 operations[^]*\nrelit \d+ of/.test(document.getElementById('message').textContent),
+    null, { timeout: 120000 });
   check(JSON.stringify(relightBodies) === JSON.stringify(['{"preview":true}', '{}']),
     `a move asks for a preview of its relighting, then the full one (${JSON.stringify(relightBodies)})`);
   check(reports.some((t) => /\npreview: relit \d+ of[^]*\nrelighting\.\.\./.test(t)),
