@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "math/frame.h"
 #include "math/quat.h"
 #include "scene/gaussian_cell_grid.h"
 
@@ -196,17 +197,27 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
     projected[size_t(v)] = {c - plane.normal * height, plane.normal, true};
   });
 
-  // One candidate per cell of the spacing (the lowest vacated index wins: deterministic).
-  std::map<std::tuple<int64_t, int64_t, int64_t>, size_t> firstInCell;
-  for (size_t v = 0; v < projected.size(); ++v) {
-    if (!projected[v].valid) continue;
-    const Vec3f& p = projected[v].point;
-    auto cellOf = [&](float x) { return int64_t(std::floor(x / spacing)); };
-    firstInCell.emplace(std::make_tuple(cellOf(p.x), cellOf(p.y), cellOf(p.z)), v);
+  // The uncovered surface reaches past the projections: a sphere's lowest Gaussians are
+  // sparse, and the floor between them, which no training view saw, may hold no Gaussian at
+  // all (on builtin:spheres none within 10 cm of a sphere's contact). So every point of the
+  // fitted plane within `reach` of a projection is a candidate, on a lattice of the spacing,
+  // one per cell (the first in vacated order wins: deterministic); the coverage test below
+  // keeps the uncovered ones.
+  const int steps = int(std::ceil(settings.fitSpacings));
+  std::map<std::tuple<int64_t, int64_t, int64_t>, Candidate> firstInCell;
+  auto cellOf = [&](float x) { return int64_t(std::floor(x / spacing)); };
+  for (const Candidate& c : projected) {
+    if (!c.valid) continue;
+    const Framef frame = Framef::fromNormal(c.normal);
+    for (int a = -steps; a <= steps; ++a)
+      for (int b = -steps; b <= steps; ++b) {
+        if (a * a + b * b > steps * steps) continue;
+        const Vec3f p = c.point + (frame.s * float(a) + frame.t * float(b)) * spacing;
+        firstInCell.emplace(std::make_tuple(cellOf(p.x), cellOf(p.y), cellOf(p.z)), Candidate{p, c.normal, true});
+      }
   }
-  std::vector<size_t> candidates;
-  for (const auto& [cell, v] : firstInCell) candidates.push_back(v);
-  std::sort(candidates.begin(), candidates.end());
+  std::vector<Candidate> candidates;
+  for (const auto& [cell, c] : firstInCell) candidates.push_back(c);
   report.candidates = candidates.size();
 
   // The nearest ring Gaussians to p within eight reaches (by distance, then index), weighted
@@ -255,14 +266,14 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
   std::vector<uint8_t> fill(candidates.size(), 0);
   std::vector<HealedGaussian> made(candidates.size());
   parallelFor(int64_t(candidates.size()), 16, [&](int64_t k) {
-    const Candidate& candidate = projected[candidates[size_t(k)]];
+    const Candidate& candidate = candidates[size_t(k)];
     if (coverage(candidate.point, candidate.normal) >= settings.fillBelow * report.ringCoverage) return;
     if (continueRing(candidate.point, made[size_t(k)])) fill[size_t(k)] = 1;
   });
 
   for (size_t k = 0; k < candidates.size() && report.added < settings.maxAdded; ++k) {
     if (!fill[k]) continue;
-    const Candidate& candidate = projected[candidates[k]];
+    const Candidate& candidate = candidates[k];
     HealedGaussian h = std::move(made[k]);
     const uint32_t shape = h.neighbours.front();  // the nearest
     const size_t index = after.size();

@@ -152,7 +152,8 @@ std::vector<uint32_t> tracedReceivers(const GaussianScene& scene, std::span<cons
 
 // The filter of RelightSettings::filterRadius over the receivers within reach: each takes the
 // weighted mean of the ratios of the traced receivers near it that face the same way, within
-// filterRadius of its largest standard deviations or `spacing`, whichever is wider. Without
+// filterRadius of its largest standard deviations or `spacing`, whichever is wider, weighted
+// by distance and by their trained luminance (RelightSettings::filterRadius). Without
 // a budget every receiver within reach is traced and spacing is 0.
 std::vector<Rgb> filteredRatios(const GaussianScene& scene, std::span<const uint32_t> receivers,
                                 std::span<const uint32_t> reached, std::span<const uint32_t> traced,
@@ -183,7 +184,10 @@ std::vector<Rgb> filteredRatios(const GaussianScene& scene, std::span<const uint
     grid.near(scene.position[g], radius, [&](uint32_t j) {
       if (dot(normals[receiverOf[j]], n) < settings.filterCosine) return;
       const Vec3f d = scene.position[j] - scene.position[g];
-      const float w = std::exp(-0.5f * dot(d, d) / sigma2);
+      // Weighted by the trained colour too: a receiver in deep shadow divides by a small,
+      // noisy E_before, and the sum of colours relit over the sum trained (a ratio of sums)
+      // lets it count for as little as its light.
+      const float w = std::exp(-0.5f * dot(d, d) / sigma2) * std::max(luminance(scene.diffuse[j]), 1e-4f);
       sum += ratios[receiverOf[j]] * w;
       weights += w;
     });

@@ -38,7 +38,9 @@ void addGaussian(GaussianScene& s, const Vec3f& p, const Vec3f& n, const Rgb& di
 // The floor y = 0 over [-1, 1]^2: flat discs (thin along y) every 5 cm, none within the hole
 // around the origin and shadow-dark ones around it, as training leaves the floor under a ball.
 // A ball of radius 0.3 at `ballCentre` (resting on the floor at the origin when (0, 0.3, 0)).
-GaussianScene floorAndBall(const Vec3f& ballCentre) {
+// With `bareBelow` > 0 the ball has no Gaussians that low above its lowest point, as training
+// leaves a ball's underside that no view saw.
+GaussianScene floorAndBall(const Vec3f& ballCentre, float bareBelow = 0) {
   GaussianScene s;
   const Vec3f flat(std::log(kSigma), std::log(0.004f), std::log(kSigma));
   for (int x = -20; x <= 20; ++x)
@@ -53,6 +55,7 @@ GaussianScene floorAndBall(const Vec3f& ballCentre) {
     for (int b = 0; b < 48; ++b) {
       const float theta = kPi * (float(a) + 0.5f) / 24.0f, phi = 2.0f * kPi * float(b) / 48.0f;
       const Vec3f n(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      if (n.y * 0.3f + 0.3f < bareBelow) continue;
       addGaussian(s, ballCentre + n * 0.3f, n, kBallColour, kBallRoughness, kBallF0, round);
     }
   return s;
@@ -64,9 +67,10 @@ struct Edited {
 };
 
 // The scene with an edit of the ball (an operation as in an edit file) applied.
-Edited edit(const Vec3f& ballCentre, const std::string& operation, float selectionRadius = 0.31f) {
+Edited edit(const Vec3f& ballCentre, const std::string& operation, float selectionRadius = 0.31f,
+            float bareBelow = 0) {
   Edited e;
-  e.before = floorAndBall(ballCentre);
+  e.before = floorAndBall(ballCentre, bareBelow);
   e.after = e.before;
   e.provenance = EditProvenance::identity(e.before.size());
   const std::string text = R"({"glint_edits": 1, "selections": {"ball": {"sphere": {"center": [)" +
@@ -160,6 +164,24 @@ TEST(HealUncovered, FillsTheMiddleOfAHoleWiderThanThePlaneFit) {
   EXPECT_GT(report.added, 0u);
   for (float x : {-0.2f, -0.1f, 0.0f, 0.1f, 0.2f})
     for (float z : {-0.2f, 0.0f, 0.2f}) EXPECT_GT(floorCoverage(e.after, {x, 0, z}), 0.8f * openCoverage) << x << " " << z;
+  for (size_t i = count; i < e.after.size(); ++i) {
+    EXPECT_NEAR(e.after.position[i].y, 0.0f, 1e-4f);
+    EXPECT_NEAR(e.after.diffuse[i].y, kFloorColour.y, 1e-4f);
+  }
+}
+
+// A ball whose underside holds no Gaussians (none within 6 cm of the floor, so none within
+// 18 cm of the contact) vacates nothing above the middle of the hole: the hole is filled all
+// the same, from the plane around the projections of the Gaussians it did vacate.
+TEST(HealUncovered, FillsTheHoleUnderABallWithABareUnderside) {
+  Edited e = edit(kResting, kMoveAway, 0.31f, 0.06f);
+  const float openCoverage = floorCoverage(e.after, {0.6f, 0, 0.6f});
+  ASSERT_LT(floorCoverage(e.after, {0, 0, 0}), 0.1f);
+  const size_t count = e.after.size();
+  HealReport report = healUncovered(e.before, e.after, e.provenance);
+  EXPECT_GT(report.added, 0u);
+  for (float x : {-0.08f, 0.0f, 0.08f})
+    for (float z : {-0.08f, 0.0f, 0.08f}) EXPECT_GT(floorCoverage(e.after, {x, 0, z}), 0.8f * openCoverage) << x << " " << z;
   for (size_t i = count; i < e.after.size(); ++i) {
     EXPECT_NEAR(e.after.position[i].y, 0.0f, 1e-4f);
     EXPECT_NEAR(e.after.diffuse[i].y, kFloorColour.y, 1e-4f);
