@@ -26,10 +26,24 @@ void forSelected(const GaussianMask& mask, Change&& change) {
   });
 }
 
+// A translation by zero, a rotation by no angle or a scaling by one leaves every Gaussian
+// where it was: it is not applied (so they stay bit for bit as they were, not an ulp off
+// after a turn about the pivot and back) and moves nothing in the provenance, so relighting
+// traces no ray for it.
+bool movesNothing(const Operation& op) {
+  switch (op.kind) {
+    case Operation::Kind::Translate: return op.offset == Vec3f(0.0f);
+    case Operation::Kind::Rotate: return op.angleDegrees == 0.0f;
+    case Operation::Kind::Scale: return op.factor == 1.0f;
+    default: return false;
+  }
+}
+
 }  // namespace
 
 void applyOperation(const EditDocument& document, const Operation& op, const GaussianMask& mask,
                     GaussianScene& scene) {
+  if (movesNothing(op)) return;
   switch (op.kind) {
     case Operation::Kind::Translate:
       forSelected(mask, [&](size_t i) { scene.position[i] += op.offset; });
@@ -128,6 +142,7 @@ void recordOperation(const Operation& op, const GaussianMask& mask, EditProvenan
     case Operation::Kind::Translate:
     case Operation::Kind::Rotate:
     case Operation::Kind::Scale:
+      if (movesNothing(op)) break;
       for (size_t i = 0; i < mask.size(); ++i) p.moved[i] = p.moved[i] || mask[i];
       break;
     case Operation::Kind::Duplicate:

@@ -2,6 +2,7 @@
 // quaternions, normals and attributes; operations compose in order; duplicating a selection
 // and deleting the copies restores the original render bit for bit.
 #include "edit/gaussian_edits.h"
+#include "edit/edit_file.h"
 
 #include <gtest/gtest.h>
 
@@ -391,6 +392,41 @@ TEST(EditProvenance, RecordsMovedAddedAndRemovedGaussians) {
   EXPECT_EQ(p.unmoved(), (std::vector<uint32_t>{0, 1, 2}));
   EXPECT_EQ(p.movedOrAdded(), (std::vector<uint32_t>{3, 4}));
   EXPECT_TRUE(p.movedOrRemoved().empty());
+}
+
+// A translation by zero, a rotation by no angle and a scaling by one leave the scene bit for
+// bit as it was and move nothing, so relighting has nothing to trace; a translation by a
+// hair still moves.
+TEST(EditProvenance, AnOperationThatMovesNothingMovesNothing) {
+  Operation still = op(Operation::Kind::Translate);
+  Operation unturned = op(Operation::Kind::Rotate);
+  unturned.axis = {0, 0, 1};
+  unturned.angleDegrees = 0;
+  unturned.hasPivot = true;
+  unturned.pivot = {0.3f, -0.7f, 0.1f};  // (p - pivot) + pivot would round
+  Operation unscaled = op(Operation::Kind::Scale);
+  unscaled.factor = 1;
+  unscaled.hasPivot = true;
+  unscaled.pivot = {0.3f, -0.7f, 0.1f};
+  for (const Operation& o : {still, unturned, unscaled}) {
+    GaussianScene scene = tinyScene();
+    const GaussianScene unedited = scene;
+    EditProvenance p = EditProvenance::identity(scene.size());
+    applyEdits(documentWith({o}), scene, kDefaultMaxGaussians, &p);
+    EXPECT_TRUE(p.movedOrAdded().empty()) << operationName(o.kind);
+    EXPECT_TRUE(p.movedOrRemoved().empty()) << operationName(o.kind);
+    for (size_t i = 0; i < scene.size(); ++i) {
+      EXPECT_EQ(scene.position[i], unedited.position[i]) << i;
+      EXPECT_EQ(scene.logScale[i], unedited.logScale[i]) << i;
+      EXPECT_EQ(scene.normal[i], unedited.normal[i]) << i;
+    }
+  }
+  GaussianScene scene = tinyScene();
+  EditProvenance p = EditProvenance::identity(scene.size());
+  Operation hair = op(Operation::Kind::Translate);
+  hair.offset = {0, 1e-6f, 0};
+  applyEdits(documentWith({hair}), scene, kDefaultMaxGaussians, &p);
+  EXPECT_FALSE(p.movedOrAdded().empty());
 }
 
 }  // namespace
