@@ -158,13 +158,13 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
     Vec3f point, normal;
     bool valid = false;
   };
-  std::vector<Candidate> projected(vacated.size());
   // A vacated Gaussian amid a wide hole (a disc of floor that the selection took along with
   // the object) has no support within reach: its fit widens, doubling up to widestFitSpacings.
   const float widestFit = std::max(settings.widestFitSpacings, settings.fitSpacings) * spacing;
   const CellGrid wideGrid(after, support, widestFit);  // wide queries visit 27 cells, not thousands
-  parallelFor(int64_t(vacated.size()), 64, [&](int64_t v) {
-    const Vec3f c = before.position[vacated[size_t(v)]];
+  // The plane fitted to the support around c; invalid where too little support lies within
+  // the widest fit, or it strays from a plane.
+  auto fitAt = [&](const Vec3f& c) {
     double weightSum = 0;
     Vec3d pointSum(0.0), normalSum(0.0);
     int count = 0;
@@ -182,7 +182,7 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
       });
       if (count >= settings.minSupport || fit * 2 > widestFit) break;
     }
-    if (count < settings.minSupport || !(weightSum > 0) || !(length(normalSum) > 0.5 * weightSum)) return;
+    if (count < settings.minSupport || !(weightSum > 0) || !(length(normalSum) > 0.5 * weightSum)) return Plane{};
     Plane plane{Vec3f(pointSum * (1.0 / weightSum)), Vec3f(normalize(normalSum)), true};
     double residual = 0;
     grid().near(c, fit, [&](uint32_t j) {
@@ -190,7 +190,14 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
       const double h = dot(after.position[j] - plane.point, plane.normal);
       residual += double(after.opacity(j)) * double(q * q) * h * h;
     });
-    if (std::sqrt(residual / weightSum) > settings.maxResidualSpacings * spacing) return;
+    if (std::sqrt(residual / weightSum) > settings.maxResidualSpacings * spacing) return Plane{};
+    return plane;
+  };
+  std::vector<Candidate> projected(vacated.size());
+  parallelFor(int64_t(vacated.size()), 64, [&](int64_t v) {
+    const Vec3f c = before.position[vacated[size_t(v)]];
+    const Plane plane = fitAt(c);
+    if (!plane.valid) return;
     // The vacated Gaussian must have stood on the surface's front side, within reach of it.
     const float height = dot(c - plane.point, plane.normal);
     if (height < -slab || height > reach) return;
@@ -200,12 +207,17 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
   // The uncovered surface reaches past the projections: a sphere's lowest Gaussians are
   // sparse, and the floor between them, which no training view saw, may hold no Gaussian at
   // all (on builtin:spheres none within 10 cm of a sphere's contact). So every point of the
-  // fitted plane within `reach` of a projection is a candidate, on a lattice of the spacing,
-  // one per cell (the first in vacated order wins: deterministic); the coverage test below
-  // keeps the uncovered ones.
+  // fitted plane within `reach` of a projection, on a lattice of the spacing, one per cell
+  // (the first in vacated order: deterministic), is projected onto the plane fitted around
+  // it in turn; it is a candidate where it lay within a spacing of that plane and the plane
+  // faces the same way (a plane tilted by what the object left behind strays from the floor
+  // within its reach), one per cell again. The coverage test below keeps the uncovered ones.
   const int steps = int(std::ceil(settings.fitSpacings));
-  std::map<std::tuple<int64_t, int64_t, int64_t>, Candidate> firstInCell;
-  auto cellOf = [&](float x) { return int64_t(std::floor(x / spacing)); };
+  auto cellOf = [&](const Vec3f& p) {
+    auto axis = [&](float x) { return int64_t(std::floor(x / spacing)); };
+    return std::make_tuple(axis(p.x), axis(p.y), axis(p.z));
+  };
+  std::map<std::tuple<int64_t, int64_t, int64_t>, Candidate> lattice;  // the projection's normal
   for (const Candidate& c : projected) {
     if (!c.valid) continue;
     const Framef frame = Framef::fromNormal(c.normal);
@@ -213,9 +225,23 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
       for (int b = -steps; b <= steps; ++b) {
         if (a * a + b * b > steps * steps) continue;
         const Vec3f p = c.point + (frame.s * float(a) + frame.t * float(b)) * spacing;
-        firstInCell.emplace(std::make_tuple(cellOf(p.x), cellOf(p.y), cellOf(p.z)), Candidate{p, c.normal, true});
+        lattice.emplace(cellOf(p), Candidate{p, c.normal, false});
       }
   }
+  std::vector<Candidate> onSurface;
+  for (const auto& [cell, c] : lattice) onSurface.push_back(c);
+  parallelFor(int64_t(onSurface.size()), 16, [&](int64_t k) {
+    Candidate& c = onSurface[size_t(k)];
+    const Plane plane = fitAt(c.point);
+    // The same surface, facing the same way (an object's leftover underside faces down).
+    if (!plane.valid || dot(plane.normal, c.normal) < 0.9f) return;
+    const float height = dot(c.point - plane.point, plane.normal);
+    if (std::abs(height) > settings.maxResidualSpacings * spacing) return;
+    c = {c.point - plane.normal * height, plane.normal, true};
+  });
+  std::map<std::tuple<int64_t, int64_t, int64_t>, Candidate> firstInCell;
+  for (const Candidate& c : onSurface)
+    if (c.valid) firstInCell.emplace(cellOf(c.point), c);
   std::vector<Candidate> candidates;
   for (const auto& [cell, c] : firstInCell) candidates.push_back(c);
   report.candidates = candidates.size();
