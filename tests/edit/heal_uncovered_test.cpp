@@ -188,6 +188,27 @@ TEST(HealUncovered, FillsTheHoleUnderABallWithABareUnderside) {
   }
 }
 
+// A box that stops 6 cm above the floor leaves the ball's lowest cap behind, whose normals
+// face down and sideways: plane fits near it tilt or face down, yet every Gaussian added lies
+// on the floor and faces up (without the re-fit of each lattice point, 886 failures here). A
+// cap 10 cm tall is a surface of its own, which healing continues.
+TEST(HealUncovered, AddsOnlyFloorFacingUpBesideALeftoverCap) {
+  Edited e;
+  e.before = floorAndBall(kResting);
+  e.after = e.before;
+  e.provenance = EditProvenance::identity(e.before.size());
+  const char* text = R"({"glint_edits": 1, "selections": {"ball": {"box": {"min": [-0.4, 0.06, -0.4],
+      "max": [0.4, 0.7, 0.4]}}}, "operations": [{"op": "translate", "selection": "ball", "offset": [0, 0, 2.5]}]})";
+  applyEdits(parseEditDocument(nlohmann::json::parse(text), "test.json"), e.after, kDefaultMaxGaussians, &e.provenance);
+  const size_t count = e.after.size();
+  HealReport report = healUncovered(e.before, e.after, e.provenance);
+  EXPECT_GT(report.vacated, 0u);
+  for (size_t i = count; i < e.after.size(); ++i) {
+    EXPECT_NEAR(e.after.position[i].y, 0.0f, 0.01f) << i;
+    EXPECT_GT(normalize(e.after.normal[i]).y, 0.9f) << i;
+  }
+}
+
 TEST(HealUncovered, ProducesOnlyFiniteValues) {
   Edited e = edit(kResting, kMoveAway);
   healUncovered(e.before, e.after, e.provenance);
