@@ -190,7 +190,7 @@ TEST(HealUncovered, FillsTheHoleUnderABallWithABareUnderside) {
 
 // A box that stops 6 cm above the floor leaves the ball's lowest cap behind, whose normals
 // face down and sideways: plane fits near it tilt or face down, yet every Gaussian added lies
-// on the floor and faces up (without the re-fit of each lattice point, 886 failures here). A
+// on the floor and faces up (without the re-fit of each lattice point, 892 failed expectations here). A
 // cap 10 cm tall is a surface of its own, which healing continues.
 TEST(HealUncovered, AddsOnlyFloorFacingUpBesideALeftoverCap) {
   Edited e;
