@@ -198,9 +198,11 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
     const Vec3f c = before.position[vacated[size_t(v)]];
     const Plane plane = fitAt(c);
     if (!plane.valid) return;
-    // The vacated Gaussian must have stood on the surface's front side, within reach of it.
+    // The vacated Gaussian must have stood on the surface's front side, within reach of it,
+    // and the surface must face the vacated Gaussians' centre: what an object hid faces it
+    // (a fit to the underside of a cap the selection left behind faces away).
     const float height = dot(c - plane.point, plane.normal);
-    if (height < -slab || height > reach) return;
+    if (height < -slab || height > reach || dot(centre - plane.point, plane.normal) <= 0) return;
     projected[size_t(v)] = {c - plane.normal * height, plane.normal, true};
   });
 

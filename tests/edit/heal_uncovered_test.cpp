@@ -188,24 +188,29 @@ TEST(HealUncovered, FillsTheHoleUnderABallWithABareUnderside) {
   }
 }
 
-// A box that stops 6 cm above the floor leaves the ball's lowest cap behind, whose normals
-// face down and sideways: plane fits near it tilt or face down, yet every Gaussian added lies
-// on the floor and faces up (without the re-fit of each lattice point, 892 failed expectations here). A
-// cap 10 cm tall is a surface of its own, which healing continues.
+// A box that stops 6 or 10 cm above the floor leaves the ball's lowest cap behind, whose
+// normals face down and sideways: plane fits near it tilt or face down, yet every Gaussian
+// added lies on the floor and faces up. Without the re-fit of each lattice point, 892
+// expectations failed at 6 cm; without the test that the surface faces the vacated
+// Gaussians, 204 failed at 10 cm (the cap's underside was healed as a surface).
 TEST(HealUncovered, AddsOnlyFloorFacingUpBesideALeftoverCap) {
-  Edited e;
-  e.before = floorAndBall(kResting);
-  e.after = e.before;
-  e.provenance = EditProvenance::identity(e.before.size());
-  const char* text = R"({"glint_edits": 1, "selections": {"ball": {"box": {"min": [-0.4, 0.06, -0.4],
-      "max": [0.4, 0.7, 0.4]}}}, "operations": [{"op": "translate", "selection": "ball", "offset": [0, 0, 2.5]}]})";
-  applyEdits(parseEditDocument(nlohmann::json::parse(text), "test.json"), e.after, kDefaultMaxGaussians, &e.provenance);
-  const size_t count = e.after.size();
-  HealReport report = healUncovered(e.before, e.after, e.provenance);
-  EXPECT_GT(report.vacated, 0u);
-  for (size_t i = count; i < e.after.size(); ++i) {
-    EXPECT_NEAR(e.after.position[i].y, 0.0f, 0.01f) << i;
-    EXPECT_GT(normalize(e.after.normal[i]).y, 0.9f) << i;
+  for (const char* bottom : {"0.06", "0.1"}) {
+    Edited e;
+    e.before = floorAndBall(kResting);
+    e.after = e.before;
+    e.provenance = EditProvenance::identity(e.before.size());
+    const std::string text = std::string(R"({"glint_edits": 1, "selections": {"ball": {"box": {"min": [-0.4, )") +
+                             bottom + R"(, -0.4], "max": [0.4, 0.7, 0.4]}}}, "operations": [{"op": "translate",
+        "selection": "ball", "offset": [0, 0, 2.5]}]})";
+    applyEdits(parseEditDocument(nlohmann::json::parse(text), "test.json"), e.after, kDefaultMaxGaussians,
+               &e.provenance);
+    const size_t count = e.after.size();
+    HealReport report = healUncovered(e.before, e.after, e.provenance);
+    EXPECT_GT(report.vacated, 0u);
+    for (size_t i = count; i < e.after.size(); ++i) {
+      EXPECT_NEAR(e.after.position[i].y, 0.0f, 0.01f) << bottom << " " << i;
+      EXPECT_GT(normalize(e.after.normal[i]).y, 0.9f) << bottom << " " << i;
+    }
   }
 }
 
