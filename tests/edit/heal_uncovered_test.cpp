@@ -66,19 +66,25 @@ struct Edited {
   EditProvenance provenance;
 };
 
-// The scene with an edit of the ball (an operation as in an edit file) applied.
-Edited edit(const Vec3f& ballCentre, const std::string& operation, float selectionRadius = 0.31f,
-            float bareBelow = 0) {
+// `before` with an edit applied: the selection "ball" and one operation, as in an edit file.
+Edited editWith(GaussianScene before, const std::string& selection, const std::string& operation) {
   Edited e;
-  e.before = floorAndBall(ballCentre, bareBelow);
+  e.before = std::move(before);
   e.after = e.before;
   e.provenance = EditProvenance::identity(e.before.size());
-  const std::string text = R"({"glint_edits": 1, "selections": {"ball": {"sphere": {"center": [)" +
-                           std::to_string(ballCentre.x) + "," + std::to_string(ballCentre.y) + "," +
-                           std::to_string(ballCentre.z) + R"(], "radius": )" + std::to_string(selectionRadius) +
-                           R"(}}}, "operations": [)" + operation + "]}";
+  const std::string text =
+      R"({"glint_edits": 1, "selections": {"ball": )" + selection + R"(}, "operations": [)" + operation + "]}";
   applyEdits(parseEditDocument(nlohmann::json::parse(text), "test.json"), e.after, kDefaultMaxGaussians, &e.provenance);
   return e;
+}
+
+// The scene with an edit of the ball, selected by a sphere around it, applied.
+Edited edit(const Vec3f& ballCentre, const std::string& operation, float selectionRadius = 0.31f,
+            float bareBelow = 0) {
+  const std::string sphere = R"({"sphere": {"center": [)" + std::to_string(ballCentre.x) + "," +
+                             std::to_string(ballCentre.y) + "," + std::to_string(ballCentre.z) +
+                             R"(], "radius": )" + std::to_string(selectionRadius) + "}}";
+  return editWith(floorAndBall(ballCentre, bareBelow), sphere, operation);
 }
 
 const Vec3f kResting(0, 0.3f, 0);
@@ -195,15 +201,9 @@ TEST(HealUncovered, FillsTheHoleUnderABallWithABareUnderside) {
 // Gaussians, 204 failed at 10 cm (the cap's underside was healed as a surface).
 TEST(HealUncovered, AddsOnlyFloorFacingUpBesideALeftoverCap) {
   for (const char* bottom : {"0.06", "0.1"}) {
-    Edited e;
-    e.before = floorAndBall(kResting);
-    e.after = e.before;
-    e.provenance = EditProvenance::identity(e.before.size());
-    const std::string text = std::string(R"({"glint_edits": 1, "selections": {"ball": {"box": {"min": [-0.4, )") +
-                             bottom + R"(, -0.4], "max": [0.4, 0.7, 0.4]}}}, "operations": [{"op": "translate",
-        "selection": "ball", "offset": [0, 0, 2.5]}]})";
-    applyEdits(parseEditDocument(nlohmann::json::parse(text), "test.json"), e.after, kDefaultMaxGaussians,
-               &e.provenance);
+    const std::string box =
+        std::string(R"({"box": {"min": [-0.4, )") + bottom + R"(, -0.4], "max": [0.4, 0.7, 0.4]}})";
+    Edited e = editWith(floorAndBall(kResting), box, kMoveAway);
     const size_t count = e.after.size();
     HealReport report = healUncovered(e.before, e.after, e.provenance);
     EXPECT_GT(report.vacated, 0u);
