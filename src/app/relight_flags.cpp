@@ -66,8 +66,8 @@ std::string relightAfterEdit(const GaussianTracer& beforeTracer, const GaussianS
   char text[320];
   std::snprintf(text, sizeof text,
                 "relit %zu of the %zu Gaussians left in place (%zu within reach of the edit%s, %zu at the ratio's "
-                "clamp), %.2f M rays, %.2f s",
-                r.changed, r.receivers, r.reached, traced, r.clamped, double(r.rays) * 1e-6, seconds);
+                "clamp; rays aimed at %zu light regions), %.2f M rays, %.2f s",
+                r.changed, r.receivers, r.reached, traced, r.clamped, r.lights, double(r.rays) * 1e-6, seconds);
   return text;
 }
 

@@ -15,6 +15,7 @@
 #include "math/vec.h"
 #include "raytrace/gaussian_tracer.h"
 #include "render/gaussian_path.h"
+#include "render/light_regions.h"
 #include "scene/gaussians.h"
 
 namespace glint {
@@ -92,6 +93,14 @@ struct RelightSettings {
   // 0.33 (the noise of a chrome sphere's reflected lamps outweighs the light it adds; README,
   // "Edits that move shadows").
   PathSettings path;
+  // The scene's light regions (clusters of its brightest Gaussians: emitters). Where one
+  // shares directions with a changed region, half of the rays for dE aim at it (one-sample
+  // multiple importance sampling with the changed regions' cones): the light an object
+  // blocks or uncovers is most of the change, and rays spread over a large object rarely
+  // meet a small lamp behind it. lights.factor 0 = the changed regions' cones alone. On the
+  // Blender spheres_room (16 spp) it lowered the diffuse drop of a duplication from 2.29 to
+  // 1.43 dB, and raised a move's by 0.18 dB (README, "Edits that move shadows").
+  LightRegionSettings lights;
   // A reflected segment is traced only from surfaces whose blended F0 reaches this in some
   // channel (metals, mirrors; PathSettings::minReflectance): a dielectric reflects a few
   // percent, and most rays meet one.
@@ -113,6 +122,7 @@ struct RelightReport {
   size_t changed = 0;    // ... whose diffuse colour changed
   size_t clamped = 0;    // ... whose ratio hit the clamp in some channel
   uint64_t rays = 0;     // rays traced, both scenes together
+  size_t lights = 0;     // light regions of the scene (RelightSettings::lights)
 };
 
 // The per-receiver ratios E_after / E_before (RGB), 1 where nothing changes. `before` and

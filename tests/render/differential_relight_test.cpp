@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <numeric>
@@ -239,6 +240,14 @@ TEST(DifferentialRelight, CancelFlagStopsTheRelighting) {
                RelightCancelled);
 }
 
+// A 9.6 m ceiling at z = 1.5 facing down, emitting `radiance`.
+void addCeiling(GaussianScene* scene, float radiance) {
+  LayerLook ceiling;
+  ceiling.diffuse = Rgb(radiance);
+  ceiling.normal = Vec3f(0, 0, -1);
+  addLayer(scene, 0, 0, 1.5f, 24, 24, 0.4f, ceiling);
+}
+
 // A floor lit through a mirror: a 2 m mirror (black diffuse, F0 1) at z = 0.3 faces down
 // over the floor and shows it a bright patch lying on the floor beside it, and hides a dim
 // ceiling. The floor is baked with that light, reflected segment included.
@@ -249,10 +258,7 @@ struct MirrorRoom {
 
 MirrorRoom mirrorRoom(bool withMirror) {
   MirrorRoom room;
-  LayerLook ceiling;
-  ceiling.diffuse = Rgb(0.3f);
-  ceiling.normal = Vec3f(0, 0, -1);
-  addLayer(&room.scene, 0, 0, 1.5f, 24, 24, 0.4f, ceiling);
+  addCeiling(&room.scene, 0.3f);
   LayerLook patch;
   patch.diffuse = Rgb(2.0f);
   addLayer(&room.scene, 0.6f, 0, 0, 16, 40, 0.05f, patch);  // x in [0.2, 1], y in [-1, 1]
@@ -335,6 +341,81 @@ TEST(DifferentialRelight, RatioStaysFiniteWhereTheUneditedSceneWasDark) {
       EXPECT_GT(report.clamped, 0u);
     }
   }
+}
+
+// A 1 m floor under a dim ceiling (0.2) and a small bright lamp (40, 0.4 m wide at z = 1.4
+// over x = 0.3): nearly all the floor's light comes from the lamp, which cosine-distributed
+// rays rarely meet. The edit adds a black plate between the lamp and the floor's centre.
+struct LampRoom {
+  GaussianScene scene;
+  std::vector<uint32_t> floor, plate;
+};
+
+LampRoom lampRoom(bool withPlate) {
+  LampRoom room;
+  addCeiling(&room.scene, 0.2f);
+  LayerLook lamp;
+  lamp.diffuse = Rgb(40.0f);
+  lamp.normal = Vec3f(0, 0, -1);
+  addLayer(&room.scene, 0.3f, 0, 1.4f, 8, 8, 0.05f, lamp);
+  const size_t floorBegin = room.scene.size();
+  LayerLook floor;
+  floor.diffuse = Rgb(0.3f);
+  addLayer(&room.scene, 0, 0, 0, 20, 20, 0.05f, floor);
+  room.floor = indicesFrom(floorBegin, room.scene.size());
+  if (withPlate) {
+    const size_t plateBegin = room.scene.size();
+    LayerLook plate;
+    plate.normal = Vec3f(0, 0, -1);
+    addLayer(&room.scene, 0.15f, 0, 0.5f, 6, 6, 0.05f, plate);
+    room.plate = indicesFrom(plateBegin, room.scene.size());
+  }
+  return room;
+}
+
+// Aiming the change's rays at the lamp behind the plate (RelightSettings::lights) brings the
+// plate's new shadow, at few rays, much closer to the brute-force ratio than rays spread
+// over the plate alone, and at many rays both agree with it (the light cones keep the
+// estimate unbiased).
+TEST(DifferentialRelight, RaysAimedAtALampSharpenItsShadow) {
+  LampRoom before = lampRoom(false), after = lampRoom(true);
+  std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(before.scene), afterTracer = tracerOf(after.scene);
+  const ChangedRegion regions[] = {changedRegionOf(after.scene, after.plate)};
+  // Receivers from the open floor through the shadow's core, along y = 0.
+  std::vector<uint32_t> receivers;
+  std::vector<float> truth;
+  for (float x = -0.45f; x < 0.5f; x += 0.1f) {
+    uint32_t best = after.floor[0];
+    for (uint32_t g : after.floor)
+      if (length(after.scene.position[g] - Vec3f(x, 0.025f, 0)) < length(after.scene.position[best] - Vec3f(x, 0.025f, 0)))
+        best = g;
+    receivers.push_back(best);
+    truth.push_back(bruteForceIrradiance(*afterTracer, after.scene, best, 1 << 16).x /
+                    bruteForceIrradiance(*beforeTracer, before.scene, best, 1 << 16).x);
+  }
+  ASSERT_LT(*std::min_element(truth.begin(), truth.end()), 0.4f) << "the plate should shade the lamp";
+  auto meanError = [&](int rays, float lightFactor) {
+    RelightSettings settings;
+    settings.rays = settings.minRays = rays;
+    // E_before from enough cosine rays that the change's rays make the difference.
+    settings.hemisphereRays = settings.quickRays = 1 << 14;
+    settings.filterRadius = 0;
+    settings.lights.factor = lightFactor;
+    RelightReport report;
+    const std::vector<Rgb> ratios =
+        relightRatios(*beforeTracer, *afterTracer, after.scene, receivers, regions, settings, &report);
+    EXPECT_EQ(report.lights, lightFactor > 0 ? 1u : 0u);
+    double error = 0;
+    for (size_t i = 0; i < receivers.size(); ++i) {
+      EXPECT_TRUE(std::isfinite(ratios[i].x));
+      error += std::abs(double(ratios[i].x) - truth[i]) / double(receivers.size());
+    }
+    return error;
+  };
+  const double aimed = meanError(16, 4.0f), spread = meanError(16, 0.0f);
+  EXPECT_LT(aimed, 0.5 * spread) << "mean error of the ratio at 16 rays, aimed " << aimed << ", spread " << spread;
+  EXPECT_LT(meanError(1024, 4.0f), 0.03);
+  EXPECT_LT(meanError(1024, 0.0f), 0.06);
 }
 
 TEST(DifferentialRelight, ChangedRegionBoundsTheGaussiansWithThreeSigmas) {

@@ -1,0 +1,82 @@
+// Light regions: each compact emitter of a room becomes one region bounding it, most powerful
+// first; a room lit evenly has none, and a huge bright Gaussian is no light and joins none.
+#include "render/light_regions.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "render/gaussian_layers.h"
+
+namespace glint {
+namespace {
+
+using test::addLayer;
+using test::LayerLook;
+
+// A 2 m floor (0.3) under a dim ceiling (0.5) at z = 1.5, with two square emitters (20) just
+// under it: 0.4 m wide at x = -1 and 0.2 m wide at x = 1.
+GaussianScene twoLampRoom() {
+  GaussianScene scene;
+  LayerLook floor;
+  floor.diffuse = Rgb(0.3f);
+  addLayer(&scene, 0, 0, 0, 20, 20, 0.1f, floor);
+  LayerLook ceiling;
+  ceiling.diffuse = Rgb(0.5f);
+  ceiling.normal = Vec3f(0, 0, -1);
+  addLayer(&scene, 0, 0, 1.5f, 20, 20, 0.1f, ceiling);
+  LayerLook lamp;
+  lamp.diffuse = Rgb(20.0f);
+  lamp.normal = Vec3f(0, 0, -1);
+  addLayer(&scene, -1, 0, 1.49f, 8, 8, 0.05f, lamp);
+  addLayer(&scene, 1, 0, 1.49f, 4, 4, 0.05f, lamp);
+  return scene;
+}
+
+TEST(LightRegions, EachEmitterIsOneRegionMostPowerfulFirst) {
+  const std::vector<LightRegion> regions = lightRegionsOf(twoLampRoom());
+  ASSERT_EQ(regions.size(), 2u);
+  EXPECT_LT(length(regions[0].centre - Vec3f(-1, 0, 1.49f)), 0.01f);
+  EXPECT_LT(length(regions[1].centre - Vec3f(1, 0, 1.49f)), 0.01f);
+  // The sphere holds the square (half-diagonal 0.28 and 0.14 m) and not much more.
+  EXPECT_GT(regions[0].radius, 0.2f * std::sqrt(2.0f));
+  EXPECT_LT(regions[0].radius, 0.45f);
+  EXPECT_GT(regions[1].radius, 0.1f * std::sqrt(2.0f));
+  EXPECT_LT(regions[1].radius, 0.3f);
+  // Four times the area, four times the power.
+  EXPECT_NEAR(regions[0].power / regions[1].power, 4.0f, 0.4f);
+}
+
+TEST(LightRegions, AHugeBrightGaussianIsNoLightAndJoinsNone) {
+  GaussianScene scene = twoLampRoom();
+  const size_t huge = scene.size();
+  scene.resize(huge + 1);
+  scene.position[huge] = Vec3f(0, 0, 1.49f);  // between the lamps, overlapping both
+  scene.logScale[huge] = Vec3f(std::log(3.0f), std::log(3.0f), std::log(0.01f));
+  scene.opacityLogit[huge] = logit(0.9f);
+  scene.diffuse[huge] = Rgb(30.0f);
+  scene.normal[huge] = Vec3f(0, 0, -1);
+  const std::vector<LightRegion> regions = lightRegionsOf(scene);
+  ASSERT_EQ(regions.size(), 2u);
+  EXPECT_LT(regions[0].radius, 0.45f);
+  EXPECT_LT(regions[1].radius, 0.3f);
+}
+
+TEST(LightRegions, ARoomLitEvenlyHasNone) {
+  GaussianScene scene = test::plateRoom().scene;  // a ceiling of 2 over a floor of 0.3
+  EXPECT_TRUE(lightRegionsOf(scene).empty());
+  LightRegionSettings off;
+  off.factor = 0;
+  EXPECT_TRUE(lightRegionsOf(twoLampRoom(), off).empty());
+}
+
+TEST(LightRegions, KeepsOnlyTheMostPowerful) {
+  LightRegionSettings one;
+  one.maxRegions = 1;
+  const std::vector<LightRegion> regions = lightRegionsOf(twoLampRoom(), one);
+  ASSERT_EQ(regions.size(), 1u);
+  EXPECT_LT(length(regions[0].centre - Vec3f(-1, 0, 1.49f)), 0.01f);
+}
+
+}  // namespace
+}  // namespace glint
