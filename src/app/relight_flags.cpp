@@ -14,7 +14,8 @@ void RelightFlags::add(CLI::App* cmd) {
                 "the edit (differential relighting). Gaussians the edit cannot affect keep their trained colour "
                 "exactly. Costs a few seconds per 20,000 Gaussians");
   cmd->add_option("--relight-rays", settings_.rays,
-                  "Rays per Gaussian for --relight: toward the edited objects (fewer for Gaussians far from them), "
+                  "Rays per Gaussian for --relight: toward the edited objects (fewer for Gaussians far from them; "
+                  "half of them aimed at the lights behind or beside those objects, see --relight-lights), "
                   "and as many over the hemisphere for the irradiance before the edit (a quarter of them where the "
                   "edit changes it by less than 0.5%)")
       ->check(CLI::Range(1, 65536))
@@ -36,6 +37,13 @@ void RelightFlags::add(CLI::App* cmd) {
                   "renderer traces them: a mirror's light on the floor is its reflection. 0 = the diffuse colour alone, "
                   "the default: 1 measured better on one scene and worse on another, and costs a third more time")
       ->check(CLI::Range(0, 8))
+      ->capture_default_str();
+  cmd->add_option("--relight-lights", settings_.lights.factor,
+                  "--relight takes as lights the Gaussians whose diffuse radiance is at least this many times the "
+                  "90th percentile of the surfaces' (emitters), grouped into regions where they touch, and aims half "
+                  "of the rays toward an edited object at the lights that lie behind or beside it (the light it blocks "
+                  "or uncovers). 0 = no light is aimed at")
+      ->check(CLI::Range(0.0f, 1000.0f))
       ->capture_default_str();
   cmd->add_option("--relight-max-ratio", settings_.maxRatio,
                   "--relight changes no diffuse colour by more than this factor, up or down")

@@ -31,7 +31,9 @@ float percentileOf(std::vector<float>& values, double fraction) {
 
 std::vector<LightRegion> lightRegionsOf(const GaussianScene& scene, const LightRegionSettings& settings) {
   if (!(settings.factor > 0) || settings.maxRegions <= 0) return {};
-  // Far-field Gaussians have no normal: they are a backdrop, not a surface that lights.
+  // The surfaces set the scale of brightness and size: far-field Gaussians (no normal) are a
+  // backdrop. Lights need no normal: a trained emitter's often has none (its ground truth
+  // gives it none), like the ceiling lamps of the Blender spheres_room.
   auto isSurface = [&](size_t i) {
     return length(scene.normal[i]) >= settings.minNormalLength && scene.opacity(i) >= settings.minOpacity;
   };
@@ -50,7 +52,7 @@ std::vector<LightRegion> lightRegionsOf(const GaussianScene& scene, const LightR
   std::vector<uint32_t> lights;
   std::vector<float> sigma;  // largest standard deviation of each light
   for (size_t i = 0; i < scene.size(); ++i) {
-    if (!isSurface(i) || !(luminance(scene.diffuse[i]) >= threshold)) continue;
+    if (!(scene.opacity(i) >= settings.minOpacity) || !(luminance(scene.diffuse[i]) >= threshold)) continue;
     const Vec3f s = scene.scale(i);
     const float largest = std::max({s.x, s.y, s.z});
     if (largest > largestSigma) continue;
@@ -83,6 +85,7 @@ std::vector<LightRegion> lightRegionsOf(const GaussianScene& scene, const LightR
   std::vector<uint32_t> regionOf(lights.size(), UINT32_MAX);
   std::vector<Vec3d> weightedSum;
   std::vector<double> power;
+  std::vector<float> brightest;  // each region's largest luminance
   auto powerOf = [&](size_t k) {
     const uint32_t g = lights[k];
     Vec3f s = scene.scale(g);
@@ -99,8 +102,16 @@ std::vector<LightRegion> lightRegionsOf(const GaussianScene& scene, const LightR
       regions.emplace_back();
       weightedSum.emplace_back(0.0);
       power.push_back(0.0);
+      brightest.push_back(0.0f);
     }
-    const uint32_t r = regionOf[root];
+    brightest[regionOf[root]] = std::max(brightest[regionOf[root]], luminance(scene.diffuse[lights[k]]));
+  }
+  auto inCore = [&](size_t k, uint32_t r) {
+    return luminance(scene.diffuse[lights[k]]) >= settings.coreFraction * brightest[r];
+  };
+  for (size_t k = 0; k < lights.size(); ++k) {
+    const uint32_t r = regionOf[rootOf(parent, uint32_t(k))];
+    if (!inCore(k, r)) continue;
     const double p = std::max(powerOf(k), 1e-30);
     weightedSum[r] += Vec3d(scene.position[lights[k]]) * p;
     power[r] += p;
@@ -110,9 +121,10 @@ std::vector<LightRegion> lightRegionsOf(const GaussianScene& scene, const LightR
     regions[r].power = float(power[r]);
   }
   for (size_t k = 0; k < lights.size(); ++k) {
-    LightRegion& region = regions[regionOf[rootOf(parent, uint32_t(k))]];
-    region.radius = std::max(region.radius, length(scene.position[lights[k]] - region.centre) +
-                                                settings.boundSigmas * sigma[k]);
+    const uint32_t r = regionOf[rootOf(parent, uint32_t(k))];
+    if (!inCore(k, r)) continue;
+    regions[r].radius = std::max(regions[r].radius, length(scene.position[lights[k]] - regions[r].centre) +
+                                                        settings.boundSigmas * sigma[k]);
   }
   // Most powerful first; ties by position, so the order never depends on the scene's.
   std::sort(regions.begin(), regions.end(), [](const LightRegion& a, const LightRegion& b) {

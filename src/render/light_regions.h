@@ -19,10 +19,11 @@ struct LightRegion {
 struct LightRegionSettings {
   // A Gaussian is a light when its diffuse luminance reaches `factor` times the 90th
   // percentile of the surfaces' (Gaussians at least minOpacity opaque with a normal at least
-  // minNormalLength long), it is itself such a surface, and its largest standard deviation
-  // is within the surfaces' 99th percentile (a few huge Gaussians far outside a room, seen
-  // only in its mirrors, are no light of its floor). HDR emitters are tens of times brighter
-  // than what they light; a white wall in full light is not.
+  // minNormalLength long), it is itself at least minOpacity opaque (with or without a
+  // normal: trained emitters often have none), and its largest standard deviation is within
+  // the surfaces' 99th percentile (a few huge Gaussians far outside a room, seen only in its
+  // mirrors, are no light of its floor). HDR emitters are tens of times brighter than what
+  // they light; a white wall in full light is not.
   float factor = 4.0f;
   float minOpacity = 0.3f;
   float minNormalLength = 0.5f;
@@ -33,6 +34,10 @@ struct LightRegionSettings {
   // A region's sphere holds each of its Gaussians' means widened by this many of its largest
   // standard deviations.
   float boundSigmas = 2.0f;
+  // A region's sphere and power count only its Gaussians at least this fraction as bright as
+  // its brightest: an emitter's own radiance is uniform, and dimmer Gaussians linked to it
+  // (blends, floaters beyond the ceiling it hangs from) would stretch its sphere.
+  float coreFraction = 0.8f;
   // Only the most powerful regions are kept.
   int maxRegions = 16;
 };

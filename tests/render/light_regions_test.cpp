@@ -1,5 +1,6 @@
 // Light regions: each compact emitter of a room becomes one region bounding it, most powerful
-// first; a room lit evenly has none, and a huge bright Gaussian is no light and joins none.
+// first, with or without a normal and whatever dimmer Gaussians touch it; a room lit evenly
+// has none, and a huge bright Gaussian is no light and joins none.
 #include "render/light_regions.h"
 
 #include <gtest/gtest.h>
@@ -60,6 +61,27 @@ TEST(LightRegions, AHugeBrightGaussianIsNoLightAndJoinsNone) {
   ASSERT_EQ(regions.size(), 2u);
   EXPECT_LT(regions[0].radius, 0.45f);
   EXPECT_LT(regions[1].radius, 0.3f);
+}
+
+// A trained emitter often has no normal, and dimmer Gaussians (blends, floaters above the
+// ceiling) touch it: it is still a light, and its sphere holds the lamp, not them.
+TEST(LightRegions, ALampWithoutANormalAndDimFloatersAboveIt) {
+  GaussianScene scene = twoLampRoom();
+  for (size_t i = 0; i < scene.size(); ++i)
+    if (luminance(scene.diffuse[i]) > 10) scene.normal[i] = Vec3f(0.0f);
+  LayerLook floater;
+  floater.diffuse = Rgb(8.0f);  // 40% of the lamps'
+  floater.normal = Vec3f(0.0f);
+  for (int level = 1; level <= 10; ++level) addLayer(&scene, -1, 0, 1.49f + 0.05f * float(level), 1, 1, 0.05f, floater);
+  const std::vector<LightRegion> regions = lightRegionsOf(scene);
+  ASSERT_EQ(regions.size(), 2u);
+  EXPECT_LT(length(regions[0].centre - Vec3f(-1, 0, 1.49f)), 0.01f);
+  EXPECT_LT(regions[0].radius, 0.45f);
+  LightRegionSettings everyMember;
+  everyMember.coreFraction = 0;
+  const std::vector<LightRegion> stretched = lightRegionsOf(scene, everyMember);
+  ASSERT_EQ(stretched.size(), 2u);
+  EXPECT_GT(stretched[0].radius, 0.5f) << "the floaters are linked to the lamp";
 }
 
 TEST(LightRegions, ARoomLitEvenlyHasNone) {
