@@ -74,7 +74,7 @@ std::string relightAfterEdit(const GaussianTracer& beforeTracer, const GaussianS
   char text[320];
   std::snprintf(text, sizeof text,
                 "relit %zu of the %zu Gaussians left in place (%zu within reach of the edit%s, %zu at the ratio's "
-                "clamp; rays aimed at %zu light regions), %.2f M rays, %.2f s",
+                "clamp; %zu light regions in the scene), %.2f M rays, %.2f s",
                 r.changed, r.receivers, r.reached, traced, r.clamped, r.lights, double(r.rays) * 1e-6, seconds);
   return text;
 }
