@@ -335,24 +335,28 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     int count = std::clamp(int(std::ceil(float(settings.rays) * solidAngle / kFullRaysSolidAngle)), settings.minRays,
                            settings.rays);
     const uint64_t stream = hashKeys({settings.seed, g, 0});
-    Rgb change(0.0f);
     uint64_t raysTraced = 0;
-    for (int k = 0; k < count; ++k) {
-      Vec2f u = stratifiedSample2(stream, uint32_t(k));
-      const bool towardLight = lightCount > 0 && u.x >= 0.5f;
-      if (lightCount > 0) u.x = towardLight ? 2.0f * u.x - 1.0f : 2.0f * u.x;
-      const Vec3f w = towardLight ? sampleConeMixture(lightCones, lightCount, u) : sampleConeMixture(cones, coneCount, u);
-      float cosine = dot(n, w);
-      if (cosine <= 0) continue;
-      // Outside every changed region the radiance is the same before and after.
-      const float regionPdf = coneMixturePdf(cones, coneCount, w);
-      if (!(regionPdf > 0)) continue;
-      const float pdf = lightCount > 0 ? 0.5f * (regionPdf + coneMixturePdf(lightCones, lightCount, w)) : regionPdf;
-      Rgb difference = radiance(after, p, n, w, g, 0, uint32_t(k), &raysTraced) -
-                       radiance(before, p, n, w, g, 0, uint32_t(k), &raysTraced);
-      change += difference * (cosine / pdf);
-    }
-    change = change * (1.0f / float(count));
+    Rgb changeSum(0.0f);
+    auto addChangeRays = [&](int begin, int end) {
+      for (int k = begin; k < end; ++k) {
+        Vec2f u = stratifiedSample2(stream, uint32_t(k));
+        const bool towardLight = lightCount > 0 && u.x >= 0.5f;
+        if (lightCount > 0) u.x = towardLight ? 2.0f * u.x - 1.0f : 2.0f * u.x;
+        const Vec3f w =
+            towardLight ? sampleConeMixture(lightCones, lightCount, u) : sampleConeMixture(cones, coneCount, u);
+        float cosine = dot(n, w);
+        if (cosine <= 0) continue;
+        // Outside every changed region the radiance is the same before and after.
+        const float regionPdf = coneMixturePdf(cones, coneCount, w);
+        if (!(regionPdf > 0)) continue;
+        const float pdf = lightCount > 0 ? 0.5f * (regionPdf + coneMixturePdf(lightCones, lightCount, w)) : regionPdf;
+        Rgb difference = radiance(after, p, n, w, g, 0, uint32_t(k), &raysTraced) -
+                         radiance(before, p, n, w, g, 0, uint32_t(k), &raysTraced);
+        changeSum += difference * (cosine / pdf);
+      }
+    };
+    addChangeRays(0, count);
+    Rgb change = changeSum * (1.0f / float(count));
     if (change == Rgb(0.0f)) {  // every ray met the same radiance in both scenes
       rays.fetch_add(raysTraced, std::memory_order_relaxed);
       return progress.advance();
@@ -381,10 +385,23 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
       return progress.advance();
     }
     addRays(quick, settings.hemisphereRays);
-    const Rgb irradiance = sum * (kPi / float(settings.hemisphereRays));
+    Rgb irradiance = sum * (kPi / float(settings.hemisphereRays));
 
     bool clamped = false;
     ratios[size_t(i)] = irradianceRatio(irradiance, change, settings.maxRatio, &clamped);
+    // A ratio far from 1 multiplies the relative error of E_before (and divides dE's by a
+    // small E_before): where it leaves [1 / refineBeyond, refineBeyond], both estimates go
+    // on along their sequences to refineFactor times their rays.
+    const float lumRatio = luminance(ratios[size_t(i)]);
+    if (settings.refineFactor > 1 && (lumRatio > settings.refineBeyond || lumRatio * settings.refineBeyond < 1)) {
+      const int refinedCount = count * settings.refineFactor, refinedHemisphere = settings.hemisphereRays * settings.refineFactor;
+      addChangeRays(count, refinedCount);
+      change = changeSum * (1.0f / float(refinedCount));
+      addRays(settings.hemisphereRays, refinedHemisphere);
+      irradiance = sum * (kPi / float(refinedHemisphere));
+      clamped = false;
+      ratios[size_t(i)] = irradianceRatio(irradiance, change, settings.maxRatio, &clamped);
+    }
     if (ratios[size_t(i)] != Rgb(1.0f)) changed.fetch_add(1, std::memory_order_relaxed);
     if (clamped) clampedCount.fetch_add(1, std::memory_order_relaxed);
     rays.fetch_add(raysTraced, std::memory_order_relaxed);

@@ -418,6 +418,43 @@ TEST(DifferentialRelight, RaysAimedAtALampSharpenItsShadow) {
   EXPECT_LT(meanError(1024, 0.0f), 0.06);
 }
 
+// Where the plate's shadow takes most of the lamp's light away (a ratio below 1/2), both
+// estimates continue to four times their rays: the ratio there comes closer to brute force,
+// for more rays; the open floor, barely changed, is traced as before.
+TEST(DifferentialRelight, RatiosFarFromOneAreRefinedWithMoreRays) {
+  LampRoom before = lampRoom(false), after = lampRoom(true);
+  std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(before.scene), afterTracer = tracerOf(after.scene);
+  const ChangedRegion regions[] = {changedRegionOf(after.scene, after.plate)};
+  std::vector<uint32_t> shaded;  // floor Gaussians whose true ratio is below 1/2
+  std::vector<float> truth;
+  for (size_t i = 0; i < after.floor.size() && shaded.size() < 12; i += 7) {
+    const uint32_t g = after.floor[i];
+    if (bruteForceIrradiance(*afterTracer, after.scene, g, 256).x >
+        0.6f * bruteForceIrradiance(*beforeTracer, before.scene, g, 256).x)
+      continue;  // a quick look: barely shaded
+    const float ratio = bruteForceIrradiance(*afterTracer, after.scene, g, 1 << 16).x /
+                        bruteForceIrradiance(*beforeTracer, before.scene, g, 1 << 16).x;
+    if (ratio < 0.4f) shaded.push_back(g), truth.push_back(ratio);
+  }
+  ASSERT_GE(shaded.size(), 6u);
+  double error[2] = {0, 0};
+  uint64_t rays[2] = {0, 0};
+  for (int refined = 0; refined < 2; ++refined) {
+    RelightSettings settings;
+    settings.setRays(64);
+    settings.minRays = 64;
+    settings.filterRadius = 0;
+    settings.refineFactor = refined ? 4 : 1;
+    RelightReport report;
+    const std::vector<Rgb> ratios =
+        relightRatios(*beforeTracer, *afterTracer, after.scene, shaded, regions, settings, &report);
+    for (size_t i = 0; i < shaded.size(); ++i) error[refined] += std::abs(ratios[i].x - truth[i]) / double(shaded.size());
+    rays[refined] = report.rays;
+  }
+  EXPECT_GT(rays[1], 3 * rays[0]) << "every shaded Gaussian should be refined";
+  EXPECT_LT(error[1], 0.7 * error[0]) << "mean error of the ratio at 64 rays " << error[0] << ", refined " << error[1];
+}
+
 TEST(DifferentialRelight, ChangedRegionBoundsTheGaussiansWithThreeSigmas) {
   GaussianScene scene;
   scene.resize(2);
