@@ -20,8 +20,8 @@ uint32_t rootOf(std::vector<uint32_t>& parent, uint32_t i) {
   return i;
 }
 
-// The value below which `fraction` of the values lie (the values are reordered).
-float percentileOf(std::vector<float>& values, double fraction) {
+// The value below which `fraction` of the values lie (a copy is reordered).
+float percentileOf(std::vector<float> values, double fraction) {
   auto at = values.begin() + std::ptrdiff_t(std::min(values.size() - 1, size_t(double(values.size()) * fraction)));
   std::nth_element(values.begin(), at, values.end());
   return *at;

@@ -84,6 +84,28 @@ TEST(LightRegions, ALampWithoutANormalAndDimFloatersAboveIt) {
   EXPECT_GT(stretched[0].radius, 0.5f) << "the floaters are linked to the lamp";
 }
 
+// Each light links by its own size: a lamp of large Gaussians (listed first) and one of small
+// ones are one region each, whatever order the sizes come in.
+TEST(LightRegions, LampsOfDifferentGaussianSizesEachMakeOneRegion) {
+  GaussianScene scene;
+  LayerLook floor;
+  floor.diffuse = Rgb(0.3f);
+  addLayer(&scene, 0, 0, 0, 20, 20, 0.1f, floor);
+  LayerLook ceiling;
+  ceiling.diffuse = Rgb(0.5f);
+  ceiling.normal = Vec3f(0, 0, -1);
+  addLayer(&scene, 0, 0, 1.5f, 20, 20, 0.1f, ceiling);
+  LayerLook lamp;
+  lamp.diffuse = Rgb(20.0f);
+  lamp.normal = Vec3f(0, 0, -1);
+  addLayer(&scene, 1, 0, 1.49f, 4, 4, 0.1f, lamp);      // 0.4 m of large Gaussians
+  addLayer(&scene, -1, 0, 1.49f, 8, 8, 0.025f, lamp);  // 0.2 m of small ones
+  const std::vector<LightRegion> regions = lightRegionsOf(scene);
+  ASSERT_EQ(regions.size(), 2u);
+  EXPECT_LT(length(regions[0].centre - Vec3f(1, 0, 1.49f)), 0.01f);
+  EXPECT_LT(length(regions[1].centre - Vec3f(-1, 0, 1.49f)), 0.01f);
+}
+
 TEST(LightRegions, ARoomLitEvenlyHasNone) {
   GaussianScene scene = test::plateRoom().scene;  // a ceiling of 2 over a floor of 0.3
   EXPECT_TRUE(lightRegionsOf(scene).empty());
