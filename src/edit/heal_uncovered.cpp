@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "math/frame.h"
+#include "math/percentile.h"
 #include "math/quat.h"
 #include "scene/gaussian_cell_grid.h"
 
@@ -25,13 +26,6 @@ float inPlaneSpread(const GaussianScene& scene, size_t i) {
   float a[3] = {s.x, s.y, s.z};
   std::sort(a, a + 3);
   return std::sqrt(a[1] * a[2]);
-}
-
-float median(std::vector<float> values) {
-  if (values.empty()) return 0;
-  auto middle = values.begin() + std::ptrdiff_t(values.size() / 2);
-  std::nth_element(values.begin(), middle, values.end());
-  return *middle;
 }
 
 // The largest opacity a ray through p along the unit direction w collects from Gaussian i
@@ -100,7 +94,7 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
   std::vector<float> spreads;
   for (uint32_t j : nearby)
     if (length(after.position[j] - centre) <= 1.5f * radius) spreads.push_back(inPlaneSpread(after, j));
-  const float spacing = median(spreads);
+  const float spacing = percentileOf(spreads, 0.5);
   if (!(spacing > 0)) return report;
   report.spacing = spacing;
   const float reach = settings.fitSpacings * spacing;
@@ -150,7 +144,7 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
     const uint32_t j = ring[size_t(k)];
     ringCoverages[size_t(k)] = coverage(after.position[j], normalize(after.normal[j]));
   });
-  report.ringCoverage = median(ringCoverages);
+  report.ringCoverage = percentileOf(ringCoverages, 0.5);
 
   // Surface points under the vacated Gaussians: each projected onto the plane fitted to the
   // support within reach (weights: opacity times a smooth fall-off with distance).

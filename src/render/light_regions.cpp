@@ -7,6 +7,7 @@
 #include <numeric>
 #include <tuple>
 
+#include "math/percentile.h"
 #include "math/sampling.h"
 #include "scene/gaussian_cell_grid.h"
 
@@ -18,13 +19,6 @@ namespace {
 uint32_t rootOf(std::vector<uint32_t>& parent, uint32_t i) {
   while (parent[i] != i) i = parent[i] = parent[parent[i]];
   return i;
-}
-
-// The value below which `fraction` of the values lie (a copy is reordered).
-float percentileOf(std::vector<float> values, double fraction) {
-  auto at = values.begin() + std::ptrdiff_t(std::min(values.size() - 1, size_t(double(values.size()) * fraction)));
-  std::nth_element(values.begin(), at, values.end());
-  return *at;
 }
 
 }  // namespace

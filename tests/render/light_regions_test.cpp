@@ -15,9 +15,8 @@ namespace {
 using test::addLayer;
 using test::LayerLook;
 
-// A 2 m floor (0.3) under a dim ceiling (0.5) at z = 1.5, with two square emitters (20) just
-// under it: 0.4 m wide at x = -1 and 0.2 m wide at x = 1.
-GaussianScene twoLampRoom() {
+// A 2 m floor (0.3) under a dim ceiling (0.5) at z = 1.5, without lamps.
+GaussianScene dimRoom() {
   GaussianScene scene;
   LayerLook floor;
   floor.diffuse = Rgb(0.3f);
@@ -26,11 +25,22 @@ GaussianScene twoLampRoom() {
   ceiling.diffuse = Rgb(0.5f);
   ceiling.normal = Vec3f(0, 0, -1);
   addLayer(&scene, 0, 0, 1.5f, 20, 20, 0.1f, ceiling);
+  return scene;
+}
+
+// A square emitter (20) facing down just under the ceiling, centred on (x, 0).
+void addLamp(GaussianScene* scene, float x, int count, float spacing) {
   LayerLook lamp;
   lamp.diffuse = Rgb(20.0f);
   lamp.normal = Vec3f(0, 0, -1);
-  addLayer(&scene, -1, 0, 1.49f, 8, 8, 0.05f, lamp);
-  addLayer(&scene, 1, 0, 1.49f, 4, 4, 0.05f, lamp);
+  addLayer(scene, x, 0, 1.49f, count, count, spacing, lamp);
+}
+
+// The dim room with two lamps: 0.4 m wide at x = -1 and 0.2 m wide at x = 1.
+GaussianScene twoLampRoom() {
+  GaussianScene scene = dimRoom();
+  addLamp(&scene, -1, 8, 0.05f);
+  addLamp(&scene, 1, 4, 0.05f);
   return scene;
 }
 
@@ -87,19 +97,9 @@ TEST(LightRegions, ALampWithoutANormalAndDimFloatersAboveIt) {
 // Each light links by its own size: a lamp of large Gaussians (listed first) and one of small
 // ones are one region each, whatever order the sizes come in.
 TEST(LightRegions, LampsOfDifferentGaussianSizesEachMakeOneRegion) {
-  GaussianScene scene;
-  LayerLook floor;
-  floor.diffuse = Rgb(0.3f);
-  addLayer(&scene, 0, 0, 0, 20, 20, 0.1f, floor);
-  LayerLook ceiling;
-  ceiling.diffuse = Rgb(0.5f);
-  ceiling.normal = Vec3f(0, 0, -1);
-  addLayer(&scene, 0, 0, 1.5f, 20, 20, 0.1f, ceiling);
-  LayerLook lamp;
-  lamp.diffuse = Rgb(20.0f);
-  lamp.normal = Vec3f(0, 0, -1);
-  addLayer(&scene, 1, 0, 1.49f, 4, 4, 0.1f, lamp);      // 0.4 m of large Gaussians
-  addLayer(&scene, -1, 0, 1.49f, 8, 8, 0.025f, lamp);  // 0.2 m of small ones
+  GaussianScene scene = dimRoom();
+  addLamp(&scene, 1, 4, 0.1f);     // 0.4 m of large Gaussians
+  addLamp(&scene, -1, 8, 0.025f);  // 0.2 m of small ones
   const std::vector<LightRegion> regions = lightRegionsOf(scene);
   ASSERT_EQ(regions.size(), 2u);
   EXPECT_LT(length(regions[0].centre - Vec3f(1, 0, 1.49f)), 0.01f);
