@@ -17,6 +17,12 @@ void HealFlags::add(CLI::App* cmd) {
                   "surrounding surface's")
       ->check(CLI::Range(0.0f, 1.0f))
       ->capture_default_str();
+  cmd->add_option("--heal-recolour", settings_.recolourSpacings,
+                  "--heal also gives the surface within this many spacings of the moved or removed Gaussians (the "
+                  "support's median Gaussian width) the colour continued from around it, as if no training view had "
+                  "seen it. 0 keeps the colour it trained to: most of it was seen, and it holds the texture")
+      ->check(CLI::Range(0.0f, 8.0f))
+      ->capture_default_str();
 }
 
 HealReport healAfterEdit(const GaussianScene& before, GaussianScene& after, EditProvenance& provenance,
