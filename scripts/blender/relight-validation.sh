@@ -1,12 +1,15 @@
 #!/bin/bash
 # Edits scored against Blender's own renders of the edited scene (README, "Edits that move
-# shadows"): the chrome sphere of the Blender spheres_room moved 0.3 m, duplicated, or
-# deleted. Cycles renders the test views of each edited scene (the unedited dataset's
-# cameras: render_dataset.py --edit --test-only), and `glint eval --edits` scores a run
-# trained on the unedited dataset with relighting and healing (the default) and without.
+# shadows"). spheres_room: the chrome sphere moved 0.3 m, duplicated, or deleted.
+# mirror_room: the copper pot moved 25 cm across the table (its reflection in the mirror
+# wall moves too), duplicated onto the floor in front of the table, or deleted. Cycles
+# renders the test views of each edited scene (the unedited dataset's cameras:
+# render_dataset.py --edit --test-only), and `glint eval --edits` scores a run trained on
+# the unedited dataset with relighting and healing (the default) and without.
 # Usage: scripts/blender/relight-validation.sh DATASET RUN OUT [GLINT]
-#   DATASET: the unedited spheres_room dataset (render_dataset.py --train-views 60
-#   --test-views 20 --test-spp 256 --seed 0, as docs/blender-validation.md makes it)
+#   DATASET: the unedited spheres_room or mirror_room dataset (render_dataset.py
+#   --train-views 60 --test-views 20 --test-spp 256 --seed 0, as docs/blender-validation.md
+#   makes it; the scene is read from its render_settings.json)
 #   RUN: a glint train run on it. Needs Blender (scripts/install-deps.sh --blender); about
 #   30 minutes on 2 cores.
 set -euo pipefail
@@ -19,21 +22,39 @@ mkdir -p "$out"
 out="$(realpath "$out")"
 cd "$out"
 
-# The chrome sphere (centre (-0.9, 0.3, 0.5), radius 0.5, on the floor): a box that stops
-# 1 cm above the floor, grown along connected Gaussians of its material to take the contact
-# cap and never the floor.
-pick='"selections": {"chrome": {"box": {"min": [-1.45, -0.25, 0.01], "max": [-0.35, 0.85, 1.05]},
-                                 "grow": {"distance": 0.05, "tolerance": 0.2}}}'
+scene="$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['scene'])" "$dataset/render_settings.json")"
+case "$scene" in
+  spheres_room)
+    # The chrome sphere (centre (-0.9, 0.3, 0.5), radius 0.5, on the floor): a box that stops
+    # 1 cm above the floor, grown along connected Gaussians of its material to take the
+    # contact cap and never the floor.
+    object=chrome
+    pick='"box": {"min": [-1.45, -0.25, 0.01], "max": [-0.35, 0.85, 1.05]}'
+    move=0.3,0,0 copy=2.1,-0.8,0
+    object_region=-1.45,-0.25,0.02,-0.35,0.85,1.05
+    # Where the copy stands, for eval --region (the pixels of the copy scored apart).
+    copy_region=0.65,-1.05,0.02,1.75,0.05,1.05 ;;
+  mirror_room)
+    # The copper pot (radius 0.3 m, 0.33 m tall, centre of its base (0.25, 1.3, 0.78) on the
+    # table top): a box that stops 1 cm above the table, grown along the pot's material.
+    object=copper_pot
+    pick='"box": {"min": [-0.07, 0.98, 0.79], "max": [0.57, 1.62, 1.13]}'
+    move=0.2,0.15,0 copy=0,-1.0,-0.78
+    object_region=-0.07,0.98,0.79,0.57,1.62,1.13
+    copy_region=-0.07,-0.02,0.0,0.57,0.62,0.35 ;;
+  *) echo "relight-validation: no edits defined for scene $scene" >&2; exit 1 ;;
+esac
+pick="\"selections\": {\"$object\": {$pick, \"grow\": {\"distance\": 0.05, \"tolerance\": 0.2}}}"
 edits() { echo "{\"glint_edits\": 1, $pick, \"operations\": [$1]}"; }
-edits '{"op": "translate", "selection": "chrome", "offset": [0.3, 0, 0]}' > edits_move.json
-edits '{"op": "duplicate", "selection": "chrome", "offset": [2.1, -0.8, 0]}' > edits_duplicate.json
-edits '{"op": "delete", "selection": "chrome"}' > edits_delete.json
-edits '{"op": "translate", "selection": "chrome", "offset": [0, 0, 0]}' > edits_null.json
-declare -A blender_edit=([move]="translate:chrome:0.3,0,0" [duplicate]="duplicate:chrome:2.1,-0.8,0"
-                         [delete]="delete:chrome")
+edits "{\"op\": \"translate\", \"selection\": \"$object\", \"offset\": [$move]}" > edits_move.json
+edits "{\"op\": \"duplicate\", \"selection\": \"$object\", \"offset\": [$copy]}" > edits_duplicate.json
+edits "{\"op\": \"delete\", \"selection\": \"$object\"}" > edits_delete.json
+edits "{\"op\": \"translate\", \"selection\": \"$object\", \"offset\": [0, 0, 0]}" > edits_null.json
+declare -A blender_edit=([move]="translate:$object:$move" [duplicate]="duplicate:$object:$copy"
+                         [delete]="delete:$object")
 for e in move duplicate delete; do
   [ -f "D_$e/transforms_test.json" ] && [ -f "D_$e/preview.png" ] && continue
-  blender -b --factory-startup --python-exit-code 1 -P "$here/render_dataset.py" -- --scene spheres_room \
+  blender -b --factory-startup --python-exit-code 1 -P "$here/render_dataset.py" -- --scene "$scene" \
     --out "D_$e" --res 160x120 --train-views 60 --test-views 20 --test-spp 256 --seed 0 \
     --edit "${blender_edit[$e]}" --test-only > "blender_$e.log" 2>&1
 done
@@ -46,14 +67,14 @@ done
 
 E="--spp 64 --threads 2"
 mkdir -p eval
-# With the pixels of the original sphere and of its copy scored apart (--region): where the
+# With the pixels of the original object and of its copy scored apart (--region): where the
 # duplication's drop lies.
-"$glint" eval "$run" --dataset "$dataset" $E --region=-1.45,-0.25,0.02,-0.35,0.85,1.05 -o eval/unedited.json
+"$glint" eval "$run" --dataset "$dataset" $E --region=$object_region -o eval/unedited.json
 "$glint" eval "$run" --dataset "$dataset" $E --edits edits_null.json -o eval/null.json
 for e in move duplicate delete; do
   "$glint" eval "$run" --dataset "D_$e" $E --edits "edits_$e.json" --no-relight --no-heal -o "eval/$e.json"
   region=()
-  [ "$e" = duplicate ] && region=(--region=0.65,-1.05,0.02,1.75,0.05,1.05)
+  [ "$e" = duplicate ] && region=(--region=$copy_region)
   "$glint" eval "$run" --dataset "D_$e" $E --edits "edits_$e.json" "${region[@]}" -o "eval/${e}_default.json"
 done
 python3 - <<'PY'
