@@ -30,11 +30,14 @@ HealReport healAfterEdit(const GaussianScene& before, GaussianScene& after, Edit
   auto started = std::chrono::steady_clock::now();
   HealReport r = healUncovered(before, after, provenance, settings);
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  char text[256];
+  char recoloured[64] = "";
+  if (settings.recolourSpacings > 0)
+    std::snprintf(recoloured, sizeof recoloured, ", %zu around them recoloured", r.recoloured);
+  char text[320];
   std::snprintf(text, sizeof text,
-                "healed the uncovered surface: %zu Gaussians added at %zu points under %zu vacated ones, %zu hidden "
-                "ones recoloured (%zu support Gaussians, spacing %.3g, ring coverage %.2f), %.2f s",
-                r.added, r.candidates, r.vacated, r.recoloured, r.support, double(r.spacing), double(r.ringCoverage),
+                "healed the uncovered surface: %zu Gaussians added at %zu points under %zu vacated ones%s (%zu support "
+                "Gaussians, spacing %.3g, ring coverage %.2f), %.2f s",
+                r.added, r.candidates, r.vacated, recoloured, r.support, double(r.spacing), double(r.ringCoverage),
                 seconds);
   *line = text;
   return r;
