@@ -241,5 +241,41 @@ TEST(EditSession, AnEditDuringADeferredRelightingCancelsIt) {
   EXPECT_LT(undoSeconds, 2.0);
 }
 
+// The deferred relighting traces without the session's lock: the page's status polls,
+// selection previews, the edit document and an export answer at once while it runs, and a
+// relighting that no edit interrupted is shown when it ends.
+TEST(EditSession, AnswersWhileADeferredRelightingRuns) {
+  const test::PlateRoom room = test::plateRoom();
+  const GaussianScene& pristine = room.scene;
+  const TracerUpdateContext context = plateRoomContext();
+  RelightSettings slow;
+  slow.setRays(8192);  // about a second of tracing here
+  EditSession session(pristine, TraceSettings{}, kDefaultMaxGaussians, slow, std::nullopt, true);
+  session.apply(plateMove(), context);
+  std::shared_ptr<const TracedScene> answered;
+  double relightSeconds = 0;
+  std::thread relighting([&] {
+    const auto started = std::chrono::steady_clock::now();
+    answered = session.relight(context);
+    relightSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  const auto started = std::chrono::steady_clock::now();
+  const nlohmann::json status = session.status();
+  const nlohmann::json everything = {{"box", {{"min", {-1, -1, -1}}, {"max", {1, 1, 1}}}}};
+  const nlohmann::json histogram = session.preview({{"selection", everything}, {"attribute", "roughness"}});
+  const EditDocument document = session.document();
+  const double answerSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  relighting.join();
+  EXPECT_TRUE(status["relight_pending"].get<bool>()) << status;
+  EXPECT_GT(histogram["count"].get<int64_t>(), 0);
+  EXPECT_EQ(document.operations.size(), 1u);
+  // Answered while the relighting still ran (it traced for relightSeconds).
+  EXPECT_LT(answerSeconds, 0.5 * relightSeconds) << answerSeconds << " " << relightSeconds;
+  ASSERT_TRUE(answered);
+  EXPECT_GT(answered->scene->diffuse[room.centre].x, 1.1f * pristine.diffuse[room.centre].x);  // shown relit
+  EXPECT_FALSE(session.status()["relight_pending"].get<bool>());
+}
+
 }  // namespace
 }  // namespace glint

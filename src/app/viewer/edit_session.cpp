@@ -99,6 +99,8 @@ EditDocument EditSession::documentOfSteps() const {
 }
 
 void EditSession::update(const TracerUpdateContext& context) {
+  ++generation_;  // a deferred relighting of the previous edit is stale
+  relightCancel_ = std::make_shared<std::atomic<bool>>(false);
   // Applied to a copy first: an operation that cannot apply throws before anything shown changes.
   GaussianScene edited = *pristine_;
   EditProvenance provenance;
@@ -158,86 +160,105 @@ void EditSession::show(std::unique_ptr<GaussianTracer> tracer) {
   current_ = std::move(next);
 }
 
-void EditSession::relightColours(const GaussianTracer& editedTracer, GaussianScene& edited,
-                                 const EditProvenance& provenance, const HealReport& healed,
-                                 const RelightSettings& settings) {
+const GaussianTracer& EditSession::pristineTracer() {
   if (!pristineTracer_) {
     pristineTracer_ = makeGaussianTracer(kViewerTracer);
     pristineTracer_->build(*pristine_, trace_);
   }
-  lastRelight_ = relightAfterEdit(*pristineTracer_, *pristine_, editedTracer, edited, provenance, healed, settings);
+  return *pristineTracer_;
+}
+
+void EditSession::relightColours(const GaussianTracer& editedTracer, GaussianScene& edited,
+                                 const EditProvenance& provenance, const HealReport& healed,
+                                 const RelightSettings& settings) {
+  lastRelight_ = relightAfterEdit(pristineTracer(), *pristine_, editedTracer, edited, provenance, healed, settings);
 }
 
 std::unique_lock<std::mutex> EditSession::lockForEdit() {
-  cancelRelight_.store(true);
   std::unique_lock lock(mutex_);
-  cancelRelight_.store(false);
+  relightCancel_->store(true);  // a deferred relighting still running is stale from now on
   return lock;
 }
 
-RelightSettings EditSession::cancellable() const {
-  RelightSettings settings = *relight_;
-  settings.cancel = &cancelRelight_;
-  return settings;
-}
-
-bool EditSession::relightDeferred(const GaussianTracer& editedTracer, GaussianScene& edited,
-                                  const RelightSettings& settings) {
+std::optional<EditSession::DeferredRelight> EditSession::startDeferred(std::unique_lock<std::mutex>& lock,
+                                                                        const RelightSettings& settings,
+                                                                        bool preview) {
+  if (!pending_ || (preview && pending_->unrelit)) return std::nullopt;
+  DeferredRelight job;
+  job.generation = generation_;
+  job.unrelit = pending_->unrelit ? pending_->unrelit : current_;
+  job.provenance = pending_->provenance;
+  job.healed = pending_->healed;
+  job.started = std::chrono::steady_clock::now();
+  const GaussianTracer& pristine = pristineTracer();  // built under the lock, read-only after
+  RelightSettings cancellable = settings;
+  const std::shared_ptr<std::atomic<bool>> cancel = relightCancel_;  // this edit's flag
+  cancellable.cancel = cancel.get();
+  // Traced without the lock: status, selection previews, saves and edits go on meanwhile (an
+  // edit cancels it and makes it stale); the unrelit scene it reads is held by job.unrelit,
+  // so no edit overwrites it in place (takeShownTracer).
+  lock.unlock();
+  GaussianScene relit = *job.unrelit->scene;
   try {
-    relightColours(editedTracer, edited, pending_->provenance, pending_->healed, settings);
-    return true;
+    job.line = relightAfterEdit(pristine, *pristine_, *job.unrelit->tracer, relit, job.provenance, job.healed,
+                                cancellable);
   } catch (const RelightCancelled&) {
-    lastRelight_ = "cancelled by a newer edit";
-    return false;
+    lock.lock();
+    return std::nullopt;  // a newer edit's status stands
   }
+  job.relit = std::move(relit);
+  lock.lock();
+  if (generation_ != job.generation || !pending_) return std::nullopt;  // an edit, or the full relighting, came first
+  return job;
 }
 
 std::shared_ptr<const TracedScene> EditSession::relightPreview() {
-  std::lock_guard lock(mutex_);
-  if (!pending_ || pending_->unrelit) return current_;
-  auto started = std::chrono::steady_clock::now();
-  // On a copy, shown over a tracer of its own: the unrelit scene and its tracer are kept for
-  // the full relighting, which must trace the colours as the edit left them.
-  RelightSettings preview = cancellable();
+  std::unique_lock lock(mutex_);
+  RelightSettings preview = *relight_;
   preview.tracedBudget = kPreviewTraced;
   preview.setRays(std::min(kPreviewRays, relight_->rays));
   preview.path.bounces = kPreviewBounces;
-  GaussianScene relit = *shownScene_;
-  if (!relightDeferred(*current_->tracer, relit, preview)) return current_;
-  pending_->unrelit = current_;
-  shownScene_ = std::make_shared<GaussianScene>(std::move(relit));
+  std::optional<DeferredRelight> job = startDeferred(lock, preview, true);
+  if (!job || pending_->unrelit) return current_;
+  // Shown over a tracer of its own, built without the lock: the unrelit scene and its tracer
+  // are kept for the full relighting, which must trace the colours as the edit left them.
+  auto relit = std::make_shared<GaussianScene>(std::move(job->relit));
+  lock.unlock();
   std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(kViewerTracer);
-  tracer->build(*shownScene_, trace_);
+  tracer->build(*relit, trace_);
+  lock.lock();
+  if (generation_ != job->generation || !pending_ || pending_->unrelit) return current_;
+  pending_->unrelit = current_;  // job->unrelit: nothing else changes what is shown meanwhile
+  shownScene_ = std::move(relit);
   show(std::move(tracer));
-  lastRelight_ = "preview: " + lastRelight_;
-  lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  lastRelight_ = "preview: " + job->line;
+  lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - job->started).count();
   return current_;
 }
 
 std::shared_ptr<const TracedScene> EditSession::relight(const TracerUpdateContext& context) {
-  std::lock_guard lock(mutex_);
-  if (!pending_) return current_;
-  auto started = std::chrono::steady_clock::now();
+  std::unique_lock lock(mutex_);
   // On a copy of the unrelit scene (the shown one unless a preview is shown): the renderer
   // traces the shown scene meanwhile. Only the colours differ.
-  const TracedScene& unrelit = pending_->unrelit ? *pending_->unrelit : *current_;
-  GaussianScene relit = *unrelit.scene;
-  if (!relightDeferred(*unrelit.tracer, relit, cancellable())) return current_;
+  std::optional<DeferredRelight> job = startDeferred(lock, *relight_, false);
+  if (!job) return current_;
   pending_.reset();  // and with it the unrelit scene a preview kept
+  job->unrelit.reset();
 
   // As in update: the shown scene is overwritten in place and its tracer refitted only when
   // nobody else holds them once the renderer has let go.
   std::unique_ptr<GaussianTracer> tracer = takeShownTracer(context);
   if (tracer) {
-    shownScene_->diffuse = std::move(relit.diffuse);
+    shownScene_->diffuse = std::move(job->relit.diffuse);
     tracer->refit();  // tracers may keep copies of the colours
   } else {
-    shownScene_ = std::make_shared<GaussianScene>(std::move(relit));
+    shownScene_ = std::make_shared<GaussianScene>(std::move(job->relit));
     tracer = makeGaussianTracer(kViewerTracer);
     tracer->build(*shownScene_, trace_);
   }
   show(std::move(tracer));
-  lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  lastRelight_ = job->line;
+  lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - job->started).count();
   return current_;
 }
 

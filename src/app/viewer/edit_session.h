@@ -7,6 +7,8 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -61,15 +63,18 @@ class EditSession {
   std::shared_ptr<const TracedScene> redo(const TracerUpdateContext& context);
   // Relights the last edit when its relighting was deferred, and returns the relit scene
   // (the current one when nothing waits, or when an edit request arriving meanwhile cancelled
-  // it: the edit then goes ahead at once instead of waiting for a stale relighting). The colours are computed on a copy while the
-  // renderer keeps tracing the shown scene; they replace the shown colours (with a refit)
-  // when the renderer has let go of it (releaseShown), else a new tracer is built.
+  // it). The colours are computed on a copy without the session's lock: the renderer keeps
+  // tracing the shown scene, and status, previews, saves and edits answer meanwhile (an edit
+  // goes ahead at once and makes the relighting stale). They replace the shown colours
+  // (with a refit) when the renderer has let go of it (releaseShown), else a new tracer is
+  // built.
   std::shared_ptr<const TracedScene> relight(const TracerUpdateContext& context);
   // A first look at the deferred relighting: the last edit relit from kPreviewTraced
   // Gaussians spread over those within its reach (RelightSettings::tracedBudget) with
-  // kPreviewRays rays each (fewer when the flags ask for fewer), shown over a new tracer. The relighting stays pending: relight() then computes the full one from
-  // the unrelit colours, exactly as without a preview. Returns the current scene when
-  // nothing waits or the preview is shown already.
+  // kPreviewRays rays each (fewer when the flags ask for fewer), shown over a new tracer, both
+  // made without the session's lock. The relighting stays pending: relight() then computes
+  // the full one from the unrelit colours, exactly as without a preview. Returns the current
+  // scene when nothing waits, the preview is shown already, or an edit came meanwhile.
   std::shared_ptr<const TracedScene> relightPreview();
   // On builtin:spheres, 4,000 Gaussians at 32 rays left a move's final and diffuse drops at
   // 1.36 and 3.54 dB, against 1.69 and 4.20 for 2,000 at 64 and 1.65 and 4.06 for 8,000 at
@@ -118,9 +123,10 @@ class EditSession {
   std::unique_ptr<GaussianTracer> takeShownTracer(const TracerUpdateContext& context);
   // Makes shownScene_, traced by `tracer`, the current scene.
   void show(std::unique_ptr<GaussianTracer> tracer);
-  // Relights `edited` (traced by editedTracer) against the pristine scene, building the
-  // pristine scene's tracer at the first call, and gives healed Gaussians their relit
-  // surroundings' colour (mutex_ held).
+  // The pristine scene's tracer, built at the first call (mutex_ held); read-only after.
+  const GaussianTracer& pristineTracer();
+  // Relights `edited` (traced by editedTracer) against the pristine scene and gives healed
+  // Gaussians their relit surroundings' colour (mutex_ held).
   void relightColours(const GaussianTracer& editedTracer, GaussianScene& edited, const EditProvenance& provenance,
                       const HealReport& healed, const RelightSettings& settings);
 
@@ -148,15 +154,30 @@ class EditSession {
     std::shared_ptr<const TracedScene> unrelit;
   };
   std::optional<PendingRelight> pending_;
-  // Set by an edit request before it waits for the lock: a deferred relighting that holds it
-  // stops (RelightSettings::cancel), since the edit makes it stale.
-  std::atomic<bool> cancelRelight_{false};
-  // The session's lock for an edit, taken after cancelling a deferred relighting that holds it.
+  // Counts the updates (edits, undos, redos): a deferred relighting traced without the lock
+  // is shown only if no update came meanwhile.
+  uint64_t generation_ = 0;
+  // The last update's cancel flag (RelightSettings::cancel), set by the next edit request:
+  // its deferred relightings stop, since the edit makes them stale. Each update makes a new one.
+  std::shared_ptr<std::atomic<bool>> relightCancel_ = std::make_shared<std::atomic<bool>>(false);
+  // The session's lock for an edit; cancels the deferred relightings still running.
   std::unique_lock<std::mutex> lockForEdit();
-  // The deferred relighting's settings: the flags', cancellable by a newer edit.
-  RelightSettings cancellable() const;
-  // relightColours for a deferred relighting: false when a newer edit cancelled it.
-  bool relightDeferred(const GaussianTracer& editedTracer, GaussianScene& edited, const RelightSettings& settings);
+  // A deferred relighting: what it traced, and the colours and report it made.
+  struct DeferredRelight {
+    uint64_t generation = 0;
+    std::shared_ptr<const TracedScene> unrelit;
+    EditProvenance provenance;
+    HealReport healed;
+    std::chrono::steady_clock::time_point started;
+    std::string line;      // what relightAfterEdit did
+    GaussianScene relit;   // the unrelit scene with its relit colours
+  };
+  // Relights the pending edit's unrelit scene with `settings`, tracing with `lock` released;
+  // returns with it held. Nothing when nothing waits (or, for a preview, one is shown
+  // already), when a newer edit cancelled it, or when an update or the full relighting came
+  // while it traced.
+  std::optional<DeferredRelight> startDeferred(std::unique_lock<std::mutex>& lock, const RelightSettings& settings,
+                                               bool preview);
   double lastRelightSeconds_ = 0;
   std::optional<HealSettings> heal_;
   size_t lastHealed_ = 0;  // Gaussians the last healing added
