@@ -48,7 +48,8 @@ struct HealSettings {
   // move's diffuse scored 32.28 dB against 32.70 off (64 spp), its deletion 30.79 against
   // 30.88 (16 spp); on builtin:spheres 2 and 0 differ by 0.03 dB or less. Where a wide
   // object hid a wide disc (the mirror_room's pot on its table) it helps: 27.25 against
-  // 26.79 (16 spp). Off, as the larger loss of the two.
+  // 26.79 (16 spp). Gain and loss are about equal; off keeps every trained colour (README,
+  // "Recolouring within two spacings").
   float recolourSpacings = 0.0f;
   size_t maxAdded = 1'000'000;
 };
