@@ -19,8 +19,9 @@ void HealFlags::add(CLI::App* cmd) {
       ->capture_default_str();
   cmd->add_option("--heal-recolour", settings_.recolourSpacings,
                   "--heal also gives the surface within this many spacings of the moved or removed Gaussians (the "
-                  "support's median Gaussian width) the colour continued from around it, as if no training view had "
-                  "seen it. 0 keeps the colour it trained to: most of it was seen, and it holds the texture")
+                  "support's median Gaussian width) the colour continued from around it, as no training view saw it "
+                  "under a flat-based object. 0 keeps the colour it trained to (better where the object met the "
+                  "surface at a point, and the views saw around it)")
       ->check(CLI::Range(0.0f, 8.0f))
       ->capture_default_str();
 }

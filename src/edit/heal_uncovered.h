@@ -41,16 +41,14 @@ struct HealSettings {
   // to 1.98 dB and of a deletion from 3.92 to 3.66 (on the test views they are scored on;
   // a weighted median of 8 did worse, 2.66).
   int continueFrom = 32;
-  // Gaussians left in place within this many spacings of a vacated one may have been hidden
-  // from the training views too: their diffuse colour can be the continued one as well. Off
-  // (0: keep the trained colour): most of them were seen, and their trained colour holds the
-  // floor's texture where the ring's mean holds none. At 2 spacings the Blender spheres_room
-  // move's diffuse scored 32.28 dB against 32.70 off (64 spp), its deletion 30.79 against
-  // 30.88 (16 spp); on builtin:spheres 2 and 0 differ by 0.03 dB or less. Where a wide
-  // object hid a wide disc (the mirror_room's pot on its table) it helps: 27.25 against
-  // 26.79 (16 spp). Gain and loss are about equal; off keeps every trained colour (README,
-  // "Recolouring within two spacings").
-  float recolourSpacings = 0.0f;
+  // Gaussians left in place within this many spacings of a vacated one were likely hidden
+  // from the training views too: their diffuse colour is the continued one as well (0: keep
+  // the trained colour). It helps where a wide object hid a wide disc and hurts where the
+  // object met the surface at a point (diffuse 8-bit dB, 2 against 0, 16 spp): Blender
+  // mirror_room pot move 27.25 / 26.79, deletion 26.45 / 25.62; spheres_room chrome sphere
+  // move 32.26 / 32.67, deletion 30.79 / 30.88; builtin:spheres within 0.03. On, as the
+  // larger gain (README, "Recolouring within two spacings").
+  float recolourSpacings = 2.0f;
   size_t maxAdded = 1'000'000;
 };
 

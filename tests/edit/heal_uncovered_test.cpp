@@ -147,28 +147,29 @@ TEST(HealUncovered, MovingTheBallAwayFillsTheHoleWithTheLitFloor) {
     EXPECT_NEAR(e.after.opacity(i), kOpacity, 1e-4f);
     EXPECT_EQ(e.provenance.moved[i], 1);  // added: relighting does not take them as receivers
   }
-  // By default the floor the ball touched keeps its trained colour, shadow and all.
-  EXPECT_EQ(report.recoloured, 0u);
-  for (const HealedGaussian& h : report.healed) EXPECT_GE(h.index, count);
-}
-
-TEST(HealUncovered, RecolouringGivesTheTouchedFloorTheContinuedColour) {
-  Edited e = edit(kResting, kMoveAway);
-  const GaussianScene moved = e.after;
-  HealSettings settings;
-  settings.recolourSpacings = 2;
-  HealReport report = healUncovered(e.before, e.after, e.provenance, settings);
-  // The shadow-dark floor the ball touched takes the lit ring's colour.
+  // The shadow-dark floor the ball touched takes the lit ring's colour too.
   EXPECT_GT(report.recoloured, 0u);
   size_t darkBefore = 0;
   for (const HealedGaussian& h : report.healed) {
-    if (h.index < moved.size() && moved.diffuse[h.index].y < 0.5f * kFloorColour.y) ++darkBefore;
+    if (h.index < count && e.before.diffuse[h.index].y < 0.5f * kFloorColour.y) ++darkBefore;
     EXPECT_NEAR(e.after.diffuse[h.index].y, kFloorColour.y, 1e-4f);
     float total = 0;
     for (float w : h.weights) total += w;
     EXPECT_NEAR(total, 1.0f, 1e-5f);
   }
   EXPECT_GT(darkBefore, 0u);
+}
+
+TEST(HealUncovered, WithoutRecolouringTheTouchedFloorKeepsItsColour) {
+  Edited e = edit(kResting, kMoveAway);
+  const GaussianScene moved = e.after;
+  HealSettings settings;
+  settings.recolourSpacings = 0;
+  HealReport report = healUncovered(e.before, e.after, e.provenance, settings);
+  EXPECT_GT(report.added, 0u);
+  EXPECT_EQ(report.recoloured, 0u);
+  for (const HealedGaussian& h : report.healed) EXPECT_GE(h.index, moved.size());  // added ones only
+  for (size_t i = 0; i < moved.size(); ++i) ASSERT_EQ(e.after.diffuse[i], moved.diffuse[i]) << i;
 }
 
 // A selection sphere wider than the ball takes a disc of floor along with it (radius 0.34
@@ -245,9 +246,7 @@ TEST(HealUncovered, ProducesOnlyFiniteValues) {
 TEST(HealUncovered, DeletionLeavesTheFloorOutsideTheHoleAsItWas) {
   Edited e = edit(kResting, R"({"op": "delete", "selection": "ball"})");
   const GaussianScene deleted = e.after;
-  HealSettings settings;
-  settings.recolourSpacings = 2;  // on, so that the recoloured floor is held to it too
-  HealReport report = healUncovered(e.before, e.after, e.provenance, settings);
+  HealReport report = healUncovered(e.before, e.after, e.provenance);
   EXPECT_GT(report.added, 0u);
   EXPECT_GT(report.recoloured, 0u);
   // Gaussians not recoloured keep every bit; the recoloured ones change their diffuse only.
@@ -268,9 +267,7 @@ TEST(HealUncovered, AnEditThatMovesNothingHealsNothing) {
                                 R"({"op": "roughness", "selection": "ball", "set": 0.5})"}) {
     Edited e = edit(kResting, operation);
     const GaussianScene edited = e.after;
-    HealSettings settings;
-    settings.recolourSpacings = 2;  // recolouring on: it too must find nothing to do
-    HealReport report = healUncovered(e.before, e.after, e.provenance, settings);
+    HealReport report = healUncovered(e.before, e.after, e.provenance);
     EXPECT_EQ(report.added, 0u) << operation;
     EXPECT_EQ(report.recoloured, 0u) << operation;
     expectBitIdentical(e.after, edited);
@@ -280,9 +277,7 @@ TEST(HealUncovered, AnEditThatMovesNothingHealsNothing) {
 TEST(HealUncovered, DeletingABallFarFromAnySurfaceAddsNothing) {
   Edited e = edit(Vec3f(0, 3.0f, 0), R"({"op": "delete", "selection": "ball"})");
   const GaussianScene edited = e.after;
-  HealSettings settings;
-  settings.recolourSpacings = 2;
-  HealReport report = healUncovered(e.before, e.after, e.provenance, settings);
+  HealReport report = healUncovered(e.before, e.after, e.provenance);
   EXPECT_GT(report.vacated, 0u);
   EXPECT_EQ(report.added, 0u);
   EXPECT_EQ(report.recoloured, 0u);
