@@ -99,8 +99,7 @@ EditDocument EditSession::documentOfSteps() const {
 }
 
 void EditSession::update(const TracerUpdateContext& context) {
-  ++generation_;  // a deferred relighting of the previous edit is stale
-  relightCancel_ = std::make_shared<std::atomic<bool>>(false);
+  relightCancel_ = std::make_shared<std::atomic<bool>>(false);  // the previous edit's is set
   // Applied to a copy first: an operation that cannot apply throws before anything shown changes.
   GaussianScene edited = *pristine_;
   EditProvenance provenance;
@@ -185,15 +184,14 @@ std::optional<EditSession::DeferredRelight> EditSession::startDeferred(std::uniq
                                                                         bool preview) {
   if (!pending_ || (preview && pending_->unrelit)) return std::nullopt;
   DeferredRelight job;
-  job.generation = generation_;
+  job.stale = relightCancel_;  // this edit's flag: set by the next edit request
   job.unrelit = pending_->unrelit ? pending_->unrelit : current_;
   job.provenance = pending_->provenance;
   job.healed = pending_->healed;
   job.started = std::chrono::steady_clock::now();
   const GaussianTracer& pristine = pristineTracer();  // built under the lock, read-only after
   RelightSettings cancellable = settings;
-  const std::shared_ptr<std::atomic<bool>> cancel = relightCancel_;  // this edit's flag
-  cancellable.cancel = cancel.get();
+  cancellable.cancel = job.stale.get();
   // Traced without the lock: status, selection previews, saves and edits go on meanwhile (an
   // edit cancels it and makes it stale); the unrelit scene it reads is held by job.unrelit,
   // so no edit overwrites it in place (takeShownTracer).
@@ -208,7 +206,7 @@ std::optional<EditSession::DeferredRelight> EditSession::startDeferred(std::uniq
   }
   job.relit = std::move(relit);
   lock.lock();
-  if (generation_ != job.generation || !pending_) return std::nullopt;  // an edit, or the full relighting, came first
+  if (*job.stale || !pending_) return std::nullopt;  // an edit, or the full relighting, came first
   return job;
 }
 
@@ -227,7 +225,7 @@ std::shared_ptr<const TracedScene> EditSession::relightPreview() {
   std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(kViewerTracer);
   tracer->build(*relit, trace_);
   lock.lock();
-  if (generation_ != job->generation || !pending_ || pending_->unrelit) return current_;
+  if (*job->stale || !pending_ || pending_->unrelit) return current_;
   pending_->unrelit = current_;  // job->unrelit: nothing else changes what is shown meanwhile
   shownScene_ = std::move(relit);
   show(std::move(tracer));

@@ -8,7 +8,6 @@
 
 #include <atomic>
 #include <chrono>
-#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -154,17 +153,15 @@ class EditSession {
     std::shared_ptr<const TracedScene> unrelit;
   };
   std::optional<PendingRelight> pending_;
-  // Counts the updates (edits, undos, redos): a deferred relighting traced without the lock
-  // is shown only if no update came meanwhile.
-  uint64_t generation_ = 0;
-  // The last update's cancel flag (RelightSettings::cancel), set by the next edit request:
-  // its deferred relightings stop, since the edit makes them stale. Each update makes a new one.
+  // The last update's flag, set by the next edit request (lockForEdit): its deferred
+  // relightings stop (RelightSettings::cancel), and one that finished meanwhile is not
+  // shown, since the edit makes them stale. Each update makes a new one.
   std::shared_ptr<std::atomic<bool>> relightCancel_ = std::make_shared<std::atomic<bool>>(false);
   // The session's lock for an edit; cancels the deferred relightings still running.
   std::unique_lock<std::mutex> lockForEdit();
   // A deferred relighting: what it traced, and the colours and report it made.
   struct DeferredRelight {
-    uint64_t generation = 0;
+    std::shared_ptr<std::atomic<bool>> stale;  // its edit's flag (relightCancel_)
     std::shared_ptr<const TracedScene> unrelit;
     EditProvenance provenance;
     HealReport healed;
