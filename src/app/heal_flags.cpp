@@ -10,7 +10,9 @@ void HealFlags::add(CLI::App* cmd) {
   cmd->add_flag("--heal,!--no-heal", on_,
                 "Fill the surface a moved or removed object uncovered (a floor no training view saw under it) with "
                 "Gaussians continued from the surface around it: colour, normal, roughness, F0, shape; with "
-                "--relight their colour follows the relit surroundings. Heals before relighting. On by default; "
+                "--relight their colour follows the relit surroundings, scaled by the irradiance where they stand over "
+                "the surroundings' (a floor the moved object still overhangs stays in its shadow). Heals before "
+                "relighting. On by default; "
                 "--no-heal leaves the surface as trained");
   cmd->add_option("--heal-below", settings_.fillBelow,
                   "--heal fills points of the uncovered surface whose coverage is below this fraction of the "

@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cstdio>
 
+#include "render/healed_lighting.h"
+
 namespace glint {
 
 void RelightFlags::add(CLI::App* cmd) {
@@ -66,8 +68,14 @@ std::string relightAfterEdit(const GaussianTracer& beforeTracer, const GaussianS
   const ChangedRegion regions[] = {changedRegionOf(before, provenance.movedOrRemoved()),
                                    changedRegionOf(after, provenance.movedOrAdded())};
   auto started = std::chrono::steady_clock::now();
+  // The healed Gaussians' light factors first: tracers may keep copies of the colours that
+  // relighting is about to change.
+  uint64_t healedRays = 0;
+  const std::vector<float> lit = healedLightFactors(afterTracer, after, healed, settings, &healedRays);
   RelightReport r = relightDiffuse(beforeTracer, afterTracer, after, provenance.unmoved(), regions, settings);
+  r.rays += healedRays;
   continueHealedColours(healed, after);
+  for (size_t k = 0; k < lit.size(); ++k) after.diffuse[healed.healed[k].index] *= lit[k];
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   char traced[64] = "";
   if (r.traced < r.reached) std::snprintf(traced, sizeof traced, ", %zu of them traced", r.traced);

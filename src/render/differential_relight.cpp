@@ -31,6 +31,14 @@ ChangedRegion changedRegionOf(const GaussianScene& scene, std::span<const uint32
   return {centre, radius};
 }
 
+Rgb incomingRadiance(const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const Vec3f& w,
+                     const PathSettings& path, const RadianceKeys& keys, uint64_t* segments) {
+  const TraceRay ray{p + n * path.normalOffset, w, 0.0f, path.backfaceSkip};
+  const PathResult light = tracePath(tracer, ray, path, keys.seed, keys.receiver, keys.sequence, keys.sample);
+  *segments += uint64_t(light.segments);
+  return light.first.diffuse + light.specular;
+}
+
 namespace {
 
 // The cone of directions from a receiver toward one changed region or light region.
@@ -309,10 +317,7 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
   path.minReflectance = settings.minReflectance;
   auto radiance = [&](const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const Vec3f& w, uint32_t g,
                       uint64_t sequence, uint32_t k, uint64_t* raysTraced) {
-    const TraceRay ray{p + n * path.normalOffset, w, 0.0f, path.backfaceSkip};
-    const PathResult light = tracePath(tracer, ray, path, settings.seed, g, sequence, k);
-    *raysTraced += uint64_t(light.segments);
-    return light.first.diffuse + light.specular;
+    return incomingRadiance(tracer, p, n, w, path, {settings.seed, g, sequence, k}, raysTraced);
   };
   auto cancelled = [&] { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); };
   parallelFor(int64_t(traced.size()), 16, [&](int64_t t) {

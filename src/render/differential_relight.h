@@ -116,6 +116,19 @@ struct RelightSettings {
   float minReflectance = 0.1f;
 };
 
+// The keys of one ray's random numbers (tracePath's seed, view, pixel and sample): the same
+// keys give the same reflected directions in the scene before and after an edit.
+struct RadianceKeys {
+  uint64_t seed = 0, receiver = 0, sequence = 0;
+  uint32_t sample = 0;
+};
+
+// The radiance arriving at p (unit normal n) from direction w as relighting counts it: the
+// blended diffuse colour the ray meets, plus the light of path.bounces reflected segments
+// from there. Adds the segments traced to *segments.
+Rgb incomingRadiance(const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const Vec3f& w,
+                     const PathSettings& path, const RadianceKeys& keys, uint64_t* segments);
+
 // Thrown by relightRatios when RelightSettings::cancel turned true.
 struct RelightCancelled : std::exception {
   const char* what() const noexcept override { return "relighting cancelled"; }

@@ -14,12 +14,15 @@
 #include "math/frame.h"
 #include "math/rng.h"
 #include "math/sampling.h"
+#include "render/brute_force_irradiance.h"
 #include "render/gaussian_layers.h"
 
 namespace glint {
 namespace {
 
 using test::addLayer;
+using test::bruteForceIrradiance;
+using test::tracerOf;
 using test::LayerLook;
 
 constexpr float kAlbedo = 0.5f;
@@ -57,32 +60,6 @@ Room makeRoom(bool withPlate) {
     room.plate = indicesFrom(plateBegin, room.scene.size());
   }
   return room;
-}
-
-// Brute-force irradiance at Gaussian g: pi x the mean radiance of many independent
-// cosine-distributed rays (the obviously correct estimator, with its own random numbers):
-// the blended diffuse colour each meets, plus `bounces` reflected segments from there as
-// the renderer traces them.
-Rgb bruteForceIrradiance(const GaussianTracer& tracer, const GaussianScene& scene, uint32_t g, int rays,
-                         int bounces = 0) {
-  Vec3f n = normalize(scene.normal[g]);
-  Framef frame = Framef::fromNormal(n);
-  Rng rng = Rng::forKeys({77, g});
-  PathSettings path;
-  path.bounces = bounces;
-  Rgb sum(0.0f);
-  for (int k = 0; k < rays; ++k) {
-    Vec3f w = normalize(frame.toWorld(sampleCosineHemisphere({rng.uniform(), rng.uniform()})));
-    const PathResult r = tracePath(tracer, {scene.position[g] + n * 1e-3f, w, 0.0f, 0.1f}, path, 79, g, 0, uint64_t(k));
-    sum += r.first.diffuse + r.specular;
-  }
-  return sum * (kPi / float(rays));
-}
-
-std::unique_ptr<GaussianTracer> tracerOf(const GaussianScene& scene) {
-  std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer("fast");
-  tracer->build(scene, TraceSettings());
-  return tracer;
 }
 
 // Bakes the floor's diffuse as a trained scene holds it: albedo / pi x its irradiance.

@@ -52,15 +52,15 @@ inline GaussianScene facingMirrors() {
 }
 
 // A 1 m floor (diffuse 0.3) at z = 0 under a 9.6 m emitting ceiling (2.0) at z = 1.5, with a
-// black 0.3 m plate at z = 0.4 shading the floor's centre: the room of the relighting tests.
-// The Gaussians are ceiling, floor, plate, in that order.
+// black 0.3 m plate at plateHeight (none at 0) shading the floor's centre: the room of the
+// relighting tests. The Gaussians are ceiling, floor, plate, in that order.
 struct PlateRoom {
   GaussianScene scene;
   size_t floorBegin = 0, floorEnd = 0;  // the floor's index range
   size_t centre = 0;                    // the floor Gaussian nearest the centre, under the plate
 };
 
-inline PlateRoom plateRoom() {
+inline PlateRoom plateRoom(float plateHeight = 0.4f) {
   PlateRoom room;
   LayerLook ceiling;
   ceiling.diffuse = Rgb(2.0f);
@@ -71,9 +71,11 @@ inline PlateRoom plateRoom() {
   floor.diffuse = Rgb(0.3f);
   addLayer(&room.scene, 0, 0, 0, 10, 10, 0.1f, floor);
   room.floorEnd = room.scene.size();
-  LayerLook plate;
-  plate.normal = Vec3f(0, 0, -1);
-  addLayer(&room.scene, 0, 0, 0.4f, 6, 6, 0.05f, plate);
+  if (plateHeight > 0) {
+    LayerLook plate;
+    plate.normal = Vec3f(0, 0, -1);
+    addLayer(&room.scene, 0, 0, plateHeight, 6, 6, 0.05f, plate);
+  }
   room.centre = room.floorBegin;
   for (size_t i = room.floorBegin; i < room.floorEnd; ++i)
     if (length(room.scene.position[i]) < length(room.scene.position[room.centre])) room.centre = i;
