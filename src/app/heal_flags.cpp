@@ -26,6 +26,11 @@ void HealFlags::add(CLI::App* cmd) {
                   "object that met the surface at a point: there it measured up to 0.07 dB better)")
       ->check(CLI::Range(0.0f, 8.0f))
       ->capture_default_str();
+  cmd->add_flag("--heal-texture,!--no-heal-texture", settings_.continueTexture,
+                "--heal continues a texture that repeats around the hole (a checker, tiles) into it, copying the "
+                "surface at the one offset where the texture around the hole repeats best, instead of giving the "
+                "hole the surrounding mean colour; a surface whose texture does not repeat gets the mean either way. "
+                "On by default");
 }
 
 HealReport healAfterEdit(const GaussianScene& before, GaussianScene& after, EditProvenance& provenance,
@@ -36,12 +41,16 @@ HealReport healAfterEdit(const GaussianScene& before, GaussianScene& after, Edit
   char recoloured[64] = "";
   if (settings.recolourSpacings > 0)
     std::snprintf(recoloured, sizeof recoloured, ", %zu around them recoloured", r.recoloured);
-  char text[320];
+  char texture[160] = "";
+  if (r.copied > 0)
+    std::snprintf(texture, sizeof texture, "; %zu continue the texture from %.3g away (correlation %.2f)", r.copied,
+                  double(length(r.textureOffset)), double(r.textureCorrelation));
+  char text[480];
   std::snprintf(text, sizeof text,
-                "healed the uncovered surface: %zu Gaussians added at %zu points under %zu vacated ones%s (%zu support "
+                "healed the uncovered surface: %zu Gaussians added at %zu points under %zu vacated ones%s%s (%zu support "
                 "Gaussians, spacing %.3g, ring coverage %.2f), %.2f s",
-                r.added, r.candidates, r.vacated, recoloured, r.support, double(r.spacing), double(r.ringCoverage),
-                seconds);
+                r.added, r.candidates, r.vacated, recoloured, texture, r.support, double(r.spacing),
+                double(r.ringCoverage), seconds);
   *line = text;
   return r;
 }

@@ -14,7 +14,7 @@ namespace glint {
 
 class HealFlags {
  public:
-  // Declares --heal / --no-heal, --heal-below and --heal-recolour on cmd.
+  // Declares --heal / --no-heal, --heal-below, --heal-recolour and --heal-texture on cmd.
   void add(CLI::App* cmd);
   bool on() const { return on_; }
   const HealSettings& settings() const { return settings_; }

@@ -3,14 +3,17 @@
 #include "edit/heal_uncovered.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <map>
+#include <optional>
 #include <span>
 #include <tuple>
 #include <unordered_map>
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "edit/texture_offset.h"
 #include "math/frame.h"
 #include "math/percentile.h"
 #include "math/quat.h"
@@ -46,6 +49,29 @@ float rayAlpha(const GaussianScene& scene, size_t i, const Vec3f& p, const Vec3f
   *t = -dot(o, d) / dd;
   const float distanceSquared = std::max(0.0f, dot(o, o) - dot(o, d) * dot(o, d) / dd);
   return scene.opacity(i) * std::exp(-0.5f * distanceSquared);
+}
+
+// Normals at least this close (cosine) face the same way: one surface for the texture.
+constexpr float kSameFacing = 0.9f;
+
+// Sets h's neighbours to the `count` Gaussians of `grid` nearest p within `radius` (by
+// distance, then index), weighted by inverse distance (at most 10 / spacing) and normalised;
+// false when there are none.
+bool nearestWeighted(const GaussianScene& scene, const CellGrid& grid, const Vec3f& p, float radius, int count,
+                     float spacing, HealedGaussian& h) {
+  std::vector<std::pair<float, uint32_t>> found;
+  grid.near(p, radius, [&](uint32_t j) { found.push_back({length(scene.position[j] - p), j}); });
+  if (found.empty()) return false;
+  std::sort(found.begin(), found.end());
+  found.resize(std::min(found.size(), size_t(std::max(1, count))));
+  float total = 0;
+  for (const auto& [distance, j] : found) {
+    h.neighbours.push_back(j);
+    h.weights.push_back(1.0f / std::max(distance, 0.1f * spacing));
+    total += h.weights.back();
+  }
+  for (float& w : h.weights) w /= total;
+  return true;
 }
 
 // A plane fitted to support Gaussians: their weighted centroid and mean normal.
@@ -246,35 +272,100 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
   // by inverse distance; false when there are none.
   const CellGrid ringGrid(after, ring, 8.0f * reach);
   auto continueRing = [&](const Vec3f& p, HealedGaussian& h) {
-    std::vector<std::pair<float, uint32_t>> found;
-    ringGrid.near(p, 8.0f * reach, [&](uint32_t j) { found.push_back({length(after.position[j] - p), j}); });
-    if (found.empty()) return false;
-    std::sort(found.begin(), found.end());
-    found.resize(std::min(found.size(), size_t(std::max(1, settings.continueFrom))));
-    float total = 0;
-    for (const auto& [distance, j] : found) {
-      h.neighbours.push_back(j);
-      h.weights.push_back(1.0f / std::max(distance, 0.1f * spacing));
-      total += h.weights.back();
-    }
-    for (float& w : h.weights) w /= total;
-    return true;
+    return nearestWeighted(after, ringGrid, p, 8.0f * reach, settings.continueFrom, spacing, h);
   };
 
-  // Support the vacated Gaussians hid: its trained colour is the object's shadow at best.
+  // The hole: support the vacated Gaussians hid (its trained colour is the object's shadow at
+  // best) and the candidates of low coverage.
+  std::vector<uint8_t> hidden(support.size(), 0);
   if (settings.recolourSpacings > 0) {
-    const float hidden = settings.recolourSpacings * spacing;
+    const float hiddenReach = settings.recolourSpacings * spacing;
     const CellGrid vacatedGrid(before, vacated, reach);
+    parallelFor(int64_t(support.size()), 64, [&](int64_t k) {
+      if (!touched[size_t(k)]) return;
+      vacatedGrid.near(after.position[support[size_t(k)]], hiddenReach, [&](uint32_t) { hidden[size_t(k)] = 1; });
+    });
+  }
+  std::vector<uint8_t> fill(candidates.size(), 0);
+  parallelFor(int64_t(candidates.size()), 16, [&](int64_t k) {
+    const Candidate& candidate = candidates[size_t(k)];
+    fill[size_t(k)] = coverage(candidate.point, candidate.normal) < settings.fillBelow * report.ringCoverage;
+  });
+
+  // Where the surface's texture repeats (a checker, tiles), the hole continues it from the one
+  // offset at which the seen texture around the hole repeats (edit/texture_offset.h): each
+  // point copies the seen Gaussians at the point shifted by it. Elsewhere, and where that
+  // finds no source, the hole takes the ring's mean. Either way relighting lights the copy
+  // where it stands (render/healed_lighting.h), not where its source stands.
+  std::optional<TextureOffset> texture;
+  Vec3f textureNormal(0.0f);
+  std::vector<uint32_t> sources;
+  if (settings.continueTexture) {
+    Vec3f normalSum(0.0f);
+    for (size_t k = 0; k < support.size(); ++k)
+      if (hidden[k]) normalSum += normalize(after.normal[support[k]]);
+    for (size_t k = 0; k < candidates.size(); ++k)
+      if (fill[k]) normalSum += candidates[k].normal;
+    if (length(normalSum) > 0) textureNormal = normalize(normalSum);
+    std::vector<Vec3f> holePoints;
+    for (size_t k = 0; k < support.size(); ++k)
+      if (hidden[k] && dot(normalize(after.normal[support[k]]), textureNormal) >= kSameFacing)
+        holePoints.push_back(after.position[support[k]]);
+    for (size_t k = 0; k < candidates.size(); ++k)
+      if (fill[k] && dot(candidates[k].normal, textureNormal) >= kSameFacing) holePoints.push_back(candidates[k].point);
+    // Seen: the surface left in place, less what the vacated Gaussians hid.
+    std::vector<uint8_t> isHidden(after.size(), 0);
+    for (size_t k = 0; k < support.size(); ++k)
+      if (hidden[k]) isHidden[support[k]] = 1;
+    std::vector<uint32_t> seen;
+    for (uint32_t j : nearby)
+      if (!isHidden[j]) seen.push_back(j);
+    if (!holePoints.empty())
+      texture = findTextureOffset(after, seen, holePoints, textureNormal, spacing, slab, settings.texture);
+    if (texture) {
+      // The sources: seen Gaussians of the plane around the hole shifted by the offset.
+      Vec3d sum(0.0);
+      for (const Vec3f& p : holePoints) sum += Vec3d(p);
+      const Vec3f holeCentre(sum * (1.0 / double(holePoints.size())));
+      float holeRadius = 0;
+      for (const Vec3f& p : holePoints) holeRadius = std::max(holeRadius, length(p - holeCentre));
+      const Vec3f shifted = holeCentre + texture->offset;
+      for (uint32_t j : seen)
+        if (length(after.position[j] - shifted) <= holeRadius + 4.0f * reach &&
+            std::abs(dot(after.position[j] - holeCentre, textureNormal)) <= slab &&
+            dot(normalize(after.normal[j]), textureNormal) >= kSameFacing)
+          sources.push_back(j);
+      report.textureOffset = texture->offset;
+      report.textureCorrelation = texture->correlation;
+    }
+  }
+  const float copyReach = 2.0f * spacing;
+  const CellGrid sourceGrid(after, sources, copyReach);
+  // The copyFrom nearest sources to p shifted by the texture's offset (within copyReach),
+  // weighted by inverse distance; false without an offset or a source there.
+  auto copyTexture = [&](const Vec3f& p, const Vec3f& n, HealedGaussian& h) {
+    if (!texture || dot(n, textureNormal) < kSameFacing) return false;
+    return nearestWeighted(after, sourceGrid, p + texture->offset, copyReach, settings.copyFrom, spacing, h);
+  };
+  std::atomic<size_t> copied = 0;
+  auto continueHole = [&](const Vec3f& p, const Vec3f& n, HealedGaussian& h) {
+    if (copyTexture(p, n, h)) {
+      copied.fetch_add(1, std::memory_order_relaxed);
+      return true;
+    }
+    return continueRing(p, h);
+  };
+
+  // The hidden support takes the continued colour (from the ring or the texture's source,
+  // never from another recoloured Gaussian: order-independent).
+  {
     std::vector<HealedGaussian> recoloured(support.size());
     std::vector<uint8_t> found(support.size(), 0);
     parallelFor(int64_t(support.size()), 64, [&](int64_t k) {
-      if (!touched[size_t(k)]) return;
       const uint32_t j = support[size_t(k)];
-      bool near = false;
-      vacatedGrid.near(after.position[j], hidden, [&](uint32_t) { near = true; });
-      if (near && continueRing(after.position[j], recoloured[size_t(k)])) found[size_t(k)] = 1;
+      if (hidden[size_t(k)] && continueHole(after.position[j], normalize(after.normal[j]), recoloured[size_t(k)]))
+        found[size_t(k)] = 1;
     });
-    // Colours from the ring only (never from another recoloured Gaussian): order-independent.
     for (size_t k = 0; k < support.size(); ++k) {
       if (!found[k]) continue;
       recoloured[k].index = support[k];
@@ -284,14 +375,13 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
     continueHealedColours(report, after);
   }
 
-  // Fill the candidates of low coverage, continuing the nearest ring Gaussians.
-  std::vector<uint8_t> fill(candidates.size(), 0);
+  // Fill the candidates of low coverage.
   std::vector<HealedGaussian> made(candidates.size());
   parallelFor(int64_t(candidates.size()), 16, [&](int64_t k) {
-    const Candidate& candidate = candidates[size_t(k)];
-    if (coverage(candidate.point, candidate.normal) >= settings.fillBelow * report.ringCoverage) return;
-    if (continueRing(candidate.point, made[size_t(k)])) fill[size_t(k)] = 1;
+    if (fill[size_t(k)] && !continueHole(candidates[size_t(k)].point, candidates[size_t(k)].normal, made[size_t(k)]))
+      fill[size_t(k)] = 0;
   });
+  report.copied = copied;
 
   for (size_t k = 0; k < candidates.size() && report.added < settings.maxAdded; ++k) {
     if (!fill[k]) continue;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "edit/gaussian_edits.h"
+#include "edit/texture_offset.h"
 #include "scene/gaussians.h"
 
 namespace glint {
@@ -51,13 +52,19 @@ struct HealSettings {
   // where they stand (render/healed_lighting.h) the sphere's costs are 0.07 and none
   // (32.77 / 32.84, 30.96 / 30.88), the pot's gains 0.48 and 0.84.
   float recolourSpacings = 2.0f;
+  // Where the texture around the hole repeats elsewhere on its surface (edit/texture_offset.h),
+  // the hole continues it instead of the ring's mean: each point takes the inverse-distance
+  // mean of the copyFrom nearest seen Gaussians at the point shifted by the offset found.
+  bool continueTexture = true;
+  int copyFrom = 4;
+  TextureOffsetSettings texture;
   size_t maxAdded = 1'000'000;
 };
 
 // One Gaussian the healing added or recoloured, and the ring Gaussians it continues.
 struct HealedGaussian {
   uint32_t index = 0;                // in the healed scene
-  std::vector<uint32_t> neighbours;  // ring Gaussians (healed scene indices) ...
+  std::vector<uint32_t> neighbours;  // ring Gaussians, or the texture's source (healed scene indices) ...
   std::vector<float> weights;        // ... and their weights, summing to 1
 };
 
@@ -69,6 +76,9 @@ struct HealReport {
   size_t recoloured = 0;  // support Gaussians the vacated ones hid, given the continued colour
   float spacing = 0;      // of the support (world units)
   float ringCoverage = 0; // median coverage at the ring's Gaussians
+  size_t copied = 0;      // healed Gaussians that continue the texture (HealSettings::continueTexture)
+  Vec3f textureOffset{0.0f};     // ... from this offset,
+  float textureCorrelation = 0;  // ... whose correlation with the hole's surroundings this is
   std::vector<HealedGaussian> healed;
 };
 

@@ -35,12 +35,22 @@ void addGaussian(GaussianScene& s, const Vec3f& p, const Vec3f& n, const Rgb& di
   s.opacityLogit[i] = logit(kOpacity);
 }
 
+// The trained floor's colour at p: shadow-dark near the ball's contact at the origin.
+Rgb shadowedFloor(const Vec3f& p) { return length(p) < kShadowRadius ? kShadowColour : kFloorColour; }
+
+// A checker of 0.2 m squares, light and dark, without a shadow; the origin lies inside a square.
+const Rgb kLightSquare(0.8f, 0.75f, 0.7f), kDarkSquare(0.1f, 0.1f, 0.12f);
+Rgb checkerSquare(const Vec3f& p) {
+  const int64_t u = int64_t(std::floor((p.x + 0.07f) / 0.2f)), v = int64_t(std::floor((p.z + 0.07f) / 0.2f));
+  return (u + v) % 2 == 0 ? kLightSquare : kDarkSquare;
+}
+
 // The floor y = 0 over [-1, 1]^2: flat discs (thin along y) every 5 cm, none within the hole
-// around the origin and shadow-dark ones around it, as training leaves the floor under a ball.
+// around the origin, coloured by `floorColour`, as training leaves the floor under a ball.
 // A ball of radius 0.3 at `ballCentre` (resting on the floor at the origin when (0, 0.3, 0)).
 // With `bareBelow` > 0 the ball has no Gaussians that low above its lowest point, as training
 // leaves a ball's underside that no view saw.
-GaussianScene floorAndBall(const Vec3f& ballCentre, float bareBelow = 0) {
+GaussianScene floorAndBall(const Vec3f& ballCentre, float bareBelow = 0, Rgb (*floorColour)(const Vec3f&) = shadowedFloor) {
   GaussianScene s;
   const Vec3f flat(std::log(kSigma), std::log(0.004f), std::log(kSigma));
   for (int x = -20; x <= 20; ++x)
@@ -48,7 +58,7 @@ GaussianScene floorAndBall(const Vec3f& ballCentre, float bareBelow = 0) {
       const Vec3f p(float(x) * kSpacing, 0, float(z) * kSpacing);
       const float r = length(p);
       if (r < kHoleRadius) continue;
-      addGaussian(s, p, {0, 1, 0}, r < kShadowRadius ? kShadowColour : kFloorColour, kFloorRoughness, kFloorF0, flat);
+      addGaussian(s, p, {0, 1, 0}, floorColour(p), kFloorRoughness, kFloorF0, flat);
     }
   const Vec3f round(std::log(0.03f));
   for (int a = 0; a < 24; ++a)
@@ -175,6 +185,33 @@ TEST(HealUncovered, WithoutRecolouringTheTouchedFloorKeepsItsColour) {
 // A selection sphere wider than the ball takes a disc of floor along with it (radius 0.34
 // here, twice the plane fit's reach of 4 spacings): the middle of the hole has no floor within
 // reach and is filled all the same, by a wider fit.
+// On a checker, the hole continues the squares: each healed Gaussian takes the colour of the
+// square it lies in, where the ring's mean would give every one the same grey.
+TEST(HealUncovered, ContinuesACheckerIntoTheHole) {
+  const std::string sphere = R"({"sphere": {"center": [0, 0.3, 0], "radius": 0.31}})";
+  auto healedOnTheirSquare = [&](bool continueTexture, HealReport* report) {
+    Edited e = editWith(floorAndBall(kResting, 0, checkerSquare), sphere, kMoveAway);
+    HealSettings settings;
+    settings.continueTexture = continueTexture;
+    *report = healUncovered(e.before, e.after, e.provenance, settings);
+    size_t onTheirSquare = 0;
+    for (const HealedGaussian& h : report->healed) {
+      const Rgb want = checkerSquare(e.after.position[h.index]);
+      onTheirSquare += length(e.after.diffuse[h.index] - want) < 0.1f;
+    }
+    return onTheirSquare;
+  };
+  HealReport copied, mean;
+  const size_t withTexture = healedOnTheirSquare(true, &copied);
+  const size_t withMean = healedOnTheirSquare(false, &mean);
+  ASSERT_GT(copied.healed.size(), 10u);
+  EXPECT_EQ(copied.copied, copied.healed.size());
+  EXPECT_GT(copied.textureCorrelation, 0.4f);
+  EXPECT_GE(double(withTexture), 0.8 * double(copied.healed.size()));
+  EXPECT_EQ(mean.copied, 0u);
+  EXPECT_EQ(withMean, 0u);
+}
+
 TEST(HealUncovered, FillsTheMiddleOfAHoleWiderThanThePlaneFit) {
   Edited e = edit(kResting, kMoveAway, 0.45f);
   const Vec3f open(0.7f, 0, 0.7f);

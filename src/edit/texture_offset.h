@@ -1,0 +1,44 @@
+// Exemplar continuation of a surface's texture into a hole: the one in-plane offset at which
+// the texture seen around the hole repeats elsewhere on the surface (a checker's period, a
+// tiled floor's), found by normalised cross-correlation on a raster of the plane.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+
+#include "math/vec.h"
+#include "scene/gaussians.h"
+
+namespace glint {
+
+struct TextureOffsetSettings {
+  // The band around the hole whose texture is matched, in raster cells (one cell = spacing).
+  int bandCells = 12;
+  // Offsets are searched up to this many hole widths away (and at most maxSearchCells).
+  float searchWidths = 2.0f;
+  int maxSearchCells = 96;
+  // An offset is used only where its correlation with the band reaches this: a uniform
+  // surface (noise alone) or a texture that does not repeat keeps the mean continuation.
+  float minCorrelation = 0.4f;
+  // Fractions of the shifted hole and band that must land on seen surface.
+  float minSeenHole = 0.95f;
+  float minSeenBand = 0.9f;
+};
+
+struct TextureOffset {
+  Vec3f offset;              // world-space, in the plane
+  float correlation = 0;     // of the band with its shifted copies (the lesser), in [-1, 1]
+};
+
+// `hole`: points of the plane to fill (their normals all close to `normal`); `seen`: Gaussians
+// of the surface that training views saw (only those within `slab` of the plane through the
+// hole's centroid and facing along `normal` are used). Rasterises the plane at `spacing`
+// and returns the offset at which the shifted band, and the band shifted by its opposite, best
+// correlate (log luminance, the lesser of the two) with the band; nothing when none reaches
+// minCorrelation. Deterministic.
+std::optional<TextureOffset> findTextureOffset(const GaussianScene& scene, std::span<const uint32_t> seen,
+                                               std::span<const Vec3f> hole, const Vec3f& normal, float spacing,
+                                               float slab, const TextureOffsetSettings& settings = {});
+
+}  // namespace glint
