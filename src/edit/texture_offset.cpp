@@ -96,6 +96,8 @@ std::optional<TextureOffset> findTextureOffset(const GaussianScene& scene, std::
     for (int u = uBase; u < uBase + nu; ++u)
       if (inBand[at(u, v)]) bandCells.push_back({u, v});
   if (bandCells.size() < 16) return std::nullopt;
+  const double offsets = double(2 * search + 1) * double(2 * search + 1);
+  if (double(holeCells.size() + bandCells.size()) * offsets > settings.maxWork) return std::nullopt;
 
   // Every offset within the search: the correlation where enough of the shifted hole and band
   // land on seen surface, else none (-2).

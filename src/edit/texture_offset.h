@@ -24,6 +24,11 @@ struct TextureOffsetSettings {
   // Fractions of the shifted hole and band that must land on seen surface.
   float minSeenHole = 0.95f;
   float minSeenBand = 0.9f;
+  // The search visits (hole + band cells) x offsets cells, which grows as the fourth power of
+  // the hole's width; past this many it is not made and the hole keeps the mean continuation
+  // (the viewer heals on every edit). builtin:spheres' hole, about 24 cells wide, costs some
+  // 3e7, and its whole healing takes 0.06 s on 2 cores.
+  double maxWork = 5e8;
 };
 
 struct TextureOffset {

@@ -75,6 +75,15 @@ TEST(TextureOffset, ContinuesACheckerWithASquareOfTheSameColour) {
   EXPECT_GE(length(found->offset), 2 * kHoleRadius);  // off the hole itself
 }
 
+TEST(TextureOffset, GivesUpOnASearchBeyondItsBudget) {
+  const GaussianScene s = floor([](float x, float z) { return lightSquare(x, z) ? kLight : kDark; });
+  TextureOffsetSettings settings;
+  settings.maxWork = 1e5;  // the checker's search visits about 8e5 cells
+  EXPECT_FALSE(findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing, settings).has_value());
+  settings.maxWork = 1e8;
+  EXPECT_TRUE(findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing, settings).has_value());
+}
+
 TEST(TextureOffset, FindsNoneOnAUniformOrNoisySurface) {
   Rng rng(3);
   const GaussianScene noisy =
