@@ -412,7 +412,10 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     rays.fetch_add(raysTraced, std::memory_order_relaxed);
     progress.advance();
   });
-  if (cancelled()) throw RelightCancelled();
+  if (cancelled()) {
+    progress.setStatus("cancelled");  // the bar ends short of 100%: say why
+    throw RelightCancelled();
+  }
   if (settings.filterRadius > 0 || spacing > 0) {
     ratios = filteredRatios(afterScene, receivers, reached, traced, normals, ratios, settings, spacing);
     changed = size_t(std::count_if(ratios.begin(), ratios.end(), [](const Rgb& r) { return r != Rgb(1.0f); }));

@@ -7,8 +7,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 #include <numeric>
+#include <string>
 #include <utility>
 
 #include "math/frame.h"
@@ -213,8 +215,12 @@ TEST(DifferentialRelight, CancelFlagStopsTheRelighting) {
   settings.cancel = &cancel;
   EXPECT_EQ(relightRatios(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings), plain);
   cancel = true;
+  // Its progress bar ends short of 100% and says why (unless GLINT_QUIET silences it).
+  ::testing::internal::CaptureStderr();
   EXPECT_THROW(relightRatios(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings),
                RelightCancelled);
+  const std::string bar = ::testing::internal::GetCapturedStderr();
+  if (!std::getenv("GLINT_QUIET")) EXPECT_NE(bar.find("| cancelled"), std::string::npos) << bar;
 }
 
 // A 9.6 m ceiling at z = 1.5 facing down, emitting `radiance`.
