@@ -102,11 +102,13 @@ std::optional<TextureOffset> findTextureOffset(const GaussianScene& scene, std::
   // Every offset within the search: the correlation where enough of the shifted hole and band
   // land on seen surface, else none (-2).
   const int side = 2 * search + 1;
+  const int minOffset = std::max(1, int(std::ceil(settings.minOffsetWidths * float(width))));
+  const int minOffsetSquared = minOffset * minOffset;
   std::vector<float> correlation(size_t(side) * size_t(side), -2.0f);
   parallelFor(int64_t(side), 1, [&](int64_t row) {
     const int dv = int(row) - search;
     for (int du = -search; du <= search; ++du) {
-      if (du == 0 && dv == 0) continue;
+      if (du * du + dv * dv < minOffsetSquared) continue;
       const size_t allowedMisses = size_t(double(holeCells.size()) * (1.0 - double(settings.minSeenHole)));
       size_t misses = 0;
       for (const auto& [u, v] : holeCells)

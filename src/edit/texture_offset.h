@@ -18,6 +18,9 @@ struct TextureOffsetSettings {
   // Offsets are searched up to this many hole widths away (and at most maxSearchCells).
   float searchWidths = 2.0f;
   int maxSearchCells = 96;
+  // Offsets shorter than this many hole widths are not searched (a copy from just beside
+  // the hole continues no period).
+  float minOffsetWidths = 1.0f;
   // An offset is used only where its correlation with the band reaches this: a uniform
   // surface (noise alone) or a texture that does not repeat keeps the mean continuation.
   float minCorrelation = 0.4f;

@@ -84,6 +84,18 @@ TEST(TextureOffset, GivesUpOnASearchBeyondItsBudget) {
   EXPECT_TRUE(findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing, settings).has_value());
 }
 
+TEST(TextureOffset, SearchesNoOffsetShorterThanAsked) {
+  const GaussianScene s = floor([](float x, float z) { return lightSquare(x, z) ? kLight : kDark; });
+  TextureOffsetSettings settings;
+  settings.minOffsetWidths = 3;  // the checker's period is under 3 hole widths
+  const auto found = findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing, settings);
+  if (found) {
+    EXPECT_GE(length(found->offset), 3 * 7 * kSpacing - 1e-4f);  // the hole is 7 cells wide
+  }
+  settings.minOffsetWidths = 10;  // beyond the search (2 widths): nothing to find
+  EXPECT_FALSE(findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing, settings).has_value());
+}
+
 TEST(TextureOffset, FindsNoneOnAUniformOrNoisySurface) {
   Rng rng(3);
   const GaussianScene noisy =
