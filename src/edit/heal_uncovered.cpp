@@ -74,6 +74,46 @@ bool nearestWeighted(const GaussianScene& scene, const CellGrid& grid, const Vec
   return true;
 }
 
+struct SurfacePoint {
+  Vec3f point, normal;
+};
+
+// The texture a hole continues: the offset found (edit/texture_offset.h) on the plane of the
+// hole's points that face their mean normal, and the sources, the seen Gaussians of that
+// plane around the hole shifted by the offset. No offset where none repeats the texture.
+struct HoleTexture {
+  std::optional<TextureOffset> offset;
+  Vec3f normal{0.0f};
+  std::vector<uint32_t> sources;
+};
+
+HoleTexture holeTexture(const GaussianScene& scene, std::span<const SurfacePoint> hole, std::span<const uint32_t> seen,
+                        float spacing, float slab, float reach, const TextureOffsetSettings& settings) {
+  HoleTexture texture;
+  Vec3f normalSum(0.0f);
+  for (const SurfacePoint& h : hole) normalSum += h.normal;
+  if (!(length(normalSum) > 0)) return texture;
+  texture.normal = normalize(normalSum);
+  std::vector<Vec3f> points;
+  for (const SurfacePoint& h : hole)
+    if (dot(h.normal, texture.normal) >= kSameFacing) points.push_back(h.point);
+  if (points.empty()) return texture;
+  texture.offset = findTextureOffset(scene, seen, points, texture.normal, spacing, slab, settings);
+  if (!texture.offset) return texture;
+  Vec3d sum(0.0);
+  for (const Vec3f& p : points) sum += Vec3d(p);
+  const Vec3f centre(sum * (1.0 / double(points.size())));
+  float radius = 0;
+  for (const Vec3f& p : points) radius = std::max(radius, length(p - centre));
+  const Vec3f shifted = centre + texture.offset->offset;
+  for (uint32_t j : seen)
+    if (length(scene.position[j] - shifted) <= radius + 4.0f * reach &&
+        std::abs(dot(scene.position[j] - centre, texture.normal)) <= slab &&
+        dot(normalize(scene.normal[j]), texture.normal) >= kSameFacing)
+      texture.sources.push_back(j);
+  return texture;
+}
+
 // A plane fitted to support Gaussians: their weighted centroid and mean normal.
 struct Plane {
   Vec3f point, normal;
@@ -297,22 +337,13 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
   // point copies the seen Gaussians at the point shifted by it. Elsewhere, and where that
   // finds no source, the hole takes the ring's mean. Either way relighting lights the copy
   // where it stands (render/healed_lighting.h), not where its source stands.
-  std::optional<TextureOffset> texture;
-  Vec3f textureNormal(0.0f);
-  std::vector<uint32_t> sources;
+  HoleTexture texture;
   if (settings.continueTexture) {
-    Vec3f normalSum(0.0f);
+    std::vector<SurfacePoint> hole;
     for (size_t k = 0; k < support.size(); ++k)
-      if (hidden[k]) normalSum += normalize(after.normal[support[k]]);
+      if (hidden[k]) hole.push_back({after.position[support[k]], normalize(after.normal[support[k]])});
     for (size_t k = 0; k < candidates.size(); ++k)
-      if (fill[k]) normalSum += candidates[k].normal;
-    if (length(normalSum) > 0) textureNormal = normalize(normalSum);
-    std::vector<Vec3f> holePoints;
-    for (size_t k = 0; k < support.size(); ++k)
-      if (hidden[k] && dot(normalize(after.normal[support[k]]), textureNormal) >= kSameFacing)
-        holePoints.push_back(after.position[support[k]]);
-    for (size_t k = 0; k < candidates.size(); ++k)
-      if (fill[k] && dot(candidates[k].normal, textureNormal) >= kSameFacing) holePoints.push_back(candidates[k].point);
+      if (fill[k]) hole.push_back({candidates[k].point, candidates[k].normal});
     // Seen: the surface left in place, less what the vacated Gaussians hid.
     std::vector<uint8_t> isHidden(after.size(), 0);
     for (size_t k = 0; k < support.size(); ++k)
@@ -320,32 +351,19 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
     std::vector<uint32_t> seen;
     for (uint32_t j : nearby)
       if (!isHidden[j]) seen.push_back(j);
-    if (!holePoints.empty())
-      texture = findTextureOffset(after, seen, holePoints, textureNormal, spacing, slab, settings.texture);
-    if (texture) {
-      // The sources: seen Gaussians of the plane around the hole shifted by the offset.
-      Vec3d sum(0.0);
-      for (const Vec3f& p : holePoints) sum += Vec3d(p);
-      const Vec3f holeCentre(sum * (1.0 / double(holePoints.size())));
-      float holeRadius = 0;
-      for (const Vec3f& p : holePoints) holeRadius = std::max(holeRadius, length(p - holeCentre));
-      const Vec3f shifted = holeCentre + texture->offset;
-      for (uint32_t j : seen)
-        if (length(after.position[j] - shifted) <= holeRadius + 4.0f * reach &&
-            std::abs(dot(after.position[j] - holeCentre, textureNormal)) <= slab &&
-            dot(normalize(after.normal[j]), textureNormal) >= kSameFacing)
-          sources.push_back(j);
-      report.textureOffset = texture->offset;
-      report.textureCorrelation = texture->correlation;
+    texture = holeTexture(after, hole, seen, spacing, slab, reach, settings.texture);
+    if (texture.offset) {
+      report.textureOffset = texture.offset->offset;
+      report.textureCorrelation = texture.offset->correlation;
     }
   }
   const float copyReach = 2.0f * spacing;
-  const CellGrid sourceGrid(after, sources, copyReach);
+  const CellGrid sourceGrid(after, texture.sources, copyReach);
   // The copyFrom nearest sources to p shifted by the texture's offset (within copyReach),
   // weighted by inverse distance; false without an offset or a source there.
   auto copyTexture = [&](const Vec3f& p, const Vec3f& n, HealedGaussian& h) {
-    if (!texture || dot(n, textureNormal) < kSameFacing) return false;
-    return nearestWeighted(after, sourceGrid, p + texture->offset, copyReach, settings.copyFrom, spacing, h);
+    if (!texture.offset || dot(n, texture.normal) < kSameFacing) return false;
+    return nearestWeighted(after, sourceGrid, p + texture.offset->offset, copyReach, settings.copyFrom, spacing, h);
   };
   std::atomic<size_t> copied = 0;
   auto continueHole = [&](const Vec3f& p, const Vec3f& n, HealedGaussian& h) {
