@@ -35,7 +35,8 @@ class RelightFlags {
 // regions and receivers from the provenance of the edit, tracing the scene before (with
 // beforeTracer) and after (with afterTracer, which must be refitted afterwards). Then the
 // Gaussians that healing added or recoloured (`healed`, empty without healing) take their
-// relit surroundings' colour, lit where they stand (render/healed_lighting.h). Returns the line that says what it did and how long it took.
+// relit surroundings' colour, lit where they stand (render/healed_lighting.h). Returns the
+// line that says what it did and how long it took.
 std::string relightAfterEdit(const GaussianTracer& beforeTracer, const GaussianScene& before,
                              const GaussianTracer& afterTracer, GaussianScene& after, const EditProvenance& provenance,
                              const HealReport& healed, const RelightSettings& settings);

@@ -51,9 +51,6 @@ float rayAlpha(const GaussianScene& scene, size_t i, const Vec3f& p, const Vec3f
   return scene.opacity(i) * std::exp(-0.5f * distanceSquared);
 }
 
-// Normals at least this close (cosine) face the same way: one surface for the texture.
-constexpr float kSameFacing = 0.9f;
-
 // Sets h's neighbours to the `count` Gaussians of `grid` nearest p within `radius` (by
 // distance, then index), weighted by inverse distance (at most 10 / spacing) and normalised;
 // false when there are none.
@@ -74,8 +71,12 @@ bool nearestWeighted(const GaussianScene& scene, const CellGrid& grid, const Vec
   return true;
 }
 
+// A point of a surface and its unit normal: a plane fitted to support Gaussians (their
+// weighted centroid and mean normal) or a point of the uncovered surface; invalid where none
+// was found.
 struct SurfacePoint {
   Vec3f point, normal;
+  bool valid = false;
 };
 
 // The texture a hole continues: the offset found (edit/texture_offset.h) on the plane of the
@@ -96,7 +97,7 @@ HoleTexture holeTexture(const GaussianScene& scene, std::span<const SurfacePoint
   texture.normal = normalize(normalSum);
   std::vector<Vec3f> points;
   for (const SurfacePoint& h : hole)
-    if (dot(h.normal, texture.normal) >= kSameFacing) points.push_back(h.point);
+    if (dot(h.normal, texture.normal) >= kSameSurfaceCosine) points.push_back(h.point);
   if (points.empty()) return texture;
   texture.offset = findTextureOffset(scene, seen, points, texture.normal, spacing, slab, settings);
   if (!texture.offset) return texture;
@@ -109,16 +110,10 @@ HoleTexture holeTexture(const GaussianScene& scene, std::span<const SurfacePoint
   for (uint32_t j : seen)
     if (length(scene.position[j] - shifted) <= radius + 4.0f * reach &&
         std::abs(dot(scene.position[j] - centre, texture.normal)) <= slab &&
-        dot(normalize(scene.normal[j]), texture.normal) >= kSameFacing)
+        dot(normalize(scene.normal[j]), texture.normal) >= kSameSurfaceCosine)
       texture.sources.push_back(j);
   return texture;
 }
-
-// A plane fitted to support Gaussians: their weighted centroid and mean normal.
-struct Plane {
-  Vec3f point, normal;
-  bool valid = false;
-};
 
 }  // namespace
 
@@ -214,10 +209,6 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
 
   // Surface points under the vacated Gaussians: each projected onto the plane fitted to the
   // support within reach (weights: opacity times a smooth fall-off with distance).
-  struct Candidate {
-    Vec3f point, normal;
-    bool valid = false;
-  };
   // A vacated Gaussian amid a wide hole (a disc of floor that the selection took along with
   // the object) has no support within reach: its fit widens, doubling up to widestFitSpacings.
   const float widestFit = std::max(settings.widestFitSpacings, settings.fitSpacings) * spacing;
@@ -242,21 +233,21 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
       });
       if (count >= settings.minSupport || fit * 2 > widestFit) break;
     }
-    if (count < settings.minSupport || !(weightSum > 0) || !(length(normalSum) > 0.5 * weightSum)) return Plane{};
-    Plane plane{Vec3f(pointSum * (1.0 / weightSum)), Vec3f(normalize(normalSum)), true};
+    if (count < settings.minSupport || !(weightSum > 0) || !(length(normalSum) > 0.5 * weightSum)) return SurfacePoint{};
+    SurfacePoint plane{Vec3f(pointSum * (1.0 / weightSum)), Vec3f(normalize(normalSum)), true};
     double residual = 0;
     grid().near(c, fit, [&](uint32_t j) {
       const float q = 1.0f - dot(after.position[j] - c, after.position[j] - c) / (fit * fit);
       const double h = dot(after.position[j] - plane.point, plane.normal);
       residual += double(after.opacity(j)) * double(q * q) * h * h;
     });
-    if (std::sqrt(residual / weightSum) > settings.maxResidualSpacings * spacing) return Plane{};
+    if (std::sqrt(residual / weightSum) > settings.maxResidualSpacings * spacing) return SurfacePoint{};
     return plane;
   };
-  std::vector<Candidate> projected(vacated.size());
+  std::vector<SurfacePoint> projected(vacated.size());
   parallelFor(int64_t(vacated.size()), 64, [&](int64_t v) {
     const Vec3f c = before.position[vacated[size_t(v)]];
-    const Plane plane = fitAt(c);
+    const SurfacePoint plane = fitAt(c);
     if (!plane.valid) return;
     // The vacated Gaussian must have stood on the surface's front side, within reach of it,
     // and the surface must face the vacated Gaussians' centre: what an object hid faces it
@@ -279,32 +270,32 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
     auto axis = [&](float x) { return int64_t(std::floor(x / spacing)); };
     return std::make_tuple(axis(p.x), axis(p.y), axis(p.z));
   };
-  std::map<std::tuple<int64_t, int64_t, int64_t>, Candidate> lattice;  // the projection's normal
-  for (const Candidate& c : projected) {
+  std::map<std::tuple<int64_t, int64_t, int64_t>, SurfacePoint> lattice;  // the projection's normal
+  for (const SurfacePoint& c : projected) {
     if (!c.valid) continue;
     const Framef frame = Framef::fromNormal(c.normal);
     for (int a = -steps; a <= steps; ++a)
       for (int b = -steps; b <= steps; ++b) {
         if (a * a + b * b > steps * steps) continue;
         const Vec3f p = c.point + (frame.s * float(a) + frame.t * float(b)) * spacing;
-        lattice.emplace(cellOf(p), Candidate{p, c.normal, false});
+        lattice.emplace(cellOf(p), SurfacePoint{p, c.normal, false});
       }
   }
-  std::vector<Candidate> onSurface;
+  std::vector<SurfacePoint> onSurface;
   for (const auto& [cell, c] : lattice) onSurface.push_back(c);
   parallelFor(int64_t(onSurface.size()), 16, [&](int64_t k) {
-    Candidate& c = onSurface[size_t(k)];
-    const Plane plane = fitAt(c.point);
+    SurfacePoint& c = onSurface[size_t(k)];
+    const SurfacePoint plane = fitAt(c.point);
     // The same surface, facing the same way (an object's leftover underside faces down).
     if (!plane.valid || dot(plane.normal, c.normal) < 0.9f) return;
     const float height = dot(c.point - plane.point, plane.normal);
     if (std::abs(height) > settings.maxResidualSpacings * spacing) return;
     c = {c.point - plane.normal * height, plane.normal, true};
   });
-  std::map<std::tuple<int64_t, int64_t, int64_t>, Candidate> firstInCell;
-  for (const Candidate& c : onSurface)
+  std::map<std::tuple<int64_t, int64_t, int64_t>, SurfacePoint> firstInCell;
+  for (const SurfacePoint& c : onSurface)
     if (c.valid) firstInCell.emplace(cellOf(c.point), c);
-  std::vector<Candidate> candidates;
+  std::vector<SurfacePoint> candidates;
   for (const auto& [cell, c] : firstInCell) candidates.push_back(c);
   report.candidates = candidates.size();
 
@@ -328,7 +319,7 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
   }
   std::vector<uint8_t> fill(candidates.size(), 0);
   parallelFor(int64_t(candidates.size()), 16, [&](int64_t k) {
-    const Candidate& candidate = candidates[size_t(k)];
+    const SurfacePoint& candidate = candidates[size_t(k)];
     fill[size_t(k)] = coverage(candidate.point, candidate.normal) < settings.fillBelow * report.ringCoverage;
   });
 
@@ -341,9 +332,9 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
   if (settings.continueTexture) {
     std::vector<SurfacePoint> hole;
     for (size_t k = 0; k < support.size(); ++k)
-      if (hidden[k]) hole.push_back({after.position[support[k]], normalize(after.normal[support[k]])});
+      if (hidden[k]) hole.push_back({after.position[support[k]], normalize(after.normal[support[k]]), true});
     for (size_t k = 0; k < candidates.size(); ++k)
-      if (fill[k]) hole.push_back({candidates[k].point, candidates[k].normal});
+      if (fill[k]) hole.push_back(candidates[k]);
     // Seen: the surface left in place, less what the vacated Gaussians hid.
     std::vector<uint8_t> isHidden(after.size(), 0);
     for (size_t k = 0; k < support.size(); ++k)
@@ -362,7 +353,7 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
   // The copyFrom nearest sources to p shifted by the texture's offset (within copyReach),
   // weighted by inverse distance; false without an offset or a source there.
   auto copyTexture = [&](const Vec3f& p, const Vec3f& n, HealedGaussian& h) {
-    if (!texture.offset || dot(n, texture.normal) < kSameFacing) return false;
+    if (!texture.offset || dot(n, texture.normal) < kSameSurfaceCosine) return false;
     return nearestWeighted(after, sourceGrid, p + texture.offset->offset, copyReach, settings.copyFrom, spacing, h);
   };
   std::atomic<size_t> copied = 0;
@@ -403,7 +394,7 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
 
   for (size_t k = 0; k < candidates.size() && report.added < settings.maxAdded; ++k) {
     if (!fill[k]) continue;
-    const Candidate& candidate = candidates[k];
+    const SurfacePoint& candidate = candidates[k];
     HealedGaussian h = std::move(made[k]);
     const uint32_t shape = h.neighbours.front();  // the nearest
     const size_t index = after.size();

@@ -50,7 +50,7 @@ std::optional<TextureOffset> findTextureOffset(const GaussianScene& scene, std::
   std::vector<double> value(size_t(nu) * size_t(nv), 0.0), weight(value.size(), 0.0);
   for (uint32_t i : seen) {
     const Vec3f d = scene.position[i] - origin;
-    if (std::abs(dot(d, normal)) > slab || dot(normalize(scene.normal[i]), normal) < 0.9f) continue;
+    if (std::abs(dot(d, normal)) > slab || dot(normalize(scene.normal[i]), normal) < kSameSurfaceCosine) continue;
     const Vec3f axes = scene.scale(i);
     const float widest = std::max({axes.x, axes.y, axes.z});
     const float second = axes.x + axes.y + axes.z - widest - std::min({axes.x, axes.y, axes.z});
@@ -104,12 +104,12 @@ std::optional<TextureOffset> findTextureOffset(const GaussianScene& scene, std::
   const int side = 2 * search + 1;
   const int minOffset = std::max(1, int(std::ceil(settings.minOffsetWidths * float(width))));
   const int minOffsetSquared = minOffset * minOffset;
+  const size_t allowedMisses = size_t(double(holeCells.size()) * (1.0 - double(settings.minSeenHole)));
   std::vector<float> correlation(size_t(side) * size_t(side), -2.0f);
   parallelFor(int64_t(side), 1, [&](int64_t row) {
     const int dv = int(row) - search;
     for (int du = -search; du <= search; ++du) {
       if (du * du + dv * dv < minOffsetSquared) continue;
-      const size_t allowedMisses = size_t(double(holeCells.size()) * (1.0 - double(settings.minSeenHole)));
       size_t misses = 0;
       for (const auto& [u, v] : holeCells)
         if (!known[at(u + du, v + dv)] && ++misses > allowedMisses) break;

@@ -12,6 +12,9 @@
 
 namespace glint {
 
+// Normals at least this close (cosine) face the same way: one surface for the texture.
+inline constexpr float kSameSurfaceCosine = 0.9f;
+
 struct TextureOffsetSettings {
   // The band around the hole whose texture is matched, in raster cells (one cell = spacing).
   int bandCells = 12;

@@ -39,6 +39,16 @@ Rgb incomingRadiance(const GaussianTracer& tracer, const Vec3f& p, const Vec3f& 
   return light.first.diffuse + light.specular;
 }
 
+void addCosineRadiance(const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const PathSettings& path,
+                       uint64_t stream, RadianceKeys keys, int begin, int end, Rgb* sum, uint64_t* segments) {
+  const Framef frame = Framef::fromNormal(n);
+  for (int k = begin; k < end; ++k) {
+    keys.sample = uint32_t(k);
+    const Vec3f w = normalize(frame.toWorld(sampleCosineHemisphere(stratifiedSample2(stream, uint32_t(k)))));
+    *sum += incomingRadiance(tracer, p, n, w, path, keys, segments);
+  }
+}
+
 namespace {
 
 // The cone of directions from a receiver toward one changed region or light region.
@@ -372,14 +382,10 @@ std::vector<Rgb> relightRatios(const GaussianTracer& before, const GaussianTrace
     // (Aiming half of these rays at the lights too measured worse on the Blender
     // spheres_room: the cosine rays left for the light bounced off walls grew noisier; README,
     // "Edits that move shadows".)
-    const Framef frame = Framef::fromNormal(n);
     const uint64_t hemisphere = hashKeys({settings.seed, g, 1});
     Rgb sum(0.0f);
     auto addRays = [&](int begin, int end) {
-      for (int k = begin; k < end; ++k)
-        sum += radiance(before, p, n,
-                        normalize(frame.toWorld(sampleCosineHemisphere(stratifiedSample2(hemisphere, uint32_t(k))))),
-                        g, 1, uint32_t(k), &raysTraced);
+      addCosineRadiance(before, p, n, path, hemisphere, {settings.seed, g, 1, 0}, begin, end, &sum, &raysTraced);
     };
     const int quick = std::min(settings.quickRays, settings.hemisphereRays);
     addRays(0, quick);

@@ -129,6 +129,13 @@ struct RadianceKeys {
 Rgb incomingRadiance(const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const Vec3f& w,
                      const PathSettings& path, const RadianceKeys& keys, uint64_t* segments);
 
+// Adds to *sum the incomingRadiance of directions begin..end-1 of the stratified stream
+// `stream`, cosine-distributed about the unit normal n (ray k's keys: `keys` with sample k),
+// and the segments traced to *segments. pi / count times the sum over 0..count is the
+// irradiance at p.
+void addCosineRadiance(const GaussianTracer& tracer, const Vec3f& p, const Vec3f& n, const PathSettings& path,
+                       uint64_t stream, RadianceKeys keys, int begin, int end, Rgb* sum, uint64_t* segments);
+
 // Thrown by relightRatios when RelightSettings::cancel turned true.
 struct RelightCancelled : std::exception {
   const char* what() const noexcept override { return "relighting cancelled"; }

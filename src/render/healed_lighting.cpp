@@ -8,8 +8,6 @@
 #include <unordered_map>
 
 #include "core/parallel.h"
-#include "math/frame.h"
-#include "math/owen_sobol.h"
 #include "math/rng.h"
 #include "math/sampling.h"
 
@@ -46,13 +44,9 @@ std::vector<float> healedLightFactors(const GaussianTracer& after, const Gaussia
     const float normalLength = length(afterScene.normal[g]);
     if (!(normalLength >= settings.minNormalLength)) return;
     const Vec3f n = afterScene.normal[g] / normalLength, p = afterScene.position[g];
-    const Framef frame = Framef::fromNormal(n);
     Rgb sum(0.0f);
     uint64_t segments = 0;
-    for (int k = 0; k < count; ++k) {
-      const Vec3f w = normalize(frame.toWorld(sampleCosineHemisphere(stratifiedSample2(stream, uint32_t(k)))));
-      sum += incomingRadiance(after, p, n, w, path, {settings.seed, 0, 2, uint32_t(k)}, &segments);
-    }
+    addCosineRadiance(after, p, n, path, stream, {settings.seed, 0, 2, 0}, 0, count, &sum, &segments);
     irradiance[size_t(i)] = luminance(sum) * (kPi / float(count));
     traced.fetch_add(segments, std::memory_order_relaxed);
   });

@@ -220,7 +220,9 @@ TEST(DifferentialRelight, CancelFlagStopsTheRelighting) {
   EXPECT_THROW(relightRatios(*beforeTracer, *afterTracer, after.scene, after.floor, regions, settings),
                RelightCancelled);
   const std::string bar = ::testing::internal::GetCapturedStderr();
-  if (!std::getenv("GLINT_QUIET")) EXPECT_NE(bar.find("| cancelled"), std::string::npos) << bar;
+  if (!std::getenv("GLINT_QUIET")) {
+    EXPECT_NE(bar.find("| cancelled"), std::string::npos) << bar;
+  }
 }
 
 // A 9.6 m ceiling at z = 1.5 facing down, emitting `radiance`.
