@@ -6,7 +6,8 @@
 
 namespace glint {
 
-// Throws Error naming `output` when it exists and `force` is false.
+// Throws Error naming `output` when it exists and `force` is false, or when it is not a
+// regular file (checkReplaceableOutput), whatever `force` says.
 void refuseExistingOutput(const std::string& output, bool force);
 
 }  // namespace glint

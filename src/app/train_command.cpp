@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "app/commands.h"
 #include "app/dataset_flags.h"
@@ -18,6 +19,7 @@
 #include "app/viewer/viewer_setup.h"
 #include "core/cluster.h"
 #include "core/error.h"
+#include "core/folder_lock.h"
 #include "core/parallel.h"
 #include "core/progress.h"
 #include "train/run_folder.h"
@@ -234,6 +236,16 @@ class TrainPrinter : public TrainingObserver {
 
 void runTrain(const TrainOptions& o, const CLI::App& cmd) {
   const RunFolder run(o.output);
+  if (fs::exists(run.root()) && !fs::is_directory(run.root()))
+    throw Error(run.root().string(), "exists and is not a folder");
+  const bool folderExisted = fs::exists(run.root());
+  if (o.session.resume && !run.hasConfig())
+    throw Error(run.root().string(), "has no config.json: not a training run to resume");
+  if (!o.session.resume && cluster::isRoot()) run.checkCanCreate(o.force);  // before the lock file goes in
+  // One writer per run folder: a second `train` (or a viewer saving into it) is refused with
+  // the holder's PID. In an MPI job rank 0 alone writes, so it alone locks.
+  std::optional<FolderLock> lock;
+  if (cluster::isRoot()) lock.emplace(run.root(), "glint train");
   TrainConfig config;
   if (o.session.resume) {
     if (!run.hasConfig()) throw Error(run.root().string(), "has no config.json: not a training run to resume");
@@ -254,8 +266,8 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
   bool undoFailedStart = false, madeFolder = false;
   if (!o.session.resume) {
     config = newRunConfig(o, cmd);
-    madeFolder = !fs::exists(run.root());
-    undoFailedStart = madeFolder || (fs::is_directory(run.root()) && fs::is_empty(run.root())) ||
+    madeFolder = !folderExisted;
+    undoFailedStart = madeFolder || (fs::is_directory(run.root()) && isEmptyButForLock(run.root())) ||
                       run.isUnfinishedStart();
     if (run.isUnfinishedStart())
       std::fprintf(stderr, "glint train: %s holds a start that never saved a checkpoint; starting afresh (its "

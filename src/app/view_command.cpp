@@ -44,6 +44,7 @@ void runView(const ViewOptions& o) {
   fs::path opened = fs::is_directory(o.scene) ? fs::path(o.scene) : fs::absolute(o.scene).parent_path();
   fs::path output = opened / kViewerFolderName;
   ViewerOptions options = makeViewerOptions(o.viewer, dataset, source.scene, output);
+  options.lockFolder = fs::is_directory(o.scene) ? opened : output;
   options.maxGaussians = o.maxGaussians;
   options.path = source.settings.renderPath();  // the page starts at the run's render bounces
   if (o.relight.on()) options.relight = o.relight.settings(source.settings.path());

@@ -3,12 +3,16 @@
 
 #include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <mutex>
 #include <new>
 #include <stdexcept>
 #include <utility>
+
+#include "core/input_file.h"
 
 namespace glint {
 
@@ -56,6 +60,12 @@ std::string describeUnexpectedException(const std::exception& e) {
   // taken from a file or flag, not a programming error the user could act on otherwise.
   bool allocation = dynamic_cast<const std::bad_alloc*>(&e) != nullptr ||
                     dynamic_cast<const std::length_error*>(&e) != nullptr;
+  // The standard library's file errors quote whole paths (a hostile name can be megabytes).
+  if (const auto* file = dynamic_cast<const std::filesystem::filesystem_error*>(&e)) {
+    const std::string what = file->code().value() == ENAMETOOLONG ? "the name is too long for the file system"
+                                                                   : file->code().message();
+    return quotedPath(file->path1()) + ": " + what + context;
+  }
   if (!allocation) return e.what() + (context.empty() ? "" : " (" + context.substr(1) + ")");
   char memory[64];
   std::snprintf(memory, sizeof(memory), "%.1f GiB", physicalMemoryGiB());

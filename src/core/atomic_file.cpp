@@ -2,6 +2,7 @@
 #include "core/atomic_file.h"
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -16,6 +17,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace glint {
 
@@ -104,8 +106,26 @@ void removeStaleTemporaries(const fs::path& folder) {
 
 }  // namespace
 
+void checkReplaceableOutput(const fs::path& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) {
+    if (errno == ENOENT || errno == ENOTDIR) return;  // nothing there to lose
+    throw Error(quotedPath(path), std::string("cannot be written: ") + std::strerror(errno));
+  }
+  if (S_ISREG(st.st_mode)) return;
+  const char* kind = S_ISLNK(st.st_mode)                        ? "a symbolic link"
+                     : S_ISDIR(st.st_mode)                      ? "a folder"
+                     : S_ISCHR(st.st_mode) || S_ISBLK(st.st_mode) ? "a device"
+                     : S_ISFIFO(st.st_mode)                     ? "a FIFO (named pipe)"
+                                                                : "not a regular file";
+  throw Error(quotedPath(path), std::string("is ") + kind +
+                                    "; Glint replaces regular files only, even with --force: remove it or choose "
+                                    "another name");
+}
+
 void writeAtomically(const fs::path& path, const std::function<void(const std::string&)>& write) {
   static std::atomic<int> counter{0};
+  checkReplaceableOutput(path);
   if (path.has_parent_path()) {
     std::error_code ec;
     fs::create_directories(path.parent_path(), ec);
@@ -139,12 +159,6 @@ void writeTextAtomically(const fs::path& path, const std::string& contents) {
   });
 }
 
-std::string readTextFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path.string(), fs::exists(path) ? "cannot open for reading" : "file not found");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return buffer.str();
-}
+std::string readTextFile(const fs::path& path) { return readInputFile(path, kMaxTextModelFileBytes); }
 
 }  // namespace glint

@@ -18,7 +18,7 @@ std::string printableText(std::string_view text, size_t maxLength) {
       out += kHex[c & 15];
     }
   }
-  if (shown < text.size()) out += "...";
+  if (shown < text.size()) out += "... (" + std::to_string(text.size()) + " bytes)";
   return out;
 }
 

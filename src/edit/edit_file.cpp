@@ -67,7 +67,7 @@ class Parser {
     auto version = j.find(kVersionKey);
     if (version == j.end()) fail("", "missing \"glint_edits\": 1 (the edit file version)");
     if (!version->is_number_integer() || version->get<long long>() != EditDocument::kVersion)
-      fail(kVersionKey, "unsupported version " + version->dump() + " (this Glint reads version 1)");
+      fail(kVersionKey, "unsupported version " + printableText(version->dump()) + " (this Glint reads version 1)");
 
     EditDocument doc;
     doc.source = source_;
@@ -212,7 +212,7 @@ class Parser {
       bool known = false;
       for (Attribute a : {Attribute::F0, Attribute::Roughness, Attribute::Diffuse, Attribute::Metalness})
         if (name.is_string() && name.get<std::string>() == attributeName(a)) filter.attribute = a, known = true;
-      if (!known) fail(at(here, "attribute"), "unknown attribute " + name.dump() + " (f0, roughness, diffuse or metalness)");
+      if (!known) fail(at(here, "attribute"), "unknown attribute " + printableText(name.dump()) + " (f0, roughness, diffuse or metalness)");
       Vec2f range = vec2(required(f, here, "range"), at(here, "range"));
       if (range.x > range.y) fail(at(here, "range"), "lo must not exceed hi");
       filter.lo = range.x;
@@ -237,7 +237,7 @@ class Parser {
     Selection s;
     if (j.is_string()) {
       if (j.get<std::string>() != "everything")
-        fail(where, "unknown selection " + j.dump() + " (only \"everything\" may be written as a string)");
+        fail(where, "unknown selection " + printableText(j.dump()) + " (only \"everything\" may be written as a string)");
       s.kind = Selection::Kind::Everything;
       return s;
     }
@@ -379,7 +379,7 @@ class Parser {
                    Operation::Kind::F0, Operation::Kind::Diffuse})
       if (opName.is_string() && opName.get<std::string>() == operationName(k)) op.kind = k, known = true;
     if (!known)
-      fail(where, "unknown operation " + opName.dump() +
+      fail(where, "unknown operation " + printableText(opName.dump()) +
                       " (translate, rotate, scale, duplicate, delete, roughness, f0 or diffuse)");
     const json& selectionName = required(j, where, "selection");
     if (!selectionName.is_string()) fail(at(where, "selection"), "must be the name of a selection");

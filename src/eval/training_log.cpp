@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 
 namespace glint {
 
@@ -35,11 +36,7 @@ const std::vector<double>& TrainingLog::column(const std::string& name) const {
 }
 
 TrainingLog readTrainingLog(const std::filesystem::path& path, std::initializer_list<const char*> required) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path.string(), "cannot be opened for reading");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseTrainingLog(text.str(), path.string(), required);
+  return parseTrainingLog(readInputFile(path, kMaxTextModelFileBytes), path.string(), required);
 }
 
 TrainingLog parseTrainingLog(const std::string& text, const std::string& file,

@@ -122,9 +122,9 @@ std::vector<ColmapCamera> parseColmapCamerasBinary(const std::string& bytes, con
     const ColmapCameraModel* model = findColmapCameraModel(modelId);
     if (!model) in.fail("camera " + std::to_string(camera.id) + ": unknown camera model id " + std::to_string(modelId));
     camera.model = model->name;
-    // Clamped so that colmapCameraProblem reports the out-of-range size.
-    camera.width = int(std::min<uint64_t>(width, kMaxColmapImageSide + 1));
-    camera.height = int(std::min<uint64_t>(height, kMaxColmapImageSide + 1));
+    const std::string sizeProblem = colmapImageSizeProblem(std::to_string(width), std::to_string(height));
+    if (!sizeProblem.empty()) in.fail("camera " + std::to_string(camera.id) + ": " + sizeProblem);
+    camera.width = int(width), camera.height = int(height);
     camera.params.resize(size_t(model->numParams));
     for (double& p : camera.params) p = in.read<double>("a camera parameter");
     std::string problem = colmapCameraProblem(camera);

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <string_view>
+#include <utility>
 
 #include "core/printable_text.h"
 #include "io/colmap_camera_models.h"
@@ -22,6 +24,30 @@ std::string colmapImageNameProblem(const std::string& name) {
     if (part == "..")
       return "the image name \"" + printableText(name) + "\" leaves the image folder (\"..\")";
   return "";
+}
+
+namespace {
+
+// A decimal side in [1, kMaxColmapImageSide]: digits only, no sign, at most 7 of them.
+bool plausibleSide(std::string_view side) {
+  if (side.empty() || side.size() > 7 || side.find_first_not_of("0123456789") != std::string_view::npos) return false;
+  const long value = std::stol(std::string(side));
+  return value >= 1 && value <= kMaxColmapImageSide;
+}
+
+bool decimalInteger(std::string_view text) {
+  if (!text.empty() && (text[0] == '-' || text[0] == '+')) text.remove_prefix(1);
+  return !text.empty() && text.find_first_not_of("0123456789") == std::string_view::npos;
+}
+
+}  // namespace
+
+std::string colmapImageSizeProblem(std::string_view width, std::string_view height) {
+  for (const auto& [name, side] : {std::pair{"WIDTH", width}, std::pair{"HEIGHT", height}})
+    if (!decimalInteger(side)) return std::string(name) + " \"" + printableText(side) + "\" is not an integer";
+  if (plausibleSide(width) && plausibleSide(height)) return "";
+  return "image size " + printableText(width) + " x " + printableText(height) + " is not in [1, " +
+         std::to_string(kMaxColmapImageSide) + "] pixels";
 }
 
 std::string colmapCameraProblem(const ColmapCamera& camera) {

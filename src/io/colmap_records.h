@@ -18,6 +18,10 @@ constexpr double kColmapQuaternionTolerance = 1e-3;
 // The problem with a record, or "" when it is valid: known model, the model's number of
 // parameters, width and height in [1, kMaxColmapImageSide], finite parameters.
 std::string colmapCameraProblem(const ColmapCamera& camera);
+// The image size of a camera record as the file gives it (decimal text): "" when both sides
+// are whole numbers in [1, kMaxColmapImageSide], otherwise the problem, quoting the sides
+// exactly as written (a 2^63 or a -64 is named as such, not as a clamped value).
+std::string colmapImageSizeProblem(std::string_view width, std::string_view height);
 // Finite pose, quaternion norm within kColmapQuaternionTolerance of 1, a valid name.
 std::string colmapImageProblem(const ColmapImage& image);
 // An image name must be non-empty, relative, without "..", control characters, or

@@ -153,10 +153,11 @@ std::vector<ColmapCamera> parseColmapCamerasText(const std::string& text, const 
     ColmapCamera camera;
     camera.id = fields.integer<uint32_t>("CAMERA_ID");
     camera.model = std::string(fields.word("MODEL"));
-    int64_t width = fields.integer<int64_t>("WIDTH"), height = fields.integer<int64_t>("HEIGHT");
-    // Clamped so that colmapCameraProblem reports the out-of-range size.
-    camera.width = int(std::clamp<int64_t>(width, -1, kMaxColmapImageSide + 1));
-    camera.height = int(std::clamp<int64_t>(height, -1, kMaxColmapImageSide + 1));
+    const std::string_view width = fields.word("WIDTH"), height = fields.word("HEIGHT");
+    // Checked as text, so that the message quotes the size as written.
+    const std::string sizeProblem = colmapImageSizeProblem(width, height);
+    if (!sizeProblem.empty()) fields.fail("camera " + std::to_string(camera.id) + ": " + sizeProblem);
+    camera.width = std::stoi(std::string(width)), camera.height = std::stoi(std::string(height));
     while (!fields.atEnd()) {
       if (camera.params.size() >= 64) fields.fail("more than 64 camera parameters");
       camera.params.push_back(fields.number("camera parameter"));

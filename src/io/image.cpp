@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "io/image_codecs.h"
 
 namespace glint {
@@ -36,16 +37,14 @@ const char* imageFormatExtension(ImageFormat format) {
 
 Image readImageWithAlpha(const fs::path& path) {
   if (imageFormatFromPath(path) != ImageFormat::Png) return readImage(path);
-  if (!fs::is_regular_file(path)) return readImage(path);  // its message for a missing file
+  checkInputFile(path);
   return detail::readPng(path.string(), /*keepAlpha=*/true);
 }
 
 Image readImage(const fs::path& path) {
   ImageFormat format = imageFormatFromPath(path);
   std::string name = path.string();
-  std::error_code ec;
-  if (!fs::exists(path, ec)) throw Error(name, "file not found");
-  if (!fs::is_regular_file(path, ec)) throw Error(name, "not a regular file");
+  checkInputFile(path);
 
   Image image;
   switch (format) {

@@ -3,14 +3,14 @@
 
 #include <string>
 
-#include "core/atomic_file.h"
+#include "core/input_file.h"
 #include "core/error.h"
 #include "core/printable_text.h"
 
 namespace glint {
 
 nlohmann::json readJsonFile(const std::filesystem::path& path) {
-  std::string text = readTextFile(path);
+  std::string text = readInputFile(path, kMaxJsonFileBytes);
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {

@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/printable_text.h"
 #include "io/colmap_records.h"
 
@@ -284,7 +285,7 @@ NerfstudioTransforms parseNerfstudioTransforms(const std::string& text, const st
 }
 
 NerfstudioTransforms readNerfstudioTransforms(const std::filesystem::path& path) {
-  return parseNerfstudioTransforms(readTextFile(path), path.string());
+  return parseNerfstudioTransforms(readInputFile(path, kMaxJsonFileBytes), path.string());
 }
 
 std::string formatNerfstudioTransforms(const NerfstudioTransforms& transforms) {

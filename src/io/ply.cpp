@@ -13,6 +13,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/printable_text.h"
 #include "io/ply_ascii.h"
 #include "io/ply_header.h"
@@ -225,8 +226,10 @@ void readBinaryRows(DataReader& reader, const PlyElement& target, bool bigEndian
   bool fixedRows = !target.hasLists();
   uint64_t rowSize = fixedRows ? target.rowSize() : 0;
   if (fixedRows && rowSize > 0 && target.count > reader.remaining() / rowSize) {
-    throw Error(name, "truncated: expected " + std::to_string(target.count * rowSize) + " bytes of " + elementName +
-                          " data, found " + std::to_string(reader.remaining()));
+    // count * rowSize may not fit in 64 bits (a header can declare 2^62 rows): say both.
+    throw Error(name, "truncated: " + std::to_string(target.count) + " " + elementName + " rows of " +
+                          std::to_string(rowSize) + " bytes declared, but only " + std::to_string(reader.remaining()) +
+                          " bytes of data follow");
   }
   // Rows with lists take at least one byte each: check before allocating the columns.
   if (!fixedRows && target.count > reader.remaining()) {
@@ -268,10 +271,9 @@ void readBinaryRows(DataReader& reader, const PlyElement& target, bool bigEndian
 
 PlyTable readPly(const fs::path& path, const std::string& elementName) {
   std::string name = path.string();
-  std::error_code ec;
-  uint64_t fileSize = fs::file_size(path, ec);
+  const uint64_t fileSize = checkInputFile(path);
   std::ifstream in(path, std::ios::binary);
-  if (ec || !in) throw Error(name, fs::exists(path) ? "cannot open for reading" : "file not found");
+  if (!in) throw Error(quotedPath(path), "cannot open for reading");
   PlyHeader header = parsePlyHeader(in, name);
   const std::vector<PlyElement>& elements = header.elements;
 

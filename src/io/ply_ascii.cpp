@@ -3,6 +3,7 @@
 
 #include <charconv>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <utility>
 
@@ -44,15 +45,40 @@ bool parseAsciiValue(const std::string& token, PlyType type, double* value) {
   return true;
 }
 
-// Tokens of the data section, read one at a time; the row being read names errors.
+// Tokens of the data section, one row (one line, as the PLY format lays them out) at a time,
+// so that a row with more values than its header declares is refused instead of shifting
+// every value after it into the next row. The row being read names errors.
 class AsciiValues {
  public:
   AsciiValues(std::istream& in, const std::string& path) : in_(in), path_(path) {}
 
+  // Starts the next row: the next line that holds anything but blanks.
+  void beginRow(const std::string& where) {
+    std::string line;
+    do {
+      if (!std::getline(in_, line)) throw Error(path_, "truncated: file ends before " + where);
+    } while (line.find_first_not_of(" \t\r") == std::string::npos);
+    row_.clear();
+    row_.str(line);
+    values_ = 0;
+  }
+
+  // Ends a row: nothing may be left on its line.
+  void endRow(const std::string& where) {
+    size_t extra = 0;
+    while (row_ >> token_) ++extra;
+    if (extra > 0)
+      throw Error(path_, where + " has " + std::to_string(values_ + extra) + " values on its line, but the header " +
+                             "declares " + std::to_string(values_) + " (a property missing from the header?)");
+  }
+
   // The next value of a property of the given type; throws Error for a malformed token or
-  // the end of the file ("where" says which element and row).
+  // the end of the row ("where" says which element and row).
   double next(PlyType type, const std::string& property, const std::string& where) {
-    if (!(in_ >> token_)) throw Error(path_, "truncated: file ends inside " + where);
+    if (!(row_ >> token_))
+      throw Error(path_, where + " ends after " + std::to_string(values_) + " values, before property '" +
+                             printableText(property) + "'");
+    ++values_;
     double value = 0.0;
     if (!parseAsciiValue(token_, type, &value)) {
       throw Error(path_, "property '" + printableText(property) + "' of " + where + " is '" + printableText(token_) +
@@ -66,14 +92,17 @@ class AsciiValues {
     double count = next(property.countType, property.name, where);
     if (count < 0) throw Error(path_, "list property '" + printableText(property.name) + "' has a negative length");
     for (double i = 0; i < count; ++i) {
-      if (!(in_ >> token_)) throw Error(path_, "truncated: file ends inside " + where);
+      if (!(row_ >> token_)) throw Error(path_, where + " ends inside list property '" + printableText(property.name) + "'");
+      ++values_;
     }
   }
 
  private:
   std::istream& in_;
   const std::string& path_;
+  std::istringstream row_;
   std::string token_;
+  size_t values_ = 0;  // values read from the current row
 };
 
 }  // namespace
@@ -85,10 +114,13 @@ void readAsciiPlyData(std::istream& in, uint64_t dataBytes, const PlyHeader& hea
     const std::string where = "element '" + printableText(element.name) + "'";
     // Rows without properties hold no tokens: a huge count of them is no work.
     for (uint64_t row = 0; row < element.count && !element.properties.empty(); ++row) {
+      const std::string rowName = where + " row " + std::to_string(row);
+      values.beginRow(rowName);
       for (const PlyProperty& property : element.properties) {
-        if (property.isList) values.skipList(property, where);
-        else values.next(property.type, property.name, where);
+        if (property.isList) values.skipList(property, rowName);
+        else values.next(property.type, property.name, rowName);
       }
+      values.endRow(rowName);
     }
   }
 
@@ -102,11 +134,13 @@ void readAsciiPlyData(std::istream& in, uint64_t dataBytes, const PlyHeader& hea
   for (auto& column : table.columns) column.resize(table.count);
   for (size_t row = 0; row < table.count && tokensPerRow > 0; ++row) {
     const std::string where = table.element + " " + std::to_string(row);
+    values.beginRow(where);
     size_t c = 0;
     for (const PlyProperty& property : element.properties) {
       if (property.isList) values.skipList(property, where);
       else storePlyValue(table, c++, row, values.next(property.type, property.name, where));
     }
+    values.endRow(where);
   }
 }
 

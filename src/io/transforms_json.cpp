@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/printable_text.h"
 
 namespace glint {
@@ -164,7 +165,7 @@ TransformsFile parseTransformsJson(const std::string& text, const std::string& f
 }
 
 TransformsFile readTransformsJson(const std::filesystem::path& path) {
-  return parseTransformsJson(readTextFile(path), path.string());
+  return parseTransformsJson(readInputFile(path, kMaxJsonFileBytes), path.string());
 }
 
 std::string formatTransformsJson(const TransformsFile& transforms) {

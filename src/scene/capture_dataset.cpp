@@ -4,10 +4,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
+#include "core/input_file.h"
+#include "core/printable_text.h"
 #include "io/colmap_model.h"
 #include "io/json_file.h"
 #include "io/nerfstudio_transforms.h"
@@ -23,11 +26,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// True when something (a file, a folder, a link, even a broken one) has this name: what
+// decides the layout of a folder, so that a broken cameras.txt is reported as itself, not
+// as a missing transforms file of another layout.
+bool present(const fs::path& path) {
+  std::error_code ec;
+  return fs::exists(fs::symlink_status(path, ec));
+}
+
 // The COLMAP model folder of a capture: sparse/0 (COLMAP's mapper output) or sparse/.
 std::optional<fs::path> colmapModelFolder(const fs::path& root) {
   for (const fs::path& folder : {root / "sparse" / "0", root / "sparse"})
     for (const char* file : {"cameras.bin", "cameras.txt"})
-      if (fs::is_regular_file(folder / file)) return folder;
+      if (present(folder / file)) return folder;
   return std::nullopt;
 }
 
@@ -70,8 +81,12 @@ void readSparsePoints(const fs::path& folder, CaptureSource* source, CaptureScen
 
 // A view's files: the photograph, and whichever priors exist.
 DatasetView captureView(const fs::path& root, const CaptureCamera& c, const fs::path& image) {
-  if (!fs::is_regular_file(root / image))
-    throw Error((root / image).string(), "not found: the camera model names this image");
+  std::error_code ec;
+  if (!fs::is_regular_file(root / image, ec))
+    throw Error(quotedPath(root / image), ec.value() == ENAMETOOLONG
+                                              ? "the camera model names this image, and the name is too long for "
+                                                "the file system"
+                                              : "not found: the camera model names this image");
   const std::string stem = fs::path(c.imageName).stem().string();
   DatasetView view;
   view.filePath = "train/render/render_" + stem;  // splitViews sets the split
@@ -111,7 +126,7 @@ Enum readChoice(const nlohmann::json& j, const char* key, std::initializer_list<
     for (const auto& [name, value] : choices)
       if (j[key].get<std::string>() == name) return value;
   for (const auto& [name, value] : choices) names += (names.empty() ? "\"" : ", \"") + std::string(name) + "\"";
-  throw Error(file.string(), std::string("\"") + key + "\" must be one of " + names + ", found " + j[key].dump());
+  throw Error(file.string(), std::string("\"") + key + "\" must be one of " + names + ", found " + printableText(j[key].dump()));
 }
 
 // The predicted depth of a view aligned to its sparse points: z = a d + b (or 1/z) fitted
@@ -173,14 +188,14 @@ CaptureDecoding readCaptureDecoding(const fs::path& file) {
                                 "normal_axes",    "depth",          "roughness"};
   for (const auto& [key, value] : j.items())
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
-      throw Error(file.string(), "unknown key \"" + key + "\" (docs/capture-format.md lists the keys)");
+      throw Error(file.string(), "unknown key \"" + printableText(key) + "\" (docs/capture-format.md lists the keys)");
   const std::initializer_list<std::pair<const char*, Transfer>> transfers = {
       {"srgb", Transfer::Srgb}, {"filmic", Transfer::Filmic}, {"linear", Transfer::Linear}};
   d.photoTransfer = readChoice(j, "photo_transfer", transfers, d.photoTransfer, file);
   d.priorTransfer = readChoice(j, "prior_transfer", transfers, d.priorTransfer, file);
   if (j.contains("clamp_max")) {
     if (!j["clamp_max"].is_number() || !(j["clamp_max"].get<double>() >= 0.0))
-      throw Error(file.string(), "\"clamp_max\" must be a number >= 0 (0: no clamp), found " + j["clamp_max"].dump());
+      throw Error(file.string(), "\"clamp_max\" must be a number >= 0 (0: no clamp), found " + printableText(j["clamp_max"].dump()));
     d.clampMax = j["clamp_max"].get<float>();
   }
   d.worldNormals = readChoice(j, "normal_space", {{"camera", false}, {"world", true}}, d.worldNormals, file);
@@ -226,7 +241,7 @@ void attachPriorTransforms(const fs::path& root, DatasetSplit* train, DatasetSpl
 
 bool isCaptureFolder(const fs::path& root) {
   if (fs::exists(root / "transforms_train.json")) return false;
-  return colmapModelFolder(root).has_value() || fs::is_regular_file(root / "transforms.json");
+  return colmapModelFolder(root).has_value() || present(root / "transforms.json");
 }
 
 void openCapture(const fs::path& root, int holdout, DatasetSplit* train, DatasetSplit* test, CaptureSource* source) {

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/printable_text.h"
 #include "math/mat4.h"
 
@@ -182,8 +183,7 @@ class GltfImporter {
   }
 
   void load() {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path_, ec)) fail("file not found");
+    checkInputFile(path_);  // a FIFO or device would block or never end
     tinygltf::TinyGLTF loader;
     loader.SetPreserveImageChannels(true);  // keep grey images one channel instead of RGBA
     loader.SetFsCallbacks({&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readExternalFile,

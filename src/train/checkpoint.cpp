@@ -8,6 +8,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/input_file.h"
 #include "scene/gaussian_parameters.h"
 
 namespace glint {
@@ -131,10 +132,9 @@ void writeCheckpoint(const std::filesystem::path& file, const TrainingState& sta
 }
 
 TrainingState readCheckpoint(const std::filesystem::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw Error(file.string(), "cannot be opened (no checkpoint to resume from)");
-  std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  return decodeCheckpoint(data, file.string());
+  if (!std::filesystem::exists(file)) throw Error(file.string(), "not found (no checkpoint to resume from)");
+  const std::string bytes = readInputFile(file, kMaxBinaryInputFileBytes);
+  return decodeCheckpoint(std::vector<char>(bytes.begin(), bytes.end()), file.string());
 }
 
 TrainingState decodeCheckpoint(const std::vector<char>& data, const std::string& name) {

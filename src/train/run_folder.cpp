@@ -3,6 +3,7 @@
 
 #include "core/atomic_file.h"
 #include "core/error.h"
+#include "core/folder_lock.h"
 
 namespace glint {
 
@@ -10,14 +11,18 @@ namespace fs = std::filesystem;
 
 TrainConfig RunFolder::readConfig() const { return readTrainConfig(configFile()); }
 
-void RunFolder::create(const TrainConfig& config, bool force) const {
+void RunFolder::checkCanCreate(bool force) const {
   if (fs::exists(root_) && !fs::is_directory(root_)) throw Error(root_.string(), "exists and is not a folder");
-  if (fs::exists(root_) && !fs::is_empty(root_) && !force && !isUnfinishedStart())
+  if (fs::exists(root_) && !isEmptyButForLock(root_) && !force && !isUnfinishedStart())
     throw Error(root_.string(), hasConfig()
                                     ? "holds a training run; continue it with --resume, choose another -o folder, "
                                       "or pass --force to start over (its files are overwritten)"
                                     : "is not empty and holds no training run; choose another -o folder, or pass "
                                       "--force to write into it");
+}
+
+void RunFolder::create(const TrainConfig& config, bool force) const {
+  checkCanCreate(force);
   fs::create_directories(root_);
   writeTextAtomically(configFile(), toJson(config).dump(2) + "\n");
 }
@@ -30,7 +35,10 @@ void RunFolder::removeFailedStart(bool madeByThisStart) const {
   const fs::path checkpointFolder = checkpointFile().parent_path();
   if (fs::is_directory(checkpointFolder, ignored) && fs::is_empty(checkpointFolder, ignored))
     fs::remove(checkpointFolder, ignored);
-  if (madeByThisStart && fs::is_empty(root_, ignored)) fs::remove(root_, ignored);
+  if (madeByThisStart && isEmptyButForLock(root_)) {
+    fs::remove(root_ / kFolderLockName, ignored);
+    fs::remove(root_, ignored);
+  }
 }
 
 }  // namespace glint

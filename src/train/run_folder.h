@@ -36,6 +36,8 @@ class RunFolder {
   // empty or hold an unfinished start (which is started afresh) unless `force` (then its
   // files are overwritten); throws Error otherwise.
   void create(const TrainConfig& config, bool force) const;
+  // create's refusal alone, for a caller that checks before it locks the folder.
+  void checkCanCreate(bool force) const;
 
   // Undoes a start that failed before its first step: removes the files a start writes
   // (config.json, log.csv, an empty checkpoint/) and then the folder itself if it was

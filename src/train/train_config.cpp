@@ -202,7 +202,7 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
     if constexpr (std::is_floating_point_v<Field>) fits = numberFits<Field>(*v);
     if (!fits) {
       std::string problem = "\"";
-      problem.append(keyName(section, key)).append("\" is ").append(v->dump()).append(", out of the range of its type");
+      problem.append(keyName(section, key)).append("\" is ").append(printableText(v->dump())).append(", out of the range of its type");
       throw Error(source, problem);
     }
     if constexpr (Choice<Field>) {

@@ -18,7 +18,7 @@ TEST(PrintableText, ControlAndHighBytesAreEscaped) {
 }
 
 TEST(PrintableText, LongTextIsCut) {
-  EXPECT_EQ(printableText(std::string(100, 'a'), 4), "aaaa...");
+  EXPECT_EQ(printableText(std::string(100, 'a'), 4), "aaaa... (100 bytes)");
   EXPECT_EQ(printableText("abcd", 4), "abcd");
   EXPECT_EQ(printableText(std::string(100, 'a'), std::string::npos), std::string(100, 'a'));
 }

@@ -240,7 +240,10 @@ TEST(Ply, AsciiKeepsEveryCheck) {
            Case{"nan.ply", header + "1 2\nnan 3\n", {"'x'", "vertex 1", "NaN"}},
            Case{"inf.ply", header + "-inf 2\n0 3\n", {"'x'", "vertex 0", "infinite"}},
            Case{"huge.ply", header + "1e300 2\n0 3\n", {"'x'", "vertex 0", "outside the float range"}},
-           Case{"short.ply", header + "1 2\n3\n", {"truncated", "vertex 1"}},
+           Case{"short.ply", header + "1 2\n3\n", {"vertex 1 ends after 1 values", "before property 'red'"}},
+           // Two values more than the header declares: refused, not shifted into the next rows.
+           Case{"long.ply", header + "1 2 7 8\n3 4\n", {"vertex 0 has 4 values", "declares 2"}},
+           Case{"cut.ply", header + "1 2\n", {"truncated", "vertex 1"}},
            Case{"count.ply", "ply\nformat ascii 1.0\nelement vertex 1000000000000\nproperty float x\nend_header\n1\n",
                 {"truncated", "1000000000000 vertex rows"}},
            Case{"list.ply",
@@ -250,7 +253,7 @@ TEST(Ply, AsciiKeepsEveryCheck) {
            Case{"face.ply",
                 "ply\nformat ascii 1.0\nelement face 2\nproperty list uchar int v\nelement vertex 1\n"
                 "property float x\nend_header\n2 0 1\n3 0\n",
-                {"truncated", "element 'face'"}},
+                {"element 'face' row 1", "ends inside list property 'v'"}},
        }) {
     auto path = folder / c.name;
     test::writeBytes(path, c.text);
@@ -277,7 +280,12 @@ TEST(Ply, BigEndianTruncationIsRefused) {
   std::string body;
   putBigEndian(body, 1.0f);
   test::writeBytes(big, "ply\nformat binary_big_endian 1.0\nelement vertex 2\nproperty float x\nend_header\n" + body);
-  expectErrorNaming([&] { readPly(big); }, big, {"truncated: expected 8 bytes of vertex data, found 4"});
+  expectErrorNaming([&] { readPly(big); }, big, {"truncated: 2 vertex rows of 4 bytes declared, but only 4 bytes of data follow"});
+  // 2^62 rows of 4 bytes overflow 64 bits: the message gives the count as declared.
+  auto huge = folder / "huge_count.ply";
+  test::writeBytes(huge, "ply\nformat binary_big_endian 1.0\nelement vertex 4611686018427387904\nproperty float x\n"
+                         "end_header\n" + body);
+  expectErrorNaming([&] { readPly(huge); }, huge, {"4611686018427387904 vertex rows of 4 bytes declared"});
   auto other = folder / "other_format.ply";
   test::writeBytes(other, "ply\nformat binary_middle_endian 1.0\nelement vertex 0\nend_header\n");
   expectErrorNaming([&] { readPly(other); }, other, {"unsupported PLY format"});
@@ -291,7 +299,7 @@ TEST(Ply, RejectsTruncatedData) {
   for (int i = 0; i < 3; ++i) ply.put(float(i)).put(uint8_t(i));
   ply.put(3.0f);  // the last vertex lacks its colour byte
   ply.save(path);
-  expectErrorNaming([&] { readPly(path); }, path, {"truncated: expected 20 bytes of vertex data, found 19"});
+  expectErrorNaming([&] { readPly(path); }, path, {"truncated: 4 vertex rows of 5 bytes declared, but only 19 bytes of data follow"});
 
   // Truncated inside an element with lists, and inside an earlier element.
   auto listCut = folder / "list_cut.ply";
@@ -400,7 +408,7 @@ TEST(Ply, HeaderWithoutFinalNewline) {
   test::writeBytes(path, "ply\nformat binary_little_endian 1.0\nelement vertex 0\nproperty float x\nend_header");
   EXPECT_EQ(readPly(path).count, 0u);
   test::writeBytes(path, "ply\nformat binary_little_endian 1.0\nelement vertex 1\nproperty float x\nend_header");
-  expectErrorNaming([&] { readPly(path); }, path, {"truncated: expected 4 bytes of vertex data, found 0"});
+  expectErrorNaming([&] { readPly(path); }, path, {"truncated: 1 vertex rows of 4 bytes declared, but only 0 bytes of data follow"});
 }
 
 TEST(Ply, TypeNamesAndSizes) {

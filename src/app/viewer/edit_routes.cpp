@@ -10,6 +10,8 @@
 #include "app/viewer/viewer_http.h"
 #include "app/viewer/viewer_outputs.h"
 #include "app/viewer/viewer_server.h"
+#include "core/error.h"
+#include "core/folder_lock.h"
 #include "edit/edit_file.h"
 
 namespace glint {
@@ -41,6 +43,15 @@ void ViewerServer::addEditRoutes() {
     renderer_->setScene(std::move(scene));
     sendJson(res, edits_->status());
   };
+  // A save or export holds the run folder's lock while it writes; 409 names the process that
+  // holds it (a `glint train` resumed into the run).
+  auto lockForWriting = [this]() -> FolderLock {
+    try {
+      return FolderLock(options_.lockFolder.empty() ? options_.outputFolder : options_.lockFolder, "glint view");
+    } catch (const Error& e) {
+      throw RequestError(409, e.what());
+    }
+  };
 
   http.Get("/api/edits", [this](const httplib::Request&, httplib::Response& res) {
     sendJson(res, editDocumentToJson(edits_->document()));
@@ -67,15 +78,17 @@ void ViewerServer::addEditRoutes() {
   http.Post("/api/edits/preview", [this](const httplib::Request& req, httplib::Response& res) {
     sendJson(res, edits_->preview(parseRequestObject(req.body, kMaxRequestBytes)));
   });
-  http.Post("/api/edits/save", [this](const httplib::Request& req, httplib::Response& res) {
+  http.Post("/api/edits/save", [this, lockForWriting](const httplib::Request& req, httplib::Response& res) {
     std::filesystem::path file = viewerOutputFile(options_.outputFolder, parseRequestObject(req.body, kMaxRequestBytes),
                                                   "viewer_edits.json", ".json");
+    const FolderLock lock = lockForWriting();
     writeEditFile(file, edits_->document());
     sendJson(res, {{"saved", file.string()}});
   });
-  http.Post("/api/edits/export", [this](const httplib::Request& req, httplib::Response& res) {
+  http.Post("/api/edits/export", [this, lockForWriting](const httplib::Request& req, httplib::Response& res) {
     std::filesystem::path file = viewerOutputFile(options_.outputFolder, parseRequestObject(req.body, kMaxRequestBytes),
                                                   "viewer_edited.ply", ".ply");
+    const FolderLock lock = lockForWriting();
     size_t gaussians = edits_->exportPly(file);
     sendJson(res, {{"saved", file.string()}, {"gaussians", gaussians}});
   });

@@ -43,6 +43,9 @@ struct ViewerOptions {
   int maxSamples = 1024;
   std::filesystem::path webRoot;       // the page's files
   std::filesystem::path outputFolder;  // where "save edits" and "export PLY" write (viewer_outputs.h)
+  // Locked (core/folder_lock.h) while a save or an export writes: the run folder, so that a
+  // save while `glint train` writes the run is refused with the trainer's PID. Empty: outputFolder.
+  std::filesystem::path lockFolder;
   bool editable = true;                // false while training: the scene is the trainer's
   std::vector<TrainingCameraEntry> trainingCameras;
   ViewerCamera initialCamera;
