@@ -2,13 +2,27 @@
 #include "app/cli_parsing.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/printable_text.h"
 
 namespace glint {
+
+CLI::Validator positiveNumber() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0;
+        const char* end = text.data() + text.size();
+        auto [stop, error] = std::from_chars(text.data(), end, value);
+        if (error == std::errc() && stop == end && std::isfinite(value) && value > 0) return "";
+        return "must be a finite number > 0, found " + printableText(text);
+      },
+      "NUMBER > 0");
+}
 
 namespace {
 

@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "eval/region_metrics.h"
 #include "math/vec.h"
 
@@ -20,5 +22,10 @@ std::vector<size_t> parseIndexList(const std::string& text, const std::string& f
 Vec2i parsePixel(const std::string& text, const std::string& flag);
 // "X0,Y0,Z0,X1,Y1,Z1": a world-space box, corners in any order.
 WorldBox parseBox(const std::string& text, const std::string& flag);
+
+// A flag value that must be a finite number > 0; the refusal quotes the value as given
+// ("--exposure: must be a finite number > 0, found -1"), where CLI::PositiveNumber quotes
+// its bound, the largest double, in 309 digits.
+CLI::Validator positiveNumber();
 
 }  // namespace glint

@@ -177,7 +177,7 @@ void addExportCommand(CLI::App& app) {
   cmd->add_option("--exposure", o->exposure,
                   "Splat formats with display colour: linear multiplier of the colour (and of baked radiance) before "
                   "the tonemap (2 is one stop brighter)")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->capture_default_str();
   cmd->add_option("--sh-degree", o->shDegree,
                   "Splat formats: spherical-harmonics degree, 0..3 (3dgs writes 0, 9, 24 or 45 f_rest). Default 3 with "
@@ -191,7 +191,7 @@ void addExportCommand(CLI::App& app) {
   cmd->add_option("--far-field-radius", o->farFieldRadius,
                   "Far-field cut in units of S, the radius of the training cameras' sphere (1.1 x the farthest "
                   "camera from their centre, as 3DGS measures a scene)")
-      ->check(CLI::PositiveNumber)
+      ->check(positiveNumber())
       ->capture_default_str();
   cmd->add_option("--dataset", o->dataset,
                   "Dataset whose training cameras define the far-field cut and --bake-reflections' directions "

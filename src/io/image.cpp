@@ -38,7 +38,13 @@ const char* imageFormatExtension(ImageFormat format) {
 Image readImageWithAlpha(const fs::path& path) {
   if (imageFormatFromPath(path) != ImageFormat::Png) return readImage(path);
   checkInputFile(path);
-  return detail::readPng(path.string(), /*keepAlpha=*/true);
+  return detail::readPng(path.string(), detail::PngChannels::Rgba);
+}
+
+Image readImageAsStored(const fs::path& path) {
+  if (imageFormatFromPath(path) != ImageFormat::Png) return readImage(path);
+  checkInputFile(path);
+  return detail::readPng(path.string(), detail::PngChannels::AsStored);
 }
 
 Image readImage(const fs::path& path) {

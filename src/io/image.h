@@ -56,6 +56,9 @@ Image readImage(const std::filesystem::path& path);
 // readImage, except that a PNG with alpha comes back as RGBA (4 channels; a grey one as RGB
 // plus alpha): for images whose alpha is coverage, composited by the caller.
 Image readImageWithAlpha(const std::filesystem::path& path);
+// readImage, except that a PNG comes back with the channels it stores: 1 grey, 2 grey and
+// alpha, 3 RGB or 4 RGBA. For loaders that check a file's layout before they use it.
+Image readImageAsStored(const std::filesystem::path& path);
 
 // The bytes of an 8-bit PNG of the image (values clamped to [0,1] and rounded, as
 // writeImage does), encoded in memory: for embedding in a page as a data: URI. The image

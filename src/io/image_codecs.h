@@ -16,11 +16,16 @@ namespace glint::detail {
 constexpr size_t kMaxImagePixels = size_t(1) << 32;
 
 // Readers take the path for error messages and open it themselves; they return an image
-// with 1 or 3 channels (readPng with keepAlpha: 3, or 4 when the file has alpha) and throw
-// Error naming the file.
+// with 1 or 3 channels (readPng: see PngChannels) and throw Error naming the file.
 Image readExr(const std::string& path);
 Image readTiff(const std::string& path);
-Image readPng(const std::string& path, bool keepAlpha = false);
+// What readPng does with alpha and grey.
+enum class PngChannels {
+  DropAlpha,  // 1 grey or 3 RGB
+  Rgba,       // 3 RGB, or 4 RGBA when the file has alpha (grey expanded to RGB)
+  AsStored,   // 1 grey, 2 grey and alpha, 3 RGB, 4 RGBA: as the file holds them
+};
+Image readPng(const std::string& path, PngChannels channels = PngChannels::DropAlpha);
 Image readJpeg(const std::string& path);
 
 // Writers write to filePath (a temporary file) but name displayPath in errors. The image

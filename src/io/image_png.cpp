@@ -29,8 +29,8 @@ struct PngJob {
   std::string error;
   // Read: filled by decodePng. Write: filled by the caller.
   png_uint_32 width = 0, height = 0;
-  int channels = 0;  // after transforms: 1 grey, 3 RGB, 4 RGBA when keepAlpha (write: also 4 RGBA)
-  bool keepAlpha = false;  // read: RGBA (grey expanded to RGB) instead of dropping alpha
+  int channels = 0;  // after transforms, as `layout` says (write: 1, 3 or 4 RGBA)
+  PngChannels layout = PngChannels::DropAlpha;  // read: what happens to alpha and grey
   int bitDepth = 8;  // read: 8 or 16 after transforms; write: as asked
   size_t maxBytes = 0;  // read: the most decoded bytes the file can justify (maxDecodedBytes)
   std::vector<png_byte> data;
@@ -77,9 +77,9 @@ bool decodePng(PngJob& job) {
   // Normalise every layout to 8- or 16-bit grey or RGB without alpha, or to RGB(A) when
   // the caller wants the alpha.
   png_set_expand(png);  // palette -> RGB, grey < 8 bits -> 8 bits, tRNS -> alpha
-  if (job.keepAlpha)
+  if (job.layout == PngChannels::Rgba)
     png_set_gray_to_rgb(png);
-  else
+  else if (job.layout == PngChannels::DropAlpha)
     png_set_strip_alpha(png);
   png_set_interlace_handling(png);
   png_read_update_info(png, info);
@@ -88,7 +88,9 @@ bool decodePng(PngJob& job) {
   job.height = png_get_image_height(png, info);
   job.channels = png_get_channels(png, info);
   job.bitDepth = png_get_bit_depth(png, info);
-  const bool layoutOk = job.keepAlpha ? job.channels == 3 || job.channels == 4 : job.channels == 1 || job.channels == 3;
+  const bool layoutOk = job.layout == PngChannels::Rgba        ? job.channels == 3 || job.channels == 4
+                        : job.layout == PngChannels::DropAlpha ? job.channels == 1 || job.channels == 3
+                                                               : job.channels >= 1 && job.channels <= 4;
   if (!layoutOk || (job.bitDepth != 8 && job.bitDepth != 16)) {
     png_error(png, "unexpected layout after conversion");
   }
@@ -153,9 +155,9 @@ bool encodePng(PngJob& job) {
 
 }  // namespace
 
-Image readPng(const std::string& path, bool keepAlpha) {
+Image readPng(const std::string& path, PngChannels layout) {
   PngJob job;
-  job.keepAlpha = keepAlpha;
+  job.layout = layout;
   job.file = std::fopen(path.c_str(), "rb");
   if (!job.file) throw Error(path, std::string("cannot open for reading: ") + std::strerror(errno));
   png_byte signature[8] = {};

@@ -130,7 +130,8 @@ Enum readChoice(const nlohmann::json& j, const char* key, std::initializer_list<
 }
 
 // The predicted depth of a view aligned to its sparse points: z = a d + b (or 1/z) fitted
-// robustly to the z-depths of the points that land in the view, nearest per pixel.
+// robustly to the z-depths of the points that land in the view, nearest per pixel, hidden
+// points dropped; all 0 (no depth) when no fit holds.
 Image alignedZDepth(const Image& predicted, const CaptureSource& source, const DatasetView& view,
                     const fs::path& file) {
   const Camera& camera = view.camera;
@@ -144,15 +145,65 @@ Image alignedZDepth(const Image& predicted, const CaptureSource& source, const D
   options.space = source.decoding.depth == CaptureDecoding::Depth::RelativeDisparity ? DepthFitSpace::Disparity
                                                                                      : DepthFitSpace::Depth;
   DepthFit fit = fitDepthAffine(pairs, options);
-  source.recordDepthFit(view.filePath, fit);
-  if (!fit.ok)
-    throw Error(file.string(), "relative depth cannot be aligned to the sparse points of this view: " + fit.problem +
-                                   " (set \"depth\" in capture.json if the depth is metric)");
+  source.recordDepthFit(file.string(), fit);
+  // A view whose depth cannot be aligned keeps its colour and drops its depth: 0, "no
+  // surface", so that its pixels take no depth (and no G-buffer) loss. A small or sparse
+  // capture must still train; `glint info` and `glint train` list such views as warnings.
+  if (!fit.ok) return Image(predicted.width, predicted.height, 1, 0.0f);
   Image z = alignDepth(predicted, fit);
   // A predicted 0 is "unknown" (the background of a synthetic capture, a predictor's mask).
   for (size_t i = 0; i < z.pixels.size(); ++i)
     if (predicted.pixels[i] == 0.0f) z.pixels[i] = 0.0f;
   return z;
+}
+
+const char* layoutName(int channels) {
+  switch (channels) {
+    case 1: return "grey";
+    case 2: return "grey and alpha";
+    case 3: return "RGB";
+    case 4: return "RGBA";
+  }
+  return "unknown layout";
+}
+
+// A prior read with the channels its file stores, split into the buffer's channels and its
+// alpha (coverage) when it has one more, or refused naming the layout it has.
+struct PriorImage {
+  Image image;
+  Image alpha;  // empty without an alpha channel
+};
+
+PriorImage readPriorImage(const fs::path& path, int channels, const std::string& what) {
+  Image stored = readImageAsStored(path);
+  PriorImage prior;
+  if (stored.channels == channels + 1) {
+    prior.image = Image(stored.width, stored.height, channels);
+    prior.alpha = Image(stored.width, stored.height, 1);
+    const size_t pixels = size_t(stored.width) * size_t(stored.height);
+    for (size_t p = 0; p < pixels; ++p) {
+      for (int c = 0; c < channels; ++c)
+        prior.image.pixels[p * size_t(channels) + size_t(c)] = stored.pixels[p * size_t(stored.channels) + size_t(c)];
+      prior.alpha.pixels[p] = stored.pixels[p * size_t(stored.channels) + size_t(channels)];
+    }
+  } else {
+    prior.image = std::move(stored);
+  }
+  if (prior.image.channels != channels) {
+    const int found = prior.alpha.empty() ? prior.image.channels : prior.image.channels + 1;
+    throw Error(quotedPath(path), "a " + what + " buffer needs " + std::to_string(channels) +
+                                      (channels == 1 ? " channel (grey)" : " channels (RGB)") + ", found " +
+                                      std::to_string(found) + " (" + layoutName(found) + ")");
+  }
+  return prior;
+}
+
+// Where a prior's alpha is below one half its pixel is "no surface" (0): the predictor's mask.
+void maskByAlpha(Image* image, const Image& alpha) {
+  if (alpha.empty()) return;
+  for (size_t p = 0; p < alpha.pixels.size(); ++p)
+    if (alpha.pixels[p] < kMinPriorCoverage)
+      for (int c = 0; c < image->channels; ++c) image->pixels[p * size_t(image->channels) + size_t(c)] = 0.0f;
 }
 
 Image decodeRadiance(Image image, Transfer transfer, float clampMax) {
@@ -177,6 +228,26 @@ void CaptureSource::recordDepthFit(const std::string& view, const DepthFit& fit)
 std::map<std::string, DepthFit> CaptureSource::depthFits() const {
   std::lock_guard<std::mutex> lock(fitsMutex_);
   return fits_;
+}
+
+std::vector<std::string> CaptureSource::droppedDepths() const {
+  std::vector<std::string> lines;
+  for (const auto& [file, fit] : depthFits())
+    if (!fit.ok)
+      lines.push_back(file + ": relative depth cannot be aligned to the sparse points of this view (" + fit.problem +
+                      "); its depth is dropped, so its pixels take no depth or G-buffer loss (set \"depth\" in "
+                      "capture.json if the depth is metric)");
+  return lines;
+}
+
+void CaptureSource::recordAlpha(Buffer buffer) const {
+  std::lock_guard<std::mutex> lock(fitsMutex_);
+  withAlpha_.insert(buffer);
+}
+
+std::set<Buffer> CaptureSource::buffersWithAlpha() const {
+  std::lock_guard<std::mutex> lock(fitsMutex_);
+  return withAlpha_;
 }
 
 CaptureDecoding readCaptureDecoding(const fs::path& file) {
@@ -274,34 +345,64 @@ void openCapture(const fs::path& root, int holdout, DatasetSplit* train, Dataset
     throw Error(root.string(), "has too few images for a training split with --holdout " + std::to_string(holdout));
 }
 
-Image loadCaptureBuffer(const fs::path& root, const CaptureSource& source, const DatasetView& view, Buffer buffer) {
-  const std::string& relative = view.files[int(buffer)];
-  GLINT_CHECK(!relative.empty(), "loadCaptureBuffer needs a view that has the buffer");
-  const fs::path path = root / relative;
-  const CaptureDecoding& d = source.decoding;
-  const bool radiance = buffer == Buffer::Render || buffer == Buffer::Diffuse || buffer == Buffer::Specular;
-  Image image = radiance && source.alphaBackground ? readImageWithAlpha(path) : readImage(path);
+namespace {
+
+// F0 given as a predictor's metalness (priors/metalness/metalness_*): one channel.
+bool isMetalnessFile(const fs::path& path, Buffer buffer) {
+  return buffer == Buffer::F0 && path.filename().string().rfind("metalness_", 0) == 0;
+}
+
+// A normal prior's vectors in its file's own axes: n = 2v - 1 from integer codes, the stored
+// values of EXR and TIFF, each renormalised (0: no surface).
+Image decodeNormalPrior(const Image& image, bool displayReferred) {
+  return displayReferred ? decodeNormalMap(image) : renormalizeNormals(image);
+}
+
+// A view's buffer file as stored: its layout checked (channels, alpha as coverage), its size
+// checked against the camera's, its stored values checked (finite; roughness, metalness
+// and F0 in [0, 1]), normals and depth masked by alpha. The alpha is returned for
+// compositing radiance over the source's background, when it has one.
+Image readStoredPrior(const fs::path& path, const CaptureSource& source, const DatasetView& view, Buffer buffer,
+                      Image* alpha) {
+  const bool metalness = isMetalnessFile(path, buffer);
+  const int channels = metalness ? 1 : bufferChannels(buffer);
+  // Alpha is coverage (predictors write RGBA PNGs): radiance is composited over the
+  // source's background where it has one, normals and depth are masked, the rest drop it.
+  PriorImage prior = readPriorImage(path, channels, metalness ? "metalness" : bufferName(buffer));
+  Image image = std::move(prior.image);
+  if (!prior.alpha.empty()) source.recordAlpha(buffer);
   const Camera& camera = view.camera;
   if (image.width != camera.width || image.height != camera.height)
     throw Error(path.string(), "image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
                                    " pixels, but its camera's image is " + std::to_string(camera.width) + "x" +
                                    std::to_string(camera.height));
-  const bool metalness = buffer == Buffer::F0 && fs::path(relative).filename().string().rfind("metalness_", 0) == 0;
-  const int channels = metalness ? 1 : bufferChannels(buffer);
-  Image alpha;  // kept for compositing over the background, when the source has one
-  if (image.channels == 4 && channels == 3) {  // alpha is coverage; predictors write RGBA PNGs
-    Image rgb(image.width, image.height, 3);
-    if (source.alphaBackground) alpha = Image(image.width, image.height, 1);
-    for (size_t p = 0; p < size_t(image.width) * size_t(image.height); ++p) {
-      for (int c = 0; c < 3; ++c) rgb.pixels[p * 3 + size_t(c)] = image.pixels[p * 4 + size_t(c)];
-      if (!alpha.empty()) alpha.pixels[p] = image.pixels[p * 4 + 3];
-    }
-    image = std::move(rgb);
-  }
-  if (image.channels != channels)
-    throw Error(path.string(), "a " + std::string(metalness ? "metalness" : bufferName(buffer)) + " buffer needs " +
-                                   std::to_string(channels) + (channels == 1 ? " channel" : " channels") + ", found " +
-                                   std::to_string(image.channels));
+  // The stored values, before any decoding: a conversion below clamps (roughness, metalness)
+  // or renormalises (normals), which would hide a NaN or a roughness of -5.
+  const Buffer rawKind = buffer == Buffer::Roughness || buffer == Buffer::F0 ? Buffer::F0 : Buffer::Render;
+  if (std::optional<std::string> problem = findInvalidValue(image, rawKind))
+    throw Error(path.string(), "stored values: " + *problem);
+  if (buffer == Buffer::Normal || buffer == Buffer::Depth) maskByAlpha(&image, prior.alpha);
+  if (source.alphaBackground) *alpha = std::move(prior.alpha);
+  return image;
+}
+
+}  // namespace
+
+Image readCameraNormalPrior(const fs::path& root, const CaptureSource& source, const DatasetView& view) {
+  const fs::path path = root / view.files[int(Buffer::Normal)];
+  Image alpha;
+  return decodeNormalPrior(readStoredPrior(path, source, view, Buffer::Normal, &alpha), isDisplayReferred(path));
+}
+
+Image loadCaptureBuffer(const fs::path& root, const CaptureSource& source, const DatasetView& view, Buffer buffer) {
+  const std::string& relative = view.files[int(buffer)];
+  GLINT_CHECK(!relative.empty(), "loadCaptureBuffer needs a view that has the buffer");
+  const fs::path path = root / relative;
+  const CaptureDecoding& d = source.decoding;
+  const bool metalness = isMetalnessFile(path, buffer);
+  Image alpha;  // coverage, for compositing over the source's background
+  Image image = readStoredPrior(path, source, view, buffer, &alpha);
+  const Camera& camera = view.camera;
   const bool display = isDisplayReferred(path);
   const RayIntrinsics k{camera.fx, camera.fy, camera.cx, camera.cy};
   switch (buffer) {
@@ -316,7 +417,7 @@ Image loadCaptureBuffer(const fs::path& root, const CaptureSource& source, const
       if (!alpha.empty()) image = compositeOverBackground(image, alpha, *source.alphaBackground);
       break;
     case Buffer::Normal: {
-      image = display ? decodeNormalMap(image) : renormalizeNormals(image);
+      image = decodeNormalPrior(image, display);  // readCameraNormalPrior's vectors
       if (!d.worldNormals) {
         image = cameraNormalsToWorld(image, d.normalAxes, camera.rotation());
       }

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <map>
 #include <mutex>
+#include <set>
 #include <optional>
 #include <string>
 #include <vector>
@@ -54,11 +55,18 @@ struct CaptureSource {
 
   // The per-view depth fits made while loading, for reports (thread-safe).
   void recordDepthFit(const std::string& view, const DepthFit& fit) const;
-  std::map<std::string, DepthFit> depthFits() const;
+  std::map<std::string, DepthFit> depthFits() const;  // by depth file
+  // One line per depth file whose alignment failed, its depth dropped (read as 0, no
+  // surface): the file and why, for `glint info` and `glint train` to warn with.
+  std::vector<std::string> droppedDepths() const;
+  // The buffers whose files carried an alpha channel (read as coverage), for `glint info`.
+  void recordAlpha(Buffer buffer) const;
+  std::set<Buffer> buffersWithAlpha() const;
 
  private:
   mutable std::mutex fitsMutex_;
   mutable std::map<std::string, DepthFit> fits_;
+  mutable std::set<Buffer> withAlpha_;
 };
 
 // Files of integer codes (PNG, JPEG), which readImage scales to [0, 1]: display-referred
@@ -94,5 +102,14 @@ void openCapture(const std::filesystem::path& root, int holdout, DatasetSplit* t
 // its size is the view camera's. Throws Error naming the file.
 Image loadCaptureBuffer(const std::filesystem::path& root, const CaptureSource& source, const DatasetView& view,
                         Buffer buffer);
+
+// A prior's alpha (PNG with alpha) is coverage: normal and depth pixels below this are read
+// as "no surface" (0), radiance is composited over a NeRF-synthetic background, roughness
+// and F0 drop it. `glint info` says which buffers had one.
+constexpr float kMinPriorCoverage = 0.5f;
+
+// A view's normal prior checked as loadCaptureBuffer checks it, decoded to unit vectors
+// (0: no surface) but left in its file's own axes: what the normal-space guess tests.
+Image readCameraNormalPrior(const std::filesystem::path& root, const CaptureSource& source, const DatasetView& view);
 
 }  // namespace glint

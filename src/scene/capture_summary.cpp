@@ -7,10 +7,13 @@
 #include <array>
 #include <atomic>
 #include <mutex>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "core/parallel.h"
+#include "scene/capture_dataset.h"
 #include "scene/normal_space_guess.h"
 
 namespace glint {
@@ -60,6 +63,28 @@ std::string cameraLine(const DatasetSplit& split) {
          fixed(minF, 1) + (maxF > minF ? " to " + fixed(maxF, 1) : "") + " px\n";
 }
 
+// The symbolic links inside a capture, which Glint follows (docs/capture-format.md): said
+// out loud, since they can lead to files outside the folder. The walk does not enter linked
+// folders and stops after a bounded count of entries.
+std::string linksFollowed(const fs::path& root) {
+  constexpr int kMaxEntries = 200000, kExamples = 3;
+  std::error_code ec;
+  int entries = 0, links = 0;
+  std::string examples;
+  for (fs::recursive_directory_iterator it(root, ec), end; !ec && it != end && entries < kMaxEntries;
+       it.increment(ec), ++entries) {
+    if (!it->is_symlink(ec)) continue;
+    if (links++ < kExamples) {
+      std::error_code readError;
+      const fs::path target = fs::read_symlink(it->path(), readError);
+      examples += "\n  " + quotedPath(fs::relative(it->path(), root, readError)) + " -> " + quotedPath(target);
+    }
+  }
+  if (links == 0) return "";
+  return "\nsymbolic links followed: " + std::to_string(links) + (links > kExamples ? " (the first " + std::to_string(kExamples) + ")" : "") +
+         examples + "\n";
+}
+
 }  // namespace
 
 std::string normalSpaceCheck(const Dataset& dataset) {
@@ -71,11 +96,7 @@ std::string normalSpaceCheck(const Dataset& dataset) {
     const DatasetView& view = split.views[i];
     if (view.files[int(Buffer::Normal)].empty()) continue;
     try {
-      const fs::path file = dataset.root() / view.files[int(Buffer::Normal)];
-      Image raw = readImage(file);
-      const std::string ext = file.extension().string();
-      normals.push_back(ext == ".png" || ext == ".jpg" || ext == ".jpeg" ? decodeNormalMap(raw)
-                                                                         : renormalizeNormals(raw));
+      normals.push_back(readCameraNormalPrior(dataset.root(), *dataset.capture(), view));
     } catch (const Error&) {
       continue;  // the problem list reports it
     }
@@ -179,7 +200,16 @@ std::string describeCapture(const fs::path& root, int holdout, bool* clean) {
     out << "\ndepth aligned to the sparse points in " << inliers.size() << " of " << fits.size()
         << " views: median inlier fraction " << fixed(median(inliers), 2) << ", median residual "
         << fixed(median(before), 4) << " before the fit, " << fixed(median(after), 4) << " after\n";
+    for (const std::string& line : source.droppedDepths()) out << "warning: " << line << "\n";
   }
+  const std::set<Buffer> withAlpha = source.buffersWithAlpha();
+  if (!withAlpha.empty()) {
+    out << "\nalpha channels read as coverage in:";
+    for (Buffer b : withAlpha) out << " " << bufferName(b);
+    out << " (normal and depth below " << kMinPriorCoverage << ": no surface; radiance: "
+        << (source.alphaBackground ? "composited over the background" : "dropped") << "; roughness and F0: dropped)\n";
+  }
+  out << linksFollowed(dataset.root());
   out << "\n" << normalSpaceCheck(dataset);
 
   std::sort(problems.begin(), problems.end(),

@@ -194,6 +194,12 @@ DepthFit fitDepthAffine(std::span<const DepthPair> pairs, const DepthFitOptions&
   return fit;
 }
 
+int occlusionRadius(size_t pixels, size_t pixelsWithPoints) {
+  if (pixelsWithPoints == 0) return 0;
+  const double spacing = std::sqrt(double(pixels) / double(pixelsWithPoints));
+  return std::clamp(int(std::lround(spacing)), 1, kMaxOcclusionRadius);
+}
+
 std::vector<DepthPair> depthPairsFromPoints(const Image& predicted, std::span<const Vec3d> cameraPoints,
                                             const RayIntrinsics& k) {
   GLINT_CHECK(predicted.channels == 1, "a predicted depth map has one channel");
@@ -208,11 +214,29 @@ std::vector<DepthPair> depthPairsFromPoints(const Image& predicted, std::span<co
     hits.push_back({j * size_t(predicted.width) + i, z});
   }
   std::sort(hits.begin(), hits.end());
+  // The nearest point of each pixel: a sparse cloud's z-buffer.
+  const int width = predicted.width, height = predicted.height;
+  std::vector<double> nearest(size_t(width) * size_t(height), std::numeric_limits<double>::infinity());
+  size_t pixelsWithPoints = 0;
+  for (size_t h = 0; h < hits.size(); ++h)
+    if (h == 0 || hits[h].first != hits[h - 1].first) nearest[hits[h].first] = hits[h].second, ++pixelsWithPoints;
+  // A point seen through the gaps between nearer points is hidden behind the surface they
+  // lie on: paired with the predicted depth of that surface it would be an outlier, and in
+  // a small capture those can be the majority. So a point is dropped when a nearer one lies
+  // within about the cloud's own spacing in the image.
+  const int radius = occlusionRadius(size_t(width) * size_t(height), pixelsWithPoints);
   std::vector<DepthPair> pairs;
   for (size_t h = 0; h < hits.size(); ++h) {
     if (h > 0 && hits[h].first == hits[h - 1].first) continue;
+    const double z = hits[h].second;
+    const int i = int(hits[h].first % size_t(width)), j = int(hits[h].first / size_t(width));
+    bool hidden = false;
+    for (int y = std::max(0, j - radius); y <= std::min(height - 1, j + radius) && !hidden; ++y)
+      for (int x = std::max(0, i - radius); x <= std::min(width - 1, i + radius) && !hidden; ++x)
+        hidden = nearest[size_t(y) * size_t(width) + size_t(x)] < z * (1.0 - kOccluderGap);
+    if (hidden) continue;
     float d = predicted.pixels[hits[h].first];
-    if (std::isfinite(d)) pairs.push_back({d, hits[h].second});
+    if (std::isfinite(d)) pairs.push_back({d, z});
   }
   return pairs;
 }

@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "io/json_file.h"
 #include "io/transforms_json.h"
 #include "scene/capture_dataset.h"
 #include "scene/dataset.h"
@@ -79,9 +80,15 @@ bool isNerfSyntheticFolder(const fs::path& root) {
   for (const char* split : {"train", "test", "val"}) {
     const fs::path file = root / ("transforms_" + std::string(split) + ".json");
     if (!fs::is_regular_file(file)) continue;
+    // Decided by the first frame's file_path alone, so that a file with another problem (a
+    // bad camera_angle_x) is read by its own layout's reader, which reports that problem
+    // once, instead of by the paper layout's, which would also refuse every file_path.
     try {
-      const TransformsFile transforms = readTransformsJson(file);
-      return !transforms.frames.empty() && !isRenderFilePath(transforms.frames[0].filePath);
+      const nlohmann::json j = readJsonFile(file);
+      const nlohmann::json* frames = j.is_object() && j.contains("frames") ? &j["frames"] : nullptr;
+      if (!frames || !frames->is_array() || frames->empty() || !(*frames)[0].is_object()) return false;
+      const nlohmann::json& path = (*frames)[0].value("file_path", nlohmann::json());
+      return path.is_string() && !isRenderFilePath(path.get<std::string>());
     } catch (const Error&) {
       return false;  // opened as the paper's layout, whose reader reports the problem
     }

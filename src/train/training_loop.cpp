@@ -156,6 +156,9 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
                                                                              : ColourTarget::Diffuse);
   std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);
   TestViews testViews = TestViews::load(dataset, dataset.test(), cluster::isRoot() ? session.evalViews : 0);
+  if (dataset.capture() && cluster::isRoot())
+    for (const std::string& line : dataset.capture()->droppedDepths())
+      std::fprintf(stderr, "glint train: warning: %s\n", line.c_str());
 
   activity.describe("setting up the training of " + run.root().string());
   const bool checkpointAtStart = session.resume && run.hasCheckpoint();
