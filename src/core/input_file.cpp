@@ -48,6 +48,11 @@ void checkStat(const std::string& name, const struct stat& st, uint64_t maxBytes
 
 }  // namespace
 
+bool pathPresent(const std::filesystem::path& path) {
+  std::error_code ec;
+  return std::filesystem::exists(std::filesystem::symlink_status(path, ec));
+}
+
 std::string quotedPath(const std::filesystem::path& path) { return printableText(path.string(), 200); }
 
 uint64_t checkInputFile(const std::filesystem::path& path, uint64_t maxBytes) {

@@ -25,6 +25,11 @@ uint64_t checkInputFile(const std::filesystem::path& path, uint64_t maxBytes = k
 // check is still refused: the file is opened without blocking and checked again.
 std::string readInputFile(const std::filesystem::path& path, uint64_t maxBytes);
 
+// True when something has this name: a file, a folder, a device, a link (even a broken one).
+// What decides that an input is there, so that a FIFO or a broken link in its place is
+// reported as itself when read, not taken for a missing file. Never throws.
+bool pathPresent(const std::filesystem::path& path);
+
 // `path` quoted for a message: printable, and a very long name cut with its length.
 std::string quotedPath(const std::filesystem::path& path);
 

@@ -9,8 +9,29 @@
 
 namespace glint {
 
+void checkJsonNesting(std::string_view text, const std::string& fileName) {
+  int depth = 0;
+  bool inString = false;
+  for (size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inString) {
+      if (c == '\\') ++i;  // the escaped character, a quote included
+      else if (c == '"') inString = false;
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonNesting)
+        throw Error(fileName, "is not valid JSON for Glint: arrays and objects nest deeper than " +
+                                  std::to_string(kMaxJsonNesting) + " levels at byte " + std::to_string(i));
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
 nlohmann::json readJsonFile(const std::filesystem::path& path) {
   std::string text = readInputFile(path, kMaxJsonFileBytes);
+  checkJsonNesting(text, path.string());
   try {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {

@@ -2,6 +2,8 @@
 #pragma once
 
 #include <filesystem>
+#include <string>
+#include <string_view>
 
 #include <nlohmann/json.hpp>
 
@@ -9,5 +11,12 @@ namespace glint {
 
 // The parsed contents of `path`. Throws Error(path, "not found" / "is not valid JSON: ...").
 nlohmann::json readJsonFile(const std::filesystem::path& path);
+
+// nlohmann's parser recurses once per nesting level, so a file of 100,000 brackets would
+// overflow the stack: every parse of a file's text checks first that its arrays and objects
+// nest no deeper than this (Glint's own files nest 4 levels).
+constexpr int kMaxJsonNesting = 256;
+// Throws Error(fileName, ...) naming the byte where `text` nests deeper than kMaxJsonNesting.
+void checkJsonNesting(std::string_view text, const std::string& fileName);
 
 }  // namespace glint

@@ -11,6 +11,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "io/json_file.h"
 #include "core/printable_text.h"
 #include "io/colmap_records.h"
 
@@ -39,6 +40,7 @@ std::string withoutExceptionTag(const std::string& what) {
 }
 
 Json parseJsonText(const std::string& text, const std::string& fileName) {
+  checkJsonNesting(text, fileName);
   try {
     return Json::parse(text);
   } catch (const Json::parse_error& e) {

@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/error.h"
 #include "core/input_file.h"
+#include "io/json_file.h"
 #include "core/printable_text.h"
 
 namespace glint {
@@ -55,6 +56,7 @@ std::string normalizeFilePath(std::string path) {
 }
 
 Json parseJsonText(const std::string& text, const std::string& fileName) {
+  checkJsonNesting(text, fileName);
   try {
     return Json::parse(text);
   } catch (const Json::parse_error& e) {

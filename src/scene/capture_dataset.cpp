@@ -26,13 +26,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// True when something (a file, a folder, a link, even a broken one) has this name: what
-// decides the layout of a folder, so that a broken cameras.txt is reported as itself, not
-// as a missing transforms file of another layout.
-bool present(const fs::path& path) {
-  std::error_code ec;
-  return fs::exists(fs::symlink_status(path, ec));
-}
+// Presence (pathPresent), not regular files, decides the layout of a folder, so that a
+// broken cameras.txt is reported as itself, not as a missing transforms file of another layout.
+bool present(const fs::path& path) { return pathPresent(path); }
 
 // The COLMAP model folder of a capture: sparse/0 (COLMAP's mapper output) or sparse/.
 std::optional<fs::path> colmapModelFolder(const fs::path& root) {
@@ -53,7 +49,9 @@ std::string findPrior(const fs::path& root, const std::string& name, const std::
                       const fs::path& folder = "priors") {
   for (const char* ext : {".png", ".exr", ".tiff", ".tif", ".jpg", ".jpeg"}) {
     fs::path relative = folder / name / (name + "_" + stem + ext);
-    if (fs::is_regular_file(root / relative)) return relative.generic_string();
+    // Whatever has the name is the prior: a FIFO or a folder there is refused by name when
+    // read, not mistaken for a missing prior (which would drop the buffer from training).
+    if (present(root / relative)) return relative.generic_string();
   }
   return "";
 }
@@ -252,7 +250,7 @@ std::set<Buffer> CaptureSource::buffersWithAlpha() const {
 
 CaptureDecoding readCaptureDecoding(const fs::path& file) {
   CaptureDecoding d;
-  if (!fs::exists(file)) return d;
+  if (!present(file)) return d;  // a broken link is read, and refused by name
   nlohmann::json j = readJsonFile(file);
   if (!j.is_object()) throw Error(file.string(), "must hold a JSON object");
   static const char* known[] = {"photo_transfer", "prior_transfer", "clamp_max", "normal_space",
@@ -432,10 +430,6 @@ Image loadCaptureBuffer(const fs::path& root, const CaptureSource& source, const
           break;
         case CaptureDecoding::Depth::Relative:
         case CaptureDecoding::Depth::RelativeDisparity:
-          if (source.points.empty())
-            throw Error(path.string(),
-                        "relative depth needs sparse points to be aligned to, and the capture has none "
-                        "(set \"depth\" in capture.json if the depth is metric)");
           image = zDepthToDistance(alignedZDepth(image, source, view, path), k);
           break;
       }

@@ -74,7 +74,7 @@ DepthFit fitDepthAffine(std::span<const DepthPair> pairs, const DepthFitOptions&
 // depth lands within occlusionRadius pixels (the points hold every view's surfaces, not only
 // this one's). Pixels with a non-finite prediction are skipped (0 is kept: relative depth
 // maps use it).
-constexpr double kOccluderGap = 0.1;
+constexpr double kOccluderGap = 0.25;
 constexpr int kMaxOcclusionRadius = 8;
 // The neighbourhood, in pixels, searched for a nearer point: the mean spacing of the points
 // in the image (sqrt of pixels per pixel that holds a point), in [1, kMaxOcclusionRadius].

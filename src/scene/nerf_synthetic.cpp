@@ -5,6 +5,7 @@
 #include <set>
 
 #include "core/error.h"
+#include "core/input_file.h"
 #include "io/json_file.h"
 #include "io/transforms_json.h"
 #include "scene/capture_dataset.h"
@@ -22,9 +23,10 @@ constexpr const char* kImageExtensions[] = {".png", ".exr", ".tiff", ".tif", ".j
 // The image a frame names, relative to root, or "" when none exists. The transforms reader
 // strips .png/.exr/.tif(f) from file_path, so the extension is found again here.
 std::string findImage(const fs::path& root, const std::string& filePath) {
+  // Presence, not a regular file: a FIFO or a device there is refused by name when read.
   for (const char* ext : kImageExtensions)
-    if (fs::is_regular_file(root / (filePath + ext))) return filePath + ext;
-  if (fs::is_regular_file(root / filePath)) return filePath;  // a .jpg named in full
+    if (pathPresent(root / (filePath + ext))) return filePath + ext;
+  if (pathPresent(root / filePath)) return filePath;  // a .jpg named in full
   return "";
 }
 

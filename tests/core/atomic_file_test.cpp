@@ -3,6 +3,7 @@
 #include "core/atomic_file.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -137,20 +138,39 @@ TEST_F(AtomicFileTest, WritingWhereAFileBlocksTheFolderThrowsError) {
   EXPECT_EQ(readTextFile(root_ / "blocker"), "x");
 }
 
-TEST_F(AtomicFileTest, RenameFailureReportsItsOwnCause) {
-  // A non-empty folder where the file should go: the rename fails. The message must give
-  // that cause, not the outcome of removing the temporary afterwards ("Success").
+TEST_F(AtomicFileTest, AFolderWhereTheFileShouldGoIsRefusedBeforeWriting) {
   fs::create_directories(root_ / "taken" / "inside");
   try {
     writeTextAtomically(root_ / "taken", "x");
     FAIL() << "expected Error";
   } catch (const Error& e) {
     std::string message = e.what();
-    EXPECT_NE(message.find("cannot move the finished file into place"), std::string::npos) << message;
-    EXPECT_EQ(message.find("Success"), std::string::npos) << message;
+    EXPECT_NE(message.find("is a folder; Glint replaces regular files only"), std::string::npos) << message;
   }
   EXPECT_TRUE(fs::is_directory(root_ / "taken" / "inside"));
   EXPECT_EQ(allFiles().size(), 0u);
+}
+
+// Issue 39: `export --force` onto /dev/full replaced the device with a regular file. Only
+// regular files are replaced; a link is not replaced either (nor what it points to).
+TEST_F(AtomicFileTest, DevicesLinksAndFifosAreNeverReplaced) {
+  fs::create_symlink("/dev/null", root_ / "device.ply");
+  std::ofstream(root_ / "target.txt") << "kept";
+  fs::create_symlink(root_ / "target.txt", root_ / "link.ply");
+  ASSERT_EQ(mkfifo((root_ / "fifo.ply").c_str(), 0644), 0);
+  for (const char* name : {"device.ply", "link.ply", "fifo.ply"}) {
+    EXPECT_THROW(writeTextAtomically(root_ / name, "x"), Error) << name;
+    EXPECT_TRUE(fs::is_symlink(root_ / name) || fs::is_fifo(root_ / name)) << name;
+  }
+  EXPECT_EQ(readTextFile(root_ / "target.txt"), "kept");
+  try {
+    checkReplaceableOutput("/dev/full");
+    FAIL() << "expected Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is a device"), std::string::npos) << e.what();
+  }
+  EXPECT_NO_THROW(checkReplaceableOutput(root_ / "target.txt"));
+  EXPECT_NO_THROW(checkReplaceableOutput(root_ / "absent.ply"));
 }
 
 // The PID of a child that has exited and been reaped: no process has it (until reused).

@@ -109,6 +109,8 @@ TEST(ColmapBinary, RecordProblemsNameTheRecord) {
   cameras = files.cameras;
   overwrite(cameras, kCameraWidthOffset, uint64_t(1) << 62);
   message = errorOf(parseColmapCamerasBinary, cameras, "cameras.bin");
+  // The width as stored (issue 39: it was quoted clamped, as 1048577).
+  EXPECT_NE(message.find("image size 4611686018427387904 x "), std::string::npos) << message;
   EXPECT_NE(message.find("is not in [1, 1048576]"), std::string::npos) << message;
 
   cameras = files.cameras;

@@ -224,6 +224,13 @@ INSTANTIATE_TEST_SUITE_P(
         BadText{"Word", "cameras", "7 PINHOLE 640 480 five 1 1 1\n", "camera parameter \"five\" is not a number"},
         BadText{"ZeroWidth", "cameras", "7 PINHOLE 0 480 1 1 1 1\n", "image size 0 x 480 is not in [1, 1048576]"},
         BadText{"HugeHeight", "cameras", "7 PINHOLE 4 99999999999 1 1 1 1\n", "is not in [1, 1048576]"},
+        // Issue 39: sizes are quoted as written, not as clamped values (1048577, -1).
+        BadText{"BillionWidth", "cameras", "7 PINHOLE 1000000000 480 1 1 1 1\n",
+                "image size 1000000000 x 480 is not in [1, 1048576]"},
+        BadText{"NegativeWidth", "cameras", "7 PINHOLE -64 480 1 1 1 1\n", "image size -64 x 480 is not"},
+        BadText{"Width2Pow63", "cameras", "7 PINHOLE 9223372036854775808 480 1 1 1 1\n",
+                "image size 9223372036854775808 x 480 is not"},
+        BadText{"WordWidth", "cameras", "7 PINHOLE wide 480 1 1 1 1\n", "WIDTH \"wide\" is not an integer"},
         BadText{"NegativeId", "cameras", "-7 PINHOLE 4 4 1 1 1 1\n", "CAMERA_ID \"-7\" is not an integer in range"},
         BadText{"DuplicateCamera", "cameras", "7 PINHOLE 4 4 1 1 1 1\n\n# again\n7 PINHOLE 4 4 1 1 1 1\n",
                 "line 4: camera id 7 is used twice"},

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "common/floor_capture.h"
 #include "core/atomic_file.h"
@@ -15,6 +16,7 @@
 #include "io/point_cloud.h"
 #include "io/temp_folder.h"
 #include "math/rng.h"
+#include "scene/capture_summary.h"
 #include "scene/capture_writer.h"
 #include "scene/dataset.h"
 
@@ -189,6 +191,80 @@ TEST(CaptureDataset, BrokenCapturesNameTheFile) {
       EXPECT_NE(std::string(e.what()).find("normal_axes"), std::string::npos) << e.what();
     }
   }
+}
+
+// The message of the Error that loading view 0's buffer throws, or "" when it loads.
+std::string loadError(const Dataset& dataset, Buffer buffer) {
+  try {
+    dataset.loadBuffer(dataset.train(), 0, buffer);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Issue 39: a grey or grey+alpha normal PNG aborted on an internal check; each layout is
+// now refused by name, and an RGBA one is read with its alpha as coverage.
+TEST(CaptureDataset, PriorLayoutsAreCheckedAndAlphaIsCoverage) {
+  test::TempFolder folder;
+  writeFloorCapture(folder.path());
+  const fs::path normal = folder / "priors" / "normal" / "normal_view_0001.png";
+  writeImage(normal, Image(48, 36, 1, 0.5f));
+  {
+    Dataset dataset = Dataset::open(folder.path(), true, 4);
+    const std::string message = loadError(dataset, Buffer::Normal);
+    EXPECT_NE(message.find("normal_view_0001.png"), std::string::npos) << message;
+    EXPECT_NE(message.find("needs 3 channels (RGB), found 1 (grey)"), std::string::npos) << message;
+    EXPECT_NO_THROW(normalSpaceCheck(dataset));  // `glint info`'s guess skips it, the problem list names it
+  }
+  Image rgba(48, 36, 4, 0.5f);
+  for (int y = 0; y < 36; ++y)
+    for (int x = 0; x < 48; ++x) rgba.at(x, y, 2) = 1.0f, rgba.at(x, y, 3) = x < 24 ? 1.0f : 0.0f;
+  writeImage(normal, rgba);
+  Dataset dataset = Dataset::open(folder.path(), true, 4);
+  const Image n = dataset.loadBuffer(dataset.train(), 0, Buffer::Normal);
+  EXPECT_NEAR(length(n.rgb(3, 3)), 1.0f, 1e-5);  // covered: a unit normal
+  EXPECT_EQ(length(n.rgb(40, 3)), 0.0f);         // uncovered: no surface
+  EXPECT_EQ(dataset.capture()->buffersWithAlpha(), std::set<Buffer>{Buffer::Normal});
+}
+
+// Issue 39: a roughness EXR of -5 passed (the conversion clamped it), and an all-NaN normal
+// EXR passed `info` and was then called "length 0". Stored values are checked before decoding.
+TEST(CaptureDataset, StoredValuesAreCheckedBeforeDecoding) {
+  test::TempFolder folder;
+  writeFloorCapture(folder.path());
+  fs::remove(folder / "priors" / "roughness" / "roughness_view_0001.png");
+  writeImage(folder / "priors" / "roughness" / "roughness_view_0001.exr", Image(48, 36, 1, -5.0f));
+  fs::remove(folder / "priors" / "normal" / "normal_view_0001.png");
+  writeImage(folder / "priors" / "normal" / "normal_view_0001.exr", Image(48, 36, 3, NAN));
+  Dataset dataset = Dataset::open(folder.path(), true, 4);
+  const std::string roughness = loadError(dataset, Buffer::Roughness);
+  EXPECT_NE(roughness.find("roughness_view_0001.exr: stored values"), std::string::npos) << roughness;
+  EXPECT_NE(roughness.find("outside [0, 1]"), std::string::npos) << roughness;
+  EXPECT_NE(roughness.find("-5"), std::string::npos) << roughness;
+  const std::string normal = loadError(dataset, Buffer::Normal);
+  EXPECT_NE(normal.find("normal_view_0001.exr: stored values"), std::string::npos) << normal;
+  EXPECT_NE(normal.find("finite"), std::string::npos) << normal;
+}
+
+// Issue 39: a view whose relative depth cannot be aligned no longer refuses the capture: its
+// depth is dropped (0, no surface) and listed as a warning.
+TEST(CaptureDataset, AViewWhoseDepthCannotBeAlignedDropsItsDepth) {
+  test::TempFolder folder;
+  writeFloorCapture(folder.path());
+  // Depth that falls as the true depth grows: no positive scale fits it.
+  const fs::path depth = folder / "priors" / "depth" / "depth_view_0001.png";
+  Image stored = readImage(depth);
+  for (float& v : stored.pixels) v = v > 0.0f ? 1.0f - v : 0.0f;
+  writeImage(depth, stored, {16});
+  Dataset dataset = Dataset::open(folder.path(), true, 4);
+  const Image dropped = dataset.loadBuffer(dataset.train(), 0, Buffer::Depth);
+  for (float v : dropped.pixels) ASSERT_EQ(v, 0.0f);
+  const std::vector<std::string> warnings = dataset.capture()->droppedDepths();
+  ASSERT_EQ(warnings.size(), 1u);
+  EXPECT_NE(warnings[0].find("depth_view_0001.png"), std::string::npos) << warnings[0];
+  EXPECT_NE(warnings[0].find("its depth is dropped"), std::string::npos) << warnings[0];
+  EXPECT_GT(dataset.loadBuffer(dataset.train(), 1, Buffer::Depth).pixels[0], 0.0f);  // the others keep theirs
 }
 
 // The paper's layout for synthetic scenes with predicted buffers: transforms files, buffers

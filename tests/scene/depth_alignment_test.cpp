@@ -152,15 +152,40 @@ TEST(DepthPairs, ProjectKeepNearestAndSkipWhatCannotBeSeen) {
       {0.1, -0.1, -4.0},    // same pixel, farther: dropped
       {0.0, 0.0, 1.0},      // behind the camera
       {5.0, 0.0, -1.0},     // outside the image
-      {0.13, -0.13, -1.0},  // pixel (3, 3): NaN prediction, skipped
-      {-0.15, 0.15, -1.0},  // px = 0.5, py = 0.5: pixel (0, 0)
+      {0.26, -0.26, -2.0},  // pixel (3, 3): NaN prediction, skipped
+      {-0.3, 0.3, -2.0},    // px = 0.5, py = 0.5: pixel (0, 0)
   };
   std::vector<DepthPair> pairs = depthPairsFromPoints(predicted, points, k);
   ASSERT_EQ(pairs.size(), 2u);
   EXPECT_FLOAT_EQ(float(pairs[0].predicted), 0.0f);  // pixel (0, 0) comes first
-  EXPECT_DOUBLE_EQ(pairs[0].zDepth, 1.0);
+  EXPECT_DOUBLE_EQ(pairs[0].zDepth, 2.0);
   EXPECT_FLOAT_EQ(float(pairs[1].predicted), 0.1f * 10);
   EXPECT_DOUBLE_EQ(pairs[1].zDepth, 2.0);
+}
+
+// Issue 39: the points hold every view's surfaces, so in a small capture many project into a
+// view through the gaps of a nearer surface; paired with that surface's predicted depth they
+// made most pairs outliers. A point with a nearer one within the cloud's spacing is dropped.
+TEST(DepthPairs, PointsHiddenBehindANearerSurfaceAreDropped) {
+  RayIntrinsics k{20, 20, 10, 10};  // 20x20 image
+  Image predicted(20, 20, 1, 1.0f);
+  std::vector<Vec3d> points;
+  auto at = [&](int i, int j, double z) {  // the camera-space point seen at pixel (i, j)'s centre
+    points.push_back({(i + 0.5 - k.cx) / k.fx * z, -(j + 0.5 - k.cy) / k.fy * z, -z});
+  };
+  for (int j = 0; j < 20; j += 2)
+    for (int i = 0; i < 20; i += 2) at(i, j, 2.0);  // a wall, every other pixel
+  for (int j = 1; j < 20; j += 2)
+    for (int i = 1; i < 20; i += 2) at(i, j, 5.0);  // behind it, in its gaps
+  EXPECT_EQ(occlusionRadius(400, 200), 1);
+  const std::vector<DepthPair> pairs = depthPairsFromPoints(predicted, points, k);
+  ASSERT_EQ(pairs.size(), 100u);
+  for (const DepthPair& p : pairs) EXPECT_DOUBLE_EQ(p.zDepth, 2.0);
+  // A lone far point with nothing near it in the image is kept.
+  points = {{0.0, 0.0, -5.0}};
+  EXPECT_EQ(depthPairsFromPoints(predicted, points, k).size(), 1u);
+  EXPECT_EQ(occlusionRadius(400, 0), 0);
+  EXPECT_EQ(occlusionRadius(1000000, 100), kMaxOcclusionRadius);
 }
 
 TEST(DepthPairs, AlignedImageMatchesTheFit) {

@@ -1,0 +1,113 @@
+// Tests of run-folder locks: a second process is refused with the holder's PID, the lock
+// is shared within one process, and a dead holder's lock file blocks nobody.
+#include "core/folder_lock.h"
+
+#include <gtest/gtest.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+
+#include "core/error.h"
+
+namespace glint {
+namespace {
+
+namespace fs = std::filesystem;
+
+class FolderLockTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    root_ = fs::temp_directory_path() / ("glint_folder_lock_" + std::to_string(getpid()) + "_" + info->name());
+    fs::remove_all(root_);
+  }
+  void TearDown() override {
+    std::error_code ignored;
+    fs::remove_all(root_, ignored);
+  }
+  fs::path root_;
+};
+
+// A child process takes the lock and holds it until the parent closes the pipe.
+struct LockingChild {
+  pid_t pid = -1;
+  int release = -1;
+};
+
+LockingChild lockInChild(const fs::path& folder) {
+  int ready[2], release[2];
+  EXPECT_EQ(pipe(ready), 0);
+  EXPECT_EQ(pipe(release), 0);
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(ready[0]), close(release[1]);
+    FolderLock lock(folder, "glint train");
+    char c = 1;
+    (void)!write(ready[1], &c, 1);
+    (void)!read(release[0], &c, 1);  // until the parent closes its end
+    _exit(0);
+  }
+  close(ready[1]), close(release[0]);
+  char c = 0;
+  EXPECT_EQ(read(ready[0], &c, 1), 1);
+  close(ready[0]);
+  return {pid, release[1]};
+}
+
+void finish(const LockingChild& child) {
+  close(child.release);
+  int status = 0;
+  waitpid(child.pid, &status, 0);
+}
+
+TEST_F(FolderLockTest, ASecondProcessIsRefusedWithTheHoldersPid) {
+  const LockingChild child = lockInChild(root_);
+  try {
+    FolderLock second(root_, "glint view");
+    ADD_FAILURE() << "the second writer was let in";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("is in use by pid " + std::to_string(child.pid)), std::string::npos) << message;
+    EXPECT_NE(message.find("glint train"), std::string::npos) << message;
+  }
+  finish(child);
+  // The holder is gone (its lock with it); its lock file stays and blocks nobody.
+  EXPECT_TRUE(fs::exists(root_ / kFolderLockName));
+  EXPECT_NO_THROW(FolderLock(root_, "glint train"));
+}
+
+TEST_F(FolderLockTest, TheLockIsSharedWithinAProcess) {
+  std::optional<FolderLock> trainer;
+  trainer.emplace(root_, "glint train");
+  { FolderLock viewer(root_ / ".", "glint view"); }  // the same folder, another spelling
+  // Still held after the inner lock is gone: another open of the lock file cannot take it.
+  // (A forked child inherits this process's lock; another program opens the file anew.)
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open((root_ / kFolderLockName).c_str(), O_RDWR);
+    _exit(fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) != 0 ? 7 : 0);
+  }
+  int status = 0;
+  waitpid(pid, &status, 0);
+  EXPECT_EQ(WEXITSTATUS(status), 7);
+}
+
+TEST_F(FolderLockTest, EmptyButForTheLock) {
+  fs::create_directories(root_);
+  EXPECT_TRUE(isEmptyButForLock(root_));
+  { FolderLock lock(root_, "glint train"); }
+  EXPECT_TRUE(isEmptyButForLock(root_));
+  std::ofstream(root_ / "config.json") << "{}";
+  EXPECT_FALSE(isEmptyButForLock(root_));
+  EXPECT_TRUE(isFolderLockFile(root_ / kFolderLockName));
+  EXPECT_FALSE(isFolderLockFile(root_ / "config.json"));
+}
+
+}  // namespace
+}  // namespace glint
