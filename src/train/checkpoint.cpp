@@ -3,6 +3,7 @@
 #include "train/checkpoint.h"
 
 #include <cstring>
+#include <span>
 #include <fstream>
 #include <type_traits>
 
@@ -46,7 +47,7 @@ class Writer {
 
 class Reader {
  public:
-  Reader(const std::vector<char>& data, size_t end, std::string file) : data_(data), end_(end), file_(std::move(file)) {}
+  Reader(std::span<const char> data, size_t end, std::string file) : data_(data), end_(end), file_(std::move(file)) {}
   void bytes(void* p, size_t n) {
     if (n > end_ - pos_) throw Error(file_, "is truncated");
     if (n > 0) std::memcpy(p, data_.data() + pos_, n);  // p may be null for an empty array
@@ -68,7 +69,7 @@ class Reader {
   bool atEnd() const { return pos_ == end_; }
 
  private:
-  const std::vector<char>& data_;
+  std::span<const char> data_;
   size_t pos_ = 0, end_;
   std::string file_;
 };
@@ -134,10 +135,10 @@ void writeCheckpoint(const std::filesystem::path& file, const TrainingState& sta
 TrainingState readCheckpoint(const std::filesystem::path& file) {
   if (!std::filesystem::exists(file)) throw Error(file.string(), "not found (no checkpoint to resume from)");
   const std::string bytes = readInputFile(file, kMaxBinaryInputFileBytes);
-  return decodeCheckpoint(std::vector<char>(bytes.begin(), bytes.end()), file.string());
+  return decodeCheckpoint(bytes, file.string());
 }
 
-TrainingState decodeCheckpoint(const std::vector<char>& data, const std::string& name) {
+TrainingState decodeCheckpoint(std::span<const char> data, const std::string& name) {
   if (data.size() < sizeof(kMagic) + sizeof(uint64_t) || std::memcmp(data.data(), kMagic, sizeof(kMagic)) != 0)
     throw Error(name, "is not a Glint checkpoint");
   size_t body = data.size() - sizeof(uint64_t);

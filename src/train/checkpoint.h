@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,6 @@ TrainingState readCheckpoint(const std::filesystem::path& file);
 // The bytes of a checkpoint file, and back (`name` names them in errors); also how an MPI
 // job's rank 0 hands its state to the others (train/training_loop.cpp).
 std::vector<char> encodeCheckpoint(const TrainingState& state);
-TrainingState decodeCheckpoint(const std::vector<char>& bytes, const std::string& name);
+TrainingState decodeCheckpoint(std::span<const char> bytes, const std::string& name);
 
 }  // namespace glint

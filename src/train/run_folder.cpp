@@ -35,10 +35,10 @@ void RunFolder::removeFailedStart(bool madeByThisStart) const {
   const fs::path checkpointFolder = checkpointFile().parent_path();
   if (fs::is_directory(checkpointFolder, ignored) && fs::is_empty(checkpointFolder, ignored))
     fs::remove(checkpointFolder, ignored);
-  if (madeByThisStart && isEmptyButForLock(root_)) {
-    fs::remove(root_ / kFolderLockName, ignored);
-    fs::remove(root_, ignored);
-  }
+  // The lock file this start put in goes too, so that a folder the user made is left as empty
+  // as it was found.
+  if (isEmptyButForLock(root_)) fs::remove(root_ / kFolderLockName, ignored);
+  if (madeByThisStart && fs::is_empty(root_, ignored)) fs::remove(root_, ignored);
 }
 
 }  // namespace glint

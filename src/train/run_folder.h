@@ -41,7 +41,8 @@ class RunFolder {
 
   // Undoes a start that failed before its first step: removes the files a start writes
   // (config.json, log.csv, an empty checkpoint/) and then the folder itself if it was
-  // `madeByThisStart` and is left empty. Never touches a checkpoint, a scene or any other file.
+  // `madeByThisStart` and is left empty. Never touches a checkpoint, a scene or any other file
+  // (the folder's lock file, core/folder_lock.h, goes when nothing else is left).
   void removeFailedStart(bool madeByThisStart) const;
 
  private:

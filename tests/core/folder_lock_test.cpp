@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "io/temp_folder.h"
 
 namespace glint {
 namespace {
@@ -22,16 +23,8 @@ namespace fs = std::filesystem;
 
 class FolderLockTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    root_ = fs::temp_directory_path() / ("glint_folder_lock_" + std::to_string(getpid()) + "_" + info->name());
-    fs::remove_all(root_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(root_, ignored);
-  }
-  fs::path root_;
+  test::TempFolder folder_;
+  const fs::path root_ = folder_ / "run";  // made by the first lock
 };
 
 // A child process takes the lock and holds it until the parent closes the pipe.

@@ -13,6 +13,7 @@
 #include "common/expect_error.h"
 #include "core/activity.h"
 #include "core/atomic_file.h"
+#include "io/temp_folder.h"
 
 namespace glint {
 namespace {
@@ -22,17 +23,8 @@ using test::expectErrorNaming;
 
 class InputFileTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    root_ = fs::temp_directory_path() / ("glint_input_file_" + std::to_string(getpid()) + "_" + info->name());
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-  }
-  void TearDown() override {
-    std::error_code ignored;
-    fs::remove_all(root_, ignored);
-  }
-  fs::path root_;
+  test::TempFolder folder_;
+  const fs::path root_ = folder_.path();
 };
 
 TEST_F(InputFileTest, ReadsARegularFileWhole) {

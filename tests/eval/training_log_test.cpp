@@ -55,7 +55,7 @@ TEST(TrainingLogTest, ErrorsNameTheFileAndLine) {
   expectErrorNaming([&] { readTrainingLog(path, {"step", "gaussians"}); }, path, {"line 1", "gaussians"});
   path = writeLog(folder, "");
   expectErrorNaming([&] { readTrainingLog(path); }, path, "empty");
-  expectErrorNaming([&] { readTrainingLog(folder / "none.csv"); }, folder / "none.csv", "cannot be opened");
+  expectErrorNaming([&] { readTrainingLog(folder / "none.csv"); }, folder / "none.csv", "file not found");
 }
 
 TEST(TrainingCurvesTest, RunningMeanIsCentredAndSkipsGaps) {

@@ -120,7 +120,7 @@ TEST(Checkpoint, VersionOneFileLoadsAndRewritesWithOnlyTheScoreAdded) {
 TEST(Checkpoint, RejectsBadFiles) {
   test::TempFolder temp;
   std::filesystem::path file = temp.path() / "state.bin";
-  test::expectErrorNaming([&] { readCheckpoint(file); }, file, "cannot be opened");
+  test::expectErrorNaming([&] { readCheckpoint(file); }, file, "not found (no checkpoint to resume from)");
   writeCheckpoint(file, randomState());
   std::string bytes;
   {
