@@ -14,6 +14,8 @@
 #include "app/run_glint.h"
 #include "common/floor_capture.h"
 #include "core/atomic_file.h"
+#include "io/json_file.h"
+#include "scene/nerf_synthetic_files.h"
 
 namespace glint {
 namespace {
@@ -114,6 +116,20 @@ TEST_F(HardeningCliTest, ExportsReplaceRegularFilesOnlyAndARunHasOneWriter) {
   EXPECT_NE(second.status, 0) << second.output;
   EXPECT_NE(second.output.find("is in use by pid"), std::string::npos) << second.output;
   EXPECT_NE(second.output.find("glint train"), std::string::npos) << second.output;
+}
+
+// Issue 39, item 9: one bad camera_angle_x in a NeRF-synthetic folder is one problem, not
+// three (the layout was taken for the paper's, whose reader refused every file_path too).
+TEST_F(HardeningCliTest, ABadFieldOfViewIsOneProblem) {
+  test::writeNerfSyntheticDataset(root_ / "N", {{"train", 3}, {"test", 1}});
+  nlohmann::json transforms = readJsonFile(root_ / "N" / "transforms_train.json");
+  transforms["camera_angle_x"] = -1;
+  writeTextAtomically(root_ / "N" / "transforms_train.json", transforms.dump());
+  const Outcome info = runGlint("info " + at("N"));
+  EXPECT_NE(info.status, 0);
+  EXPECT_NE(info.output.find("problems: 1\n"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("camera_angle_x is -1"), std::string::npos) << info.output;
+  EXPECT_EQ(info.output.find("render image"), std::string::npos) << info.output;
 }
 
 // Issue 39, item 9: a flag's limit is not quoted as a 309-digit number.
