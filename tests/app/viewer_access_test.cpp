@@ -4,6 +4,11 @@
 // the Gaussian cap is refused with the scene kept.
 #include <gtest/gtest.h>
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -14,6 +19,7 @@
 
 #include "app/viewer/access_policy.h"
 #include "app/viewer_fixture.h"
+#include "core/folder_lock.h"
 
 namespace glint {
 namespace {
@@ -158,6 +164,46 @@ TEST_F(ServerFixture, SaveAndExportNeverReplaceTheRunsFiles) {
   ASSERT_TRUE(linked);
   EXPECT_EQ(linked->status, 403) << linked->body;
   EXPECT_EQ(contents(root_ / "config.json"), config);
+}
+
+// Issue 39: while another process (a `glint train --resume`) holds the run folder, a save
+// or an export is refused with 409 naming it, and writes nothing.
+TEST_F(ServerFixture, SavesAreRefusedWhileAnotherProcessHoldsTheRun) {
+  const std::string lockFile = (root_ / kFolderLockName).string();
+  int ready[2], release[2];
+  ASSERT_EQ(pipe(ready), 0);
+  ASSERT_EQ(pipe(release), 0);
+  const pid_t trainer = fork();
+  if (trainer == 0) {
+    close(ready[0]), close(release[1]);
+    // Another open of the lock file, as another program makes (a forked child would share
+    // this process's lock). Only system calls here: the server's threads may hold malloc's lock.
+    const int fd = open(lockFile.c_str(), O_RDWR | O_CREAT, 0644);
+    if (fd < 0 || flock(fd, LOCK_EX | LOCK_NB) != 0) _exit(1);
+    char c = 1;
+    (void)!write(ready[1], &c, 1);
+    (void)!read(release[0], &c, 1);
+    _exit(0);
+  }
+  close(ready[1]), close(release[0]);
+  char c = 0;
+  ASSERT_EQ(read(ready[0], &c, 1), 1);
+  std::ofstream(lockFile) << "pid " << trainer << ", glint train, since now\n";  // what it says of itself
+  httplib::Client client = pageClient();
+  for (const char* path : {"/api/edits/save", "/api/edits/export"}) {
+    httplib::Result result = client.Post(path, "{}", "application/json");
+    ASSERT_TRUE(result) << path;
+    EXPECT_EQ(result->status, 409) << path << ": " << result->body;
+    EXPECT_NE(result->body.find("is in use by pid " + std::to_string(trainer)), std::string::npos) << result->body;
+  }
+  EXPECT_FALSE(fs::exists(root_ / "viewer" / "viewer_edits.json"));
+  EXPECT_FALSE(fs::exists(root_ / "viewer" / "viewer_edited.ply"));
+  close(release[1]);
+  int status = 0;
+  waitpid(trainer, &status, 0);
+  httplib::Result saved = client.Post("/api/edits/save", "{}", "application/json");
+  ASSERT_TRUE(saved);
+  EXPECT_EQ(saved->status, 200) << saved->body;
 }
 
 TEST_F(ServerFixture, AnEditBeyondTheGaussianCapIsRefusedAndTheSceneKept) {

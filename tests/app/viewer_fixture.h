@@ -58,6 +58,7 @@ class ServerFixture : public ::testing::Test {
     options.maxSamples = 8;
     options.webRoot = root_ / "web";
     options.outputFolder = root_ / "viewer";
+    options.lockFolder = root_;  // the run folder, as `glint view RUN` locks it while saving
     options.initialCamera.eye = Vec3d(0, 0, 4);
     options.maxGaussians = kFixtureMaxGaussians;
     server_ = std::make_unique<ViewerServer>(options, smallScene(300), TraceSettings{});
