@@ -5,6 +5,7 @@
 #include <system_error>
 
 #include "core/error.h"
+#include "core/printable_text.h"
 #include "io/transforms_json.h"
 #include "scene/buffer_codec.h"
 #include "scene/downscale.h"
@@ -30,7 +31,7 @@ DatasetSplit openSplit(const fs::path& root, const std::string& name, bool requi
   split.name = name;
   for (TransformsFrame& frame : transforms.frames) {
     if (requireBuffers && !isRenderFilePath(frame.filePath))
-      throw Error(path.string(), "file_path \"" + frame.filePath +
+      throw Error(path.string(), "file_path \"" + printableText(frame.filePath) +
                                      "\" does not name a render image (expected SPLIT/render/render_NAME)");
     // 1x1 until the image size is known (Dataset::open sets it).
     split.views.push_back(

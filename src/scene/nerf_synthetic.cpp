@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "core/input_file.h"
+#include "core/printable_text.h"
 #include "io/json_file.h"
 #include "io/transforms_json.h"
 #include "scene/capture_dataset.h"
@@ -51,13 +52,14 @@ DatasetSplit readSplit(const fs::path& root, const fs::path& file, const std::st
     DatasetView view;
     const std::string stem = viewName(frame.filePath);
     if (!names.insert(stem).second)
-      throw Error(file.string(), "two frames have the image name \"" + stem + "\" (" + frame.filePath + ")");
+      throw Error(file.string(), "two frames have the image name \"" + printableText(stem) + "\" (" +
+                                     printableText(frame.filePath) + ")");
     // Where renders and evaluations of the view are written, as for every layout.
     view.filePath = name + "/render/render_" + stem;
     view.files[int(Buffer::Render)] = findImage(root, frame.filePath);
     if (view.files[int(Buffer::Render)].empty() && requireImages)
-      throw Error((root / frame.filePath).string() + ".png", "not found: " + file.filename().string() +
-                                                                   " names this image");
+      throw Error(quotedPath(root / (frame.filePath + ".png")),
+                  "not found: " + file.filename().string() + " names this image");
     view.camera = Camera::fromFieldOfView(frame.transformMatrix, transforms.cameraAngleX, 1, 1);
     split.views.push_back(std::move(view));
   }

@@ -130,6 +130,15 @@ TEST_F(HardeningCliTest, ABadFieldOfViewIsOneProblem) {
   EXPECT_NE(info.output.find("problems: 1\n"), std::string::npos) << info.output;
   EXPECT_NE(info.output.find("camera_angle_x is -1"), std::string::npos) << info.output;
   EXPECT_EQ(info.output.find("render image"), std::string::npos) << info.output;
+
+  // A 10 MB file_path is quoted cut, with its length (10,000,000 and the folder), not echoed whole.
+  transforms["camera_angle_x"] = 0.69;
+  transforms["frames"][0]["file_path"] = std::string(10000000, 'a');
+  writeTextAtomically(root_ / "N" / "transforms_train.json", transforms.dump());
+  const Outcome named = runGlint("info " + at("N"));
+  EXPECT_NE(named.status, 0);
+  EXPECT_NE(named.output.find("... (1000"), std::string::npos) << named.output.substr(0, 500);
+  EXPECT_LT(named.output.size(), 2000u);
 }
 
 // Issue 39, item 9: a flag's limit is not quoted as a 309-digit number.
