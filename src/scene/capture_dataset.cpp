@@ -26,15 +26,13 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Presence (pathPresent), not regular files, decides the layout of a folder, so that a
-// broken cameras.txt is reported as itself, not as a missing transforms file of another layout.
-bool present(const fs::path& path) { return pathPresent(path); }
-
 // The COLMAP model folder of a capture: sparse/0 (COLMAP's mapper output) or sparse/.
 std::optional<fs::path> colmapModelFolder(const fs::path& root) {
   for (const fs::path& folder : {root / "sparse" / "0", root / "sparse"})
     for (const char* file : {"cameras.bin", "cameras.txt"})
-      if (present(folder / file)) return folder;
+      // Presence, not a regular file, decides the layout: a broken cameras.txt is reported
+      // as itself, not as a missing transforms file of another layout.
+      if (pathPresent(folder / file)) return folder;
   return std::nullopt;
 }
 
@@ -51,7 +49,7 @@ std::string findPrior(const fs::path& root, const std::string& name, const std::
     fs::path relative = folder / name / (name + "_" + stem + ext);
     // Whatever has the name is the prior: a FIFO or a folder there is refused by name when
     // read, not mistaken for a missing prior (which would drop the buffer from training).
-    if (present(root / relative)) return relative.generic_string();
+    if (pathPresent(root / relative)) return relative.generic_string();
   }
   return "";
 }
@@ -250,7 +248,7 @@ std::set<Buffer> CaptureSource::buffersWithAlpha() const {
 
 CaptureDecoding readCaptureDecoding(const fs::path& file) {
   CaptureDecoding d;
-  if (!present(file)) return d;  // a broken link is read, and refused by name
+  if (!pathPresent(file)) return d;  // a broken link is read, and refused by name
   nlohmann::json j = readJsonFile(file);
   if (!j.is_object()) throw Error(file.string(), "must hold a JSON object");
   static const char* known[] = {"photo_transfer", "prior_transfer", "clamp_max", "normal_space",
@@ -310,7 +308,7 @@ void attachPriorTransforms(const fs::path& root, DatasetSplit* train, DatasetSpl
 
 bool isCaptureFolder(const fs::path& root) {
   if (fs::exists(root / "transforms_train.json")) return false;
-  return colmapModelFolder(root).has_value() || present(root / "transforms.json");
+  return colmapModelFolder(root).has_value() || pathPresent(root / "transforms.json");
 }
 
 void openCapture(const fs::path& root, int holdout, DatasetSplit* train, DatasetSplit* test, CaptureSource* source) {

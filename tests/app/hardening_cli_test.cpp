@@ -15,6 +15,7 @@
 #include "common/floor_capture.h"
 #include "core/atomic_file.h"
 #include "io/json_file.h"
+#include "io/temp_folder.h"
 #include "scene/nerf_synthetic_files.h"
 
 namespace glint {
@@ -26,14 +27,9 @@ using test::runGlint;
 
 class HardeningCliTest : public ::testing::Test {
  protected:
-  void SetUp() override {
-    root_ = fs::temp_directory_path() / ("glint_hardening_cli_test_" + std::to_string(getpid()));
-    fs::remove_all(root_);
-    fs::create_directories(root_);
-  }
-  void TearDown() override { fs::remove_all(root_); }
   std::string at(const char* name) const { return (root_ / name).string(); }
-  fs::path root_;
+  test::TempFolder folder_;
+  const fs::path root_ = folder_.path();
 };
 
 // A FIFO or a device in place of a capture's files is one error naming the file, at once.

@@ -19,6 +19,7 @@
 
 #include "app/viewer/access_policy.h"
 #include "app/viewer_fixture.h"
+#include "common/locking_child.h"
 #include "core/folder_lock.h"
 
 namespace glint {
@@ -170,24 +171,13 @@ TEST_F(ServerFixture, SaveAndExportNeverReplaceTheRunsFiles) {
 // or an export is refused with 409 naming it, and writes nothing.
 TEST_F(ServerFixture, SavesAreRefusedWhileAnotherProcessHoldsTheRun) {
   const std::string lockFile = (root_ / kFolderLockName).string();
-  int ready[2], release[2];
-  ASSERT_EQ(pipe(ready), 0);
-  ASSERT_EQ(pipe(release), 0);
-  const pid_t trainer = fork();
-  if (trainer == 0) {
-    close(ready[0]), close(release[1]);
-    // Another open of the lock file, as another program makes (a forked child would share
-    // this process's lock). Only system calls here: the server's threads may hold malloc's lock.
+  // Another open of the lock file, as another program makes (a forked child would share this
+  // process's lock); the fd stays open in the child, holding it.
+  const test::LockingChild trainerProcess = test::holdLockInChild([&] {
     const int fd = open(lockFile.c_str(), O_RDWR | O_CREAT, 0644);
-    if (fd < 0 || flock(fd, LOCK_EX | LOCK_NB) != 0) _exit(1);
-    char c = 1;
-    (void)!write(ready[1], &c, 1);
-    (void)!read(release[0], &c, 1);
-    _exit(0);
-  }
-  close(ready[1]), close(release[0]);
-  char c = 0;
-  ASSERT_EQ(read(ready[0], &c, 1), 1);
+    return fd >= 0 && flock(fd, LOCK_EX | LOCK_NB) == 0;
+  });
+  const pid_t trainer = trainerProcess.pid;
   std::ofstream(lockFile) << "pid " << trainer << ", glint train, since now\n";  // what it says of itself
   httplib::Client client = pageClient();
   for (const char* path : {"/api/edits/save", "/api/edits/export"}) {
@@ -198,9 +188,7 @@ TEST_F(ServerFixture, SavesAreRefusedWhileAnotherProcessHoldsTheRun) {
   }
   EXPECT_FALSE(fs::exists(root_ / "viewer" / "viewer_edits.json"));
   EXPECT_FALSE(fs::exists(root_ / "viewer" / "viewer_edited.ply"));
-  close(release[1]);
-  int status = 0;
-  waitpid(trainer, &status, 0);
+  test::finish(trainerProcess);
   httplib::Result saved = client.Post("/api/edits/save", "{}", "application/json");
   ASSERT_TRUE(saved);
   EXPECT_EQ(saved->status, 200) << saved->body;

@@ -13,6 +13,7 @@
 #include <optional>
 #include <string>
 
+#include "common/locking_child.h"
 #include "core/error.h"
 #include "io/temp_folder.h"
 
@@ -27,40 +28,13 @@ class FolderLockTest : public ::testing::Test {
   const fs::path root_ = folder_ / "run";  // made by the first lock
 };
 
-// A child process takes the lock and holds it until the parent closes the pipe.
-struct LockingChild {
-  pid_t pid = -1;
-  int release = -1;
-};
-
-LockingChild lockInChild(const fs::path& folder) {
-  int ready[2], release[2];
-  EXPECT_EQ(pipe(ready), 0);
-  EXPECT_EQ(pipe(release), 0);
-  const pid_t pid = fork();
-  if (pid == 0) {
-    close(ready[0]), close(release[1]);
-    FolderLock lock(folder, "glint train");
-    char c = 1;
-    (void)!write(ready[1], &c, 1);
-    (void)!read(release[0], &c, 1);  // until the parent closes its end
-    _exit(0);
-  }
-  close(ready[1]), close(release[0]);
-  char c = 0;
-  EXPECT_EQ(read(ready[0], &c, 1), 1);
-  close(ready[0]);
-  return {pid, release[1]};
-}
-
-void finish(const LockingChild& child) {
-  close(child.release);
-  int status = 0;
-  waitpid(child.pid, &status, 0);
+// A child holding the folder's lock as `glint train` does (left held: the child exits later).
+test::LockingChild lockInChild(const fs::path& folder) {
+  return test::holdLockInChild([&] { return new FolderLock(folder, "glint train") != nullptr; });
 }
 
 TEST_F(FolderLockTest, ASecondProcessIsRefusedWithTheHoldersPid) {
-  const LockingChild child = lockInChild(root_);
+  const test::LockingChild child = lockInChild(root_);
   try {
     FolderLock second(root_, "glint view");
     ADD_FAILURE() << "the second writer was let in";
@@ -69,7 +43,7 @@ TEST_F(FolderLockTest, ASecondProcessIsRefusedWithTheHoldersPid) {
     EXPECT_NE(message.find("is in use by pid " + std::to_string(child.pid)), std::string::npos) << message;
     EXPECT_NE(message.find("glint train"), std::string::npos) << message;
   }
-  finish(child);
+  test::finish(child);
   // The holder is gone (its lock with it); its lock file stays and blocks nobody.
   EXPECT_TRUE(fs::exists(root_ / kFolderLockName));
   EXPECT_NO_THROW(FolderLock(root_, "glint train"));
