@@ -24,7 +24,7 @@ test: deps
 # The whole suite again, built with AddressSanitizer and UndefinedBehaviorSanitizer into
 # build-sanitize/ (the benchmarks are left out: they are not tests).
 test-sanitize: deps
-	@cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Release -DGLINT_SANITIZE=ON -DGLINT_BUILD_BENCH=OFF >/dev/null
+	@cmake -S . -B build-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Release -DGLINT_SANITIZE=ON -DGLINT_CUDA=OFF -DGLINT_BUILD_BENCH=OFF >/dev/null
 	@cmake --build build-sanitize -j $(JOBS)
 	@rm -rf build-sanitize/reports && mkdir -p build-sanitize/reports
 	@cd build-sanitize && \
@@ -50,7 +50,7 @@ bench: deps
 fuzz:
 	@bash scripts/install-deps.sh --fuzz
 	@cmake -S . -B $(FUZZ_DIR) -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++-14 \
-	  -DGLINT_FUZZ=ON -DGLINT_BUILD_TESTS=OFF -DGLINT_BUILD_BENCH=OFF >/dev/null
+	  -DGLINT_FUZZ=ON -DGLINT_CUDA=OFF -DGLINT_BUILD_TESTS=OFF -DGLINT_BUILD_BENCH=OFF >/dev/null
 	@cmake --build $(FUZZ_DIR) -j $(JOBS) --target glint_fuzzers
 	@FUZZ_SECONDS=$(FUZZ_SECONDS) bash scripts/run-fuzzers.sh $(FUZZ_DIR) $(FUZZERS)
 

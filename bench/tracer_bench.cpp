@@ -12,6 +12,7 @@
 #include <fstream>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "room_scene.h"
 #include "math/rng.h"
 #include "raytrace/fast/fast_tracer.h"
+#include "tracers/compute_device.h"
 #include "tracers/embree_tracer.h"
 
 using namespace glint;
@@ -81,13 +83,15 @@ struct Row {
   double cpuSpeedup = 0;       // megaRaysPerCpu / the baseline's (robust to other load)
 };
 
-// The tracers measured, by name; the first is the baseline the speed-up refers to.
-// Further tracers (e.g. a GPU backend) are added here.
+// The tracers measured, by name; the first is the baseline the speed-up refers to. The GPU
+// tracer ("cuda") joins where a GPU is; its rays and results cross to and from the GPU in
+// every timed batch, as they do in the product.
 // "fast-per-ray" is the fast tracer with coherent bundles off: every ray traverses the BVH
 // alone, as incoherent (reflected) rays do.
 std::vector<std::pair<std::string, std::function<std::unique_ptr<GaussianTracer>()>>> tracersToMeasure(
     int bundleRays) {
-  return {{"embree-k16", [] { return std::make_unique<EmbreeK16Tracer>(); }},
+  std::vector<std::pair<std::string, std::function<std::unique_ptr<GaussianTracer>()>>> tracers = {
+          {"embree-k16", [] { return std::make_unique<EmbreeK16Tracer>(); }},
           {"fast-per-ray",
            [] {
              auto t = std::make_unique<FastGaussianTracer>();
@@ -99,6 +103,14 @@ std::vector<std::pair<std::string, std::function<std::unique_ptr<GaussianTracer>
              t->setBundleRays(bundleRays);
              return t;
            }}};
+  std::string why;
+  if (std::optional<GpuInfo> gpu = findGpu(&why)) {
+    std::printf("tracer_bench: GPU %s\n", gpu->name.c_str());
+    tracers.push_back({"cuda", [] { return makeGaussianTracer("cuda"); }});
+  } else {
+    std::printf("tracer_bench: no GPU tracer: %s\n", why.c_str());
+  }
+  return tracers;
 }
 
 // Per-ray work counts, for the tracers that count them (zero otherwise): kernel

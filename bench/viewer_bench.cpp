@@ -19,59 +19,23 @@
 #include <nlohmann/json.hpp>
 
 #include "app/scene_source.h"
+#include "app/trace_flags.h"
 #include "app/viewer/access_policy.h"
+#include "app/viewer/progressive_renderer.h"
 #include "app/viewer/viewer_server.h"
 #include "app/viewer/viewer_setup.h"
 #include "scene/dataset.h"
+#include "tracers/compute_device.h"
 #include "core/parallel.h"
 #include "io/image.h"
 #include "math/rng.h"
+#include "surface_scene.h"
 
 using namespace glint;
 
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// A flat Gaussian at p facing n (its thin axis along n).
-void addSurfel(GaussianScene& scene, size_t i, Vec3f p, Vec3f n, float size, Rgb diffuse, float roughness, Rgb f0) {
-  scene.position[i] = p;
-  // Rotation taking local z to n (half-way quaternion; n = -z turns about x).
-  Vec3f z(0, 0, 1), axis = cross(z, n);
-  float w = 1.0f + dot(z, n);
-  scene.rotation[i] = w < 1e-6f ? Quatf(0, 1, 0, 0) : Quatf(w, axis.x, axis.y, axis.z);
-  scene.logScale[i] = Vec3f(std::log(size), std::log(size), std::log(size * 0.1f));
-  scene.opacityLogit[i] = logit(0.95f);
-  scene.diffuse[i] = diffuse;
-  scene.normal[i] = n;
-  scene.roughness[i] = roughness;
-  scene.f0[i] = f0;
-}
-
-GaussianScene makeSurfaceScene(size_t n, uint64_t seed) {
-  Rng rng(seed);
-  GaussianScene scene;
-  scene.resize(n);
-  const Vec3f centers[3] = {{-1.3f, 0.6f, 0.0f}, {0.0f, 0.6f, -0.8f}, {1.3f, 0.6f, 0.0f}};
-  const float radius = 0.6f;
-  size_t floorCount = n / 2;
-  for (size_t i = 0; i < n; ++i) {
-    if (i < floorCount) {  // a 6 x 6 m checker floor
-      Vec3f p(rng.uniform() * 6 - 3, 0, rng.uniform() * 6 - 3);
-      bool dark = (int(std::floor(p.x * 2)) + int(std::floor(p.z * 2))) & 1;
-      addSurfel(scene, i, p, {0, 1, 0}, 0.03f, Rgb(dark ? 0.1f : 0.7f), 0.5f, Rgb(0.04f));
-    } else {  // three spheres: chrome, gold, rough plastic
-      int s = int(i % 3);
-      float zc = rng.uniform() * 2 - 1, phi = 6.2831853f * rng.uniform();
-      float r = std::sqrt(std::max(0.0f, 1 - zc * zc));
-      Vec3f dir(r * std::cos(phi), zc, r * std::sin(phi));
-      Rgb f0 = s == 0 ? Rgb(0.95f) : s == 1 ? Rgb(1.0f, 0.77f, 0.34f) : Rgb(0.04f);
-      addSurfel(scene, i, centers[s] + dir * radius, dir, 0.025f, Rgb(s == 2 ? 0.6f : 0.05f),
-                s == 0 ? 0.05f : s == 1 ? 0.3f : 0.8f, f0);
-    }
-  }
-  return scene;
-}
 
 // The page's side of the viewer API: JSON posts with the token, long polls for frames.
 class PageClient {
@@ -126,7 +90,13 @@ int main(int argc, char** argv) {
   app.add_option("--cameras", cameras, "Still cameras measured: the start camera and training cameras spread over "
                                        "the dataset")->check(CLI::Range(1, 1000))->capture_default_str();
   app.add_option("--json", jsonPath, "Also write the results to this JSON file");
+  std::string device = "cpu", datasetPath;
+  app.add_option("--device", device, "Where the viewer traces: cpu, cuda or auto (as glint view --device)")
+      ->check(CLI::IsMember(deviceRequestNames()))
+      ->capture_default_str();
+  app.add_option("--dataset", datasetPath, "Dataset whose cameras to offer (default: the run's)");
   CLI11_PARSE(app, argc, argv);
+  setViewerTracer(resolveTracerForDevice(device, "fast", /*tracerGiven=*/false, "viewer_bench"));
 
   ThreadLimit limit(threads);
   SceneSource source;
@@ -141,6 +111,7 @@ int main(int argc, char** argv) {
   // of them the start camera, else the overview; the run's path settings. Nothing is
   // saved, so the output folder is never written.
   std::optional<Dataset> dataset;
+  if (!datasetPath.empty()) source.settings.dataset = datasetPath;
   if (!source.settings.dataset.empty()) dataset = Dataset::open(source.settings.dataset, /*requireBuffers=*/false);
   ViewerFlags flags;
   flags.resolution = std::to_string(width) + "x" + std::to_string(height);
@@ -164,8 +135,8 @@ int main(int argc, char** argv) {
   // Still: per camera, full-size samples accumulated per second, counted from the first one.
   nlohmann::json stillJson = nlohmann::json::array();
   double sampleSum = 0, renderMsSum = 0;
-  std::printf("viewer_bench: %s (%zu Gaussians), %dx%d, %d bounces, %d threads, through the HTTP server\n\n",
-              sceneName.c_str(), sceneSize, width, height, bounces, maxThreads());
+  std::printf("viewer_bench: %s (%zu Gaussians), %dx%d, %d bounces, %d threads, %s tracer, through the HTTP server\n\n",
+              sceneName.c_str(), sceneSize, width, height, bounces, maxThreads(), viewerTracer().c_str());
   std::printf("%-28s %14s %16s\n", "still camera", "samples/s", "render ms/sample");
   uint64_t last = 0;
   for (const auto& [name, camera] : still) {
@@ -214,7 +185,7 @@ int main(int argc, char** argv) {
   std::printf("%-34s %10.1f\n", "moving: frames/s", movingFps);
   if (!jsonPath.empty()) {
     nlohmann::json json = {{"scene", sceneName}, {"gaussians", sceneSize}, {"width", width}, {"height", height},
-                           {"bounces", bounces}, {"threads", maxThreads()}, {"still", stillJson},
+                           {"bounces", bounces}, {"threads", maxThreads()}, {"tracer", viewerTracer()}, {"still", stillJson},
                            {"still_samples_per_s", meanRate}, {"moving_fps", movingFps},
                            {"state_width", movingWidth}};
     std::ofstream(jsonPath) << json.dump(2) << "\n";

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 
+#include "app/trace_flags.h"
 #include "core/error.h"
 #include "raytrace/gaussian_tracer.h"
 #include "render/sh_bake.h"
@@ -30,11 +31,12 @@ void BakeFlags::add(CLI::App* cmd) {
       ->check(CLI::Range(0.0, 100.0))
       ->capture_default_str();
   cmd->add_option("--seed", seed_, "Seed of --bake-reflections' sampling")->capture_default_str();
+  addDeviceFlag(cmd, &device_);
 }
 
 void BakeFlags::check() const {
   if (bake_) return;
-  for (const char* flag : {"--bake-directions", "--bake-ridge", "--seed"})
+  for (const char* flag : {"--bake-directions", "--bake-ridge", "--seed", "--device"})
     if (cmd_->get_option(flag)->count() > 0) throw Error(flag, "only applies with --bake-reflections");
 }
 
@@ -56,7 +58,8 @@ SplatColour BakeFlags::bake(const GaussianScene& scene, const TrainConfig& run, 
     std::fprintf(stderr, "glint export: no dataset known, so --bake-reflections samples every direction\n");
   }
   auto start = std::chrono::steady_clock::now();
-  std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer("fast");
+  std::unique_ptr<GaussianTracer> tracer =
+      makeGaussianTracer(resolveTracerForDevice(device_, "fast", /*tracerGiven=*/false, "glint export"));
   tracer->build(scene, run.trace);
   SplatColour colour = bakeReflections(scene, *tracer, settings);
   std::fprintf(stderr,

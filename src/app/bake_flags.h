@@ -15,7 +15,7 @@ namespace glint {
 
 class BakeFlags {
  public:
-  // Declares --bake-reflections, --bake-directions, --bake-ridge and --seed on cmd (the
+  // Declares --bake-reflections, --bake-directions, --bake-ridge, --seed and --device on cmd (the
   // degree is the export's --sh-degree, the cameras those of its --dataset).
   void add(CLI::App* cmd);
   bool given() const { return bake_; }
@@ -35,6 +35,7 @@ class BakeFlags {
   int directions_ = 64;
   double ridge_ = 0.005;
   uint64_t seed_ = 0;
+  std::string device_ = "auto";
 };
 
 }  // namespace glint

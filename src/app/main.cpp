@@ -15,6 +15,7 @@
 #include "core/activity.h"
 #include "core/cluster.h"
 #include "core/error.h"
+#include "tracers/compute_device.h"
 
 namespace {
 
@@ -36,7 +37,8 @@ int runGlint(int argc, char** argv) {
   app.require_subcommand(1);
   // Scripts (the MPI tests) tell from it whether this build can join an MPI job.
   app.set_version_flag("--version", std::string("glint 0.1.0") +
-                                        (glint::cluster::builtWithMpi() ? " (with MPI)" : " (without MPI)"));
+                                        (glint::cluster::builtWithMpi() ? " (with MPI)" : " (without MPI)") + " (" +
+                                        glint::cudaBuildDescription() + ")");
   glint::addSynthCommand(app);
   glint::addInfoCommand(app);
   glint::addSheetCommand(app);

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <future>
 
 #include "app/cli_parsing.h"
 #include "app/commands.h"
@@ -261,17 +262,28 @@ void runRender(const RenderOptions& o) {
   cluster::barrier();  // the folders exist before any rank writes into them
   const ViewShare share(split.views.size(), /*allowBands=*/true);
   ProgressBar progress(share.progressLabel("render"), int64_t(share.myCount()), "views");
+  // A view's files are written on another thread while the next view renders (on the GPU
+  // the writing would otherwise take as long as the rendering); one write at a time, in
+  // order, and a failed write stops the command at the next view.
+  std::future<void> writing;
+  auto finishWriting = [&] {
+    if (writing.valid()) writing.get();
+  };
   for (size_t v = 0; v < split.views.size(); ++v) {
     if (!share.mine(v)) continue;
     ActivityScope activity("rendering view " + split.views[v].filePath);
     const Camera camera = viewCamera(v);
-    auto write = [&](const ViewBuffers& buffers, int /*samples*/) {
-      writeRenderedBuffers(o.output, split.views[v].filePath, buffers, outputFormat(o));
-      if (o.denoise) writeImage(denoisedRenderPath(o.output, split.views[v].filePath), denoiseView(buffers));
+    auto write = [&, v](const ViewBuffers& buffers, int /*samples*/) {
+      finishWriting();
+      writing = std::async(std::launch::async, [&o, &split, v, buffers] {
+        writeRenderedBuffers(o.output, split.views[v].filePath, buffers, outputFormat(o));
+        if (o.denoise) writeImage(denoisedRenderPath(o.output, split.views[v].filePath), denoiseView(buffers));
+      });
     };
     renderView(o, *tracer, camera, settings, share, uint64_t(v), write);
     progress.advance();
   }
+  finishWriting();
 }
 
 }  // namespace

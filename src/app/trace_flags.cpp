@@ -3,7 +3,9 @@
 
 #include <cstdio>
 
+#include "core/error.h"
 #include "raytrace/gaussian_tracer.h"
+#include "tracers/compute_device.h"
 
 namespace glint {
 
@@ -39,7 +41,30 @@ void TraceFlags::add(CLI::App* cmd) {
     std::string names;
     for (const std::string& n : gaussianTracerNames()) names += (names.empty() ? "" : ", ") + n;
     return names;
-  }())->capture_default_str();
+  }() + " (default: fast, or cuda where --device picks the GPU)");
+  addDeviceFlag(cmd, &device_);
+}
+
+void addDeviceFlag(CLI::App* cmd, std::string* device) {
+  cmd->add_option("--device", *device,
+                  "Where to trace: auto (the GPU when one is present, else the CPU), cpu, or cuda (the GPU; an "
+                  "error without one)")
+      ->check(CLI::IsMember(deviceRequestNames()))
+      ->capture_default_str();
+}
+
+std::string resolveTracerForDevice(const std::string& device, const std::string& tracer, bool tracerGiven,
+                                   const std::string& command) {
+  const DeviceRequest request = parseDeviceRequest(device);
+  if (tracerGiven) {
+    if ((request == DeviceRequest::Cuda) != (tracer == "cuda") && request != DeviceRequest::Auto)
+      throw Error("--tracer " + tracer + " and --device " + device + " disagree (the cuda tracer is the GPU's)");
+    if (tracer == "cuda") std::fprintf(stderr, "%s: %s\n", command.c_str(), resolveDevice(DeviceRequest::Cuda).description.c_str());
+    return tracer;
+  }
+  ResolvedDevice resolved = resolveDevice(request, tracer);
+  std::fprintf(stderr, "%s: %s\n", command.c_str(), resolved.description.c_str());
+  return resolved.tracer;
 }
 
 SceneRendering TraceFlags::resolve(TrainConfig run) const {
@@ -51,7 +76,8 @@ SceneRendering TraceFlags::resolve(TrainConfig run) const {
   if (given("--invalid-normal")) run.invalidNormalLength = invalidNormalLength_;
   if (given("--backface-skip")) run.backfaceSkip = backfaceSkip_;
   run.validate("command line");
-  SceneRendering rendering{run.trace, run.renderPath(), tracer_};
+  SceneRendering rendering{run.trace, run.renderPath(),
+                           resolveTracerForDevice(device_, tracer_, given("--tracer"), "glint " + cmd_->get_name())};
   if (given("--bounces")) rendering.path.bounces = bounces_;
   return rendering;
 }

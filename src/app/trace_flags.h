@@ -23,12 +23,14 @@ struct SceneRendering {
 class TraceFlags {
  public:
   // Declares --kernel-power, --alpha-min, --min-transmittance, --bounces, --invalid-normal,
-  // --backface-skip and --tracer on cmd.
+  // --backface-skip, --tracer and --device on cmd.
   void add(CLI::App* cmd);
   // `run` (a run's settings, or a new run's defaults for a bare .ply) with every flag the
   // user gave applied over it. The values are checked by TrainConfig::validate, so a flag
   // accepts what config.json accepts; only --bounces has its own range, as rendering may
   // follow longer paths than training. Call from the command's callback, once parsing is done.
+  // --device picks the tracer unless --tracer names one: auto takes the GPU when there is
+  // one. Prints the device chosen.
   SceneRendering resolve(TrainConfig run) const;
 
  private:
@@ -40,6 +42,16 @@ class TraceFlags {
   float invalidNormalLength_ = 0;
   float backfaceSkip_ = 0;
   std::string tracer_ = "fast";
+  std::string device_ = "auto";
 };
+
+// Declares --device (auto, cpu, cuda) on cmd, stored in *device.
+void addDeviceFlag(CLI::App* cmd, std::string* device);
+
+// The tracer kind for a --device value: `tracer` itself when the user gave --tracer (an
+// error when it contradicts --device), else cuda for the GPU or `tracer` for the CPU.
+// Prints "COMMAND: device: ..." (which GPU, or why the CPU).
+std::string resolveTracerForDevice(const std::string& device, const std::string& tracer, bool tracerGiven,
+                                   const std::string& command);
 
 }  // namespace glint

@@ -1,5 +1,5 @@
 // `glint view RUN|SCENE.ply`: the interactive viewer and editor. Serves a page on
-// 127.0.0.1 that shows the scene rendered progressively on the CPU, with camera, display
+// 127.0.0.1 that shows the scene rendered progressively (on the GPU or the CPU), with camera, display
 // and edit controls (see README "Viewer"); Ctrl-C stops it.
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +10,8 @@
 #include "app/relight_flags.h"
 #include "app/scene_source.h"
 #include "app/thread_flag.h"
+#include "app/trace_flags.h"
+#include "app/viewer/progressive_renderer.h"
 #include "app/viewer/viewer_outputs.h"
 #include "app/viewer/viewer_setup.h"
 #include "core/error.h"
@@ -30,11 +32,13 @@ struct ViewOptions {
   int threads = 0;
   RelightFlags relight;
   HealFlags heal;
+  std::string device = "auto";
 };
 
 void runView(const ViewOptions& o) {
   ThreadLimit threads(o.threads);
   SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
+  setViewerTracer(resolveTracerForDevice(o.device, "fast", /*tracerGiven=*/false, "glint view"));
   fs::path datasetPath = o.dataset.empty() ? fs::path(source.settings.dataset) : fs::path(o.dataset);
   std::optional<Dataset> dataset;
   if (!datasetPath.empty())
@@ -92,6 +96,7 @@ void addViewCommand(CLI::App& app) {
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
   addThreadsFlag(cmd, &o->threads, "the viewer renders with them");
+  addDeviceFlag(cmd, &o->device);
   o->relight.add(cmd);
   o->heal.add(cmd);
   cmd->callback([o]() { runView(*o); });

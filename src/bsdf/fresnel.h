@@ -3,6 +3,7 @@
 
 #include <algorithm>
 
+#include "core/cpu_gpu.h"
 #include "math/vec.h"
 
 namespace glint {
@@ -10,7 +11,7 @@ namespace glint {
 // Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering", eq. 15:
 // F = F0 + (1 - F0)(1 - cos)^5. cosTheta is the cosine between the viewing direction and
 // the (micro)facet normal; it is clamped to [0, 1] so F stays within [F0, 1].
-inline Rgb F_Schlick(const Rgb& F0, float cosTheta) {
+GLINT_CPU_GPU inline Rgb F_Schlick(const Rgb& F0, float cosTheta) {
   float m = 1.0f - std::clamp(cosTheta, 0.0f, 1.0f);
   float m2 = m * m;
   float m5 = m2 * m2 * m;

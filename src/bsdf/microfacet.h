@@ -2,8 +2,13 @@
 // Smith masking-shadowing G1 / G2, and sampling of the distribution of visible normals.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <optional>
 
+#include "core/cpu_gpu.h"
+#include "math/sampling.h"
 #include "math/vec.h"
 
 namespace glint {
@@ -18,22 +23,78 @@ constexpr float kMinGgxAlpha = 1e-3f;
 // alpha >= kMinGgxAlpha (callers clamp; see PrincipledBrdf::alphaFromRoughness).
 
 // GGX normal distribution D(wm); zero for wm below the horizon.
-float D_GGX(const Vec3f& wm, float alpha);
+GLINT_CPU_GPU inline float D_GGX(const Vec3f& wm, float alpha) {
+  // Walter et al. 2007, "Microfacet Models for Refraction through Rough Surfaces" (GGX D),
+  // in the form 1 / (pi a^2 (x^2 / a^2 + y^2 / a^2 + z^2)^2) used by Heitz 2018: reading
+  // sin^2 as x^2 + y^2 avoids the cancellation in 1 - cos^2 near the normal.
+  if (wm.z <= 0) return 0.0f;
+  float a2 = alpha * alpha;
+  float t = (wm.x * wm.x + wm.y * wm.y) / a2 + wm.z * wm.z;
+  return 1.0f / (kPi * a2 * t * t);
+}
 
 // Smith's Lambda for GGX: the mean masked fraction term, G1 = 1 / (1 + Lambda).
-float lambdaGGX(const Vec3f& w, float alpha);
+GLINT_CPU_GPU inline float lambdaGGX(const Vec3f& w, float alpha) {
+  // Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs",
+  // JCGT 3(2), GGX case: Lambda = (-1 + sqrt(1 + a^2 tan^2)) / 2, rewritten as
+  // a^2 tan^2 / (2 (1 + sqrt(1 + a^2 tan^2))) so it stays accurate when a^2 tan^2 is tiny.
+  float cos2 = w.z * w.z;
+  if (cos2 == 0) return std::numeric_limits<float>::infinity();
+  float a2tan2 = alpha * alpha * (w.x * w.x + w.y * w.y) / cos2;
+  return a2tan2 / (2.0f * (1.0f + std::sqrt(1.0f + a2tan2)));
+}
 
 // Smith masking G1(w) for GGX (the back-facing test on the microfacet is left to callers).
-float smithG1(const Vec3f& w, float alpha);
+GLINT_CPU_GPU inline float smithG1(const Vec3f& w, float alpha) {
+  // Heitz 2014, Smith masking function: G1 = 1 / (1 + Lambda) for directions in front of the surface.
+  if (w.z <= 0) return 0.0f;
+  return 1.0f / (1.0f + lambdaGGX(w, alpha));
+}
 
 // Height-correlated Smith masking-shadowing G2(wo, wi) for reflection (both above the horizon).
-float smithG2(const Vec3f& wo, const Vec3f& wi, float alpha);
+GLINT_CPU_GPU inline float smithG2(const Vec3f& wo, const Vec3f& wi, float alpha) {
+  // Heitz 2014, height-correlated Smith masking-shadowing, for reflection:
+  // G2 = 1 / (1 + Lambda(wo) + Lambda(wi)).
+  if (wo.z <= 0 || wi.z <= 0) return 0.0f;
+  return 1.0f / (1.0f + lambdaGGX(wo, alpha) + lambdaGGX(wi, alpha));
+}
 
 // Samples a microfacet normal wm from the distribution of normals visible from wo,
-// D_wo(wm) = G1(wo) max(0, wo.wm) D(wm) / wo.z. Returns nothing when wo is not above the horizon.
-std::optional<Vec3f> sampleVisibleNormalGGX(const Vec3f& wo, float alpha, Vec2f u);
+// D_wo(wm) = G1(wo) max(0, wo.wm) D(wm) / wo.z, into *wmOut. Returns false when wo is not
+// above the horizon.
+GLINT_CPU_GPU inline bool sampleVisibleNormalGGX(const Vec3f& wo, float alpha, Vec2f u, Vec3f* wmOut) {
+  // Dupuy & Benyoub 2023, "Sampling Visible GGX Normals with Spherical Caps", CGF 42(8),
+  // which is exact and equivalent to Heitz 2018, "Sampling the GGX Distribution of Visible
+  // Normals", JCGT 7(4): in the configuration stretched to alpha = 1 the visible normals
+  // of wo are wo plus a uniform point on the spherical cap of directions with z >= -wo.z.
+  if (!(wo.z > 0)) return false;
+  Vec3f woStd = normalize(Vec3f(wo.x * alpha, wo.y * alpha, wo.z));
+  float phi = 2.0f * kPi * u.x;
+  float z = (1.0f - u.y) * (1.0f + woStd.z) - woStd.z;
+  float sinTheta = std::sqrt(std::clamp(1.0f - z * z, 0.0f, 1.0f));
+  Vec3f cap(sinTheta * std::cos(phi), sinTheta * std::sin(phi), z);
+  Vec3f wmStd = cap + woStd;
+  // Unstretch back to the surface's alpha; the normal transforms with the inverse stretch.
+  Vec3f wm = normalize(Vec3f(wmStd.x * alpha, wmStd.y * alpha, std::max(wmStd.z, 0.0f)));
+  if (!(wm.z > 0)) return false;  // u.y = 1 maps to the horizon, a set of measure zero
+  *wmOut = wm;
+  return true;
+}
+
+// The same, as an optional (host code and the tests).
+inline std::optional<Vec3f> sampleVisibleNormalGGX(const Vec3f& wo, float alpha, Vec2f u) {
+  Vec3f wm;
+  if (!sampleVisibleNormalGGX(wo, alpha, u, &wm)) return std::nullopt;
+  return wm;
+}
 
 // The density D_wo(wm) of sampleVisibleNormalGGX with respect to solid angle around wm.
-float visibleNormalPdfGGX(const Vec3f& wo, const Vec3f& wm, float alpha);
+GLINT_CPU_GPU inline float visibleNormalPdfGGX(const Vec3f& wo, const Vec3f& wm, float alpha) {
+  // Heitz 2018, JCGT 7(4), definition of the VNDF: D_wo(wm) = G1(wo) max(0, wo.wm) D(wm) / wo.z.
+  if (!(wo.z > 0)) return 0.0f;
+  float cosOm = dot(wo, wm);
+  if (cosOm <= 0) return 0.0f;
+  return smithG1(wo, alpha) * cosOm * D_GGX(wm, alpha) / wo.z;
+}
 
 }  // namespace glint

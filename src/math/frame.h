@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/cpu_gpu.h"
 #include "math/vec.h"
 
 namespace glint {
@@ -13,7 +14,7 @@ struct Frame {
 
   // Builds a frame around a unit normal without branches on its direction.
   // Duff et al. 2017, "Building an Orthonormal Basis, Revisited", JCGT 6(1).
-  static Frame fromNormal(const Vec3<T>& n) {
+  GLINT_CPU_GPU static Frame fromNormal(const Vec3<T>& n) {
     T sign = std::copysign(T(1), n.z);
     T a = T(-1) / (sign + n.z);
     T b = n.x * n.y * a;
@@ -24,8 +25,8 @@ struct Frame {
     return f;
   }
 
-  Vec3<T> toLocal(const Vec3<T>& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
-  Vec3<T> toWorld(const Vec3<T>& v) const { return s * v.x + t * v.y + n * v.z; }
+  GLINT_CPU_GPU Vec3<T> toLocal(const Vec3<T>& v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
+  GLINT_CPU_GPU Vec3<T> toWorld(const Vec3<T>& v) const { return s * v.x + t * v.y + n * v.z; }
 };
 
 using Framef = Frame<float>;

@@ -75,11 +75,6 @@ Vec3d Mat4::transformPoint(const Vec3d& p) const {
           m[2][0] * p.x + m[2][1] * p.y + m[2][2] * p.z + m[2][3]};
 }
 
-Vec3d Mat4::transformVector(const Vec3d& v) const {
-  return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
-          m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
-}
-
 Vec3d Mat4::transformNormal(const Vec3d& n) const {
   Mat4 inv = inverse();
   return {inv.m[0][0] * n.x + inv.m[1][0] * n.y + inv.m[2][0] * n.z,

@@ -3,6 +3,7 @@
 
 #include <array>
 
+#include "core/cpu_gpu.h"
 #include "math/vec.h"
 
 namespace glint {
@@ -21,13 +22,16 @@ struct Mat4 {
 
   Mat4 operator*(const Mat4& b) const;
   Vec3d transformPoint(const Vec3d& p) const;
-  Vec3d transformVector(const Vec3d& v) const;
+  GLINT_CPU_GPU Vec3d transformVector(const Vec3d& v) const {
+    return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
+            m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
+  }
   // Transforms a normal by the inverse transpose (for non-uniform scale).
   Vec3d transformNormal(const Vec3d& n) const;
   Mat4 inverse() const;
   // True when every entry is finite and the last row is (0 0 0 1).
   bool isAffine(double tolerance = 1e-6) const;
-  Vec3d column(int c) const { return {m[0][c], m[1][c], m[2][c]}; }
+  GLINT_CPU_GPU Vec3d column(int c) const { return {m[0][c], m[1][c], m[2][c]}; }
 };
 
 }  // namespace glint

@@ -4,6 +4,7 @@
 
 #include <cstdint>
 
+#include "core/cpu_gpu.h"
 #include "math/rng.h"
 #include "math/vec.h"
 
@@ -53,7 +54,7 @@ constexpr uint32_t owenScramble(uint32_t x, uint32_t seed) {
 // scrambling its bits (each flipped by a hash of the bits above it, so every aligned block
 // of 2^m indices maps onto another such block, which is again a net), so that the streams
 // of a path's dimensions pair their samples independently of each other.
-inline Vec2f stratifiedSample2(uint64_t streamKey, uint32_t index) {
+GLINT_CPU_GPU inline Vec2f stratifiedSample2(uint64_t streamKey, uint32_t index) {
   const uint64_t seeds = mix64(streamKey);
   const uint32_t shuffled = owenScramble(index, uint32_t(streamKey));
   return {unitFloatFromBits(owenScramble(sobolDimension0(shuffled), uint32_t(seeds))),

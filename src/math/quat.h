@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "core/cpu_gpu.h"
 #include "math/mat3.h"
 
 namespace glint {
@@ -11,8 +12,8 @@ template <typename T>
 struct Quat {
   T w = 1, x = 0, y = 0, z = 0;
 
-  T norm() const { return std::sqrt(w * w + x * x + y * y + z * z); }
-  Quat normalized() const {
+  GLINT_CPU_GPU T norm() const { return std::sqrt(w * w + x * x + y * y + z * z); }
+  GLINT_CPU_GPU Quat normalized() const {
     T n = norm();
     return n > T(0) ? Quat{w / n, x / n, y / n, z / n} : Quat{};
   }
@@ -20,7 +21,7 @@ struct Quat {
 
 // Rotation matrix of q / |q| (the columns are the local axes in world space).
 template <typename T>
-Mat3<T> quatToRotation(const Quat<T>& q) {
+GLINT_CPU_GPU Mat3<T> quatToRotation(const Quat<T>& q) {
   Quat<T> u = q.normalized();
   T w = u.w, x = u.x, y = u.y, z = u.z;
   Mat3<T> r;
@@ -32,7 +33,7 @@ Mat3<T> quatToRotation(const Quat<T>& q) {
 
 // Hamilton product: rotating by b, then by a, is rotating by a * b.
 template <typename T>
-Quat<T> operator*(const Quat<T>& a, const Quat<T>& b) {
+GLINT_CPU_GPU Quat<T> operator*(const Quat<T>& a, const Quat<T>& b) {
   return {a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z, a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
           a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x, a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w};
 }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include "core/cpu_gpu.h"
+
 namespace glint {
 
 template <typename T>
@@ -59,10 +61,10 @@ constexpr Vec3<T> cross(const Vec3<T>& a, const Vec3<T>& b) {
 }
 
 template <typename T>
-inline T length(const Vec3<T>& v) { return std::sqrt(dot(v, v)); }
+GLINT_CPU_GPU inline T length(const Vec3<T>& v) { return std::sqrt(dot(v, v)); }
 
 template <typename T>
-inline Vec3<T> normalize(const Vec3<T>& v) {
+GLINT_CPU_GPU inline Vec3<T> normalize(const Vec3<T>& v) {
   T len = length(v);
   return len > T(0) ? v / len : Vec3<T>();
 }
@@ -84,7 +86,7 @@ template <typename T>
 constexpr T luminance(const Vec3<T>& c) { return T(0.2126) * c.x + T(0.7152) * c.y + T(0.0722) * c.z; }
 
 template <typename T>
-inline bool isFinite(const Vec3<T>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+GLINT_CPU_GPU inline bool isFinite(const Vec3<T>& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 template <typename T>
 constexpr Vec3<T> lerp(const Vec3<T>& a, const Vec3<T>& b, T t) { return a * (T(1) - t) + b * t; }

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/cpu_gpu.h"
 #include "math/mat3.h"
 #include "math/quat.h"
 #include "math/vec.h"
@@ -18,7 +19,7 @@ namespace glint {
 // within an ulp of std::pow and several times faster, as the fast tracer's lanes compute
 // them, so the backward pass re-evaluates what the forward pass did.
 template <typename T>
-inline T kernelPow(T x, T p) {
+GLINT_CPU_GPU inline T kernelPow(T x, T p) {
   if (p == T(1)) return x;
   if (p == T(2)) return x * x;
   if (p == T(3)) return (x * x) * x;
@@ -29,7 +30,7 @@ inline T kernelPow(T x, T p) {
 // G(r^2) = exp(-(r^2)^p / (2p)): r is the distance in units of the scales (Mahalanobis
 // distance); p = 1 gives the ordinary Gaussian exp(-r^2 / 2).
 template <typename T>
-inline T gaussianResponse(T r2, T power) {
+GLINT_CPU_GPU inline T gaussianResponse(T r2, T power) {
   return std::exp(-kernelPow(r2, power) / (T(2) * power));
 }
 
@@ -37,7 +38,7 @@ inline T gaussianResponse(T r2, T power) {
 // alphaMin: solving exp(-(r^2)^p / 2p) = alphaMin / (kMaxAlpha o) for r. Returns 0 when
 // the Gaussian can never reach alphaMin (it then contributes nothing and has no proxy).
 template <typename T>
-inline T proxyRadius(T opacity, const TraceSettings& s) {
+GLINT_CPU_GPU inline T proxyRadius(T opacity, const TraceSettings& s) {
   T peak = T(kMaxAlpha) * opacity;
   if (!(peak > T(s.alphaMin))) return T(0);
   T p = T(s.kernelPower);
@@ -47,14 +48,14 @@ inline T proxyRadius(T opacity, const TraceSettings& s) {
 
 // Opacity from its logit, o = sigmoid(logit) (derivations D8).
 template <typename T>
-T opacityFromLogit(T logit) {
+GLINT_CPU_GPU T opacityFromLogit(T logit) {
   return T(1) / (T(1) + std::exp(-logit));
 }
 
 // Row r of W is column r of R (local axis r in world space) divided by scale r, so
 // W (x - mean) gives x in the Gaussian's scale-normalised frame.
 template <typename T>
-Mat3<T> worldToLocal(const Quat<T>& q, const Vec3<T>& logScale) {
+GLINT_CPU_GPU Mat3<T> worldToLocal(const Quat<T>& q, const Vec3<T>& logScale) {
   Mat3<T> rt = quatToRotation(q).transposed();
   Mat3<T> w;
   for (int r = 0; r < 3; ++r) w.m[r] = rt.m[r] * std::exp(-logScale[r]);
@@ -94,7 +95,7 @@ struct LocalRay {
 };
 
 template <typename T>
-LocalRay<T> localRay(const Mat3<T>& W, const Vec3<T>& mean, const Vec3<T>& o, const Vec3<T>& d, T t0) {
+GLINT_CPU_GPU LocalRay<T> localRay(const Mat3<T>& W, const Vec3<T>& mean, const Vec3<T>& o, const Vec3<T>& d, T t0) {
   return {W * (o + d * t0 - mean), W * d};
 }
 
@@ -109,7 +110,7 @@ struct ClosestApproach {
 
 // tc = -oL . dL / dL . dL, pL = oL + dL tc, r2 = pL . pL (dL must be non-zero).
 template <typename T>
-ClosestApproach<T> closestApproach(const LocalRay<T>& ray) {
+GLINT_CPU_GPU ClosestApproach<T> closestApproach(const LocalRay<T>& ray) {
   ClosestApproach<T> c;
   T dd = dot(ray.direction, ray.direction);
   c.tc = -dot(ray.origin, ray.direction) / dd;
@@ -120,13 +121,13 @@ ClosestApproach<T> closestApproach(const LocalRay<T>& ray) {
 
 // Alpha = kMaxAlpha * opacity * G (D8).
 template <typename T>
-T hitAlpha(T opacity, T response) {
+GLINT_CPU_GPU T hitAlpha(T opacity, T response) {
   return T(kMaxAlpha) * opacity * response;
 }
 
 // The key of evaluateGaussian, the depth the compositor accumulates.
 template <typename T>
-T hitKey(T tPeak, T tEnter, T tExit, T tMin) {
+GLINT_CPU_GPU T hitKey(T tPeak, T tEnter, T tExit, T tMin) {
   return std::clamp(tPeak, std::max(tEnter, tMin), tExit);
 }
 
@@ -149,7 +150,7 @@ struct KernelHit {
 // Precision: the ray origin is first moved, in world space, to the ray's closest point to
 // the mean (t0 = (mean - o) . d), so the local-frame solve never subtracts large numbers.
 template <typename T>
-bool evaluateGaussian(const GaussianFrame<T>& g, const Vec3<T>& o, const Vec3<T>& d, T tMin,
+GLINT_CPU_GPU bool evaluateGaussian(const GaussianFrame<T>& g, const Vec3<T>& o, const Vec3<T>& d, T tMin,
                       const TraceSettings& s, KernelHit<T>* hit) {
   if (!(g.proxyRadius > T(0))) return false;
   T t0 = dot(g.mean - o, d);

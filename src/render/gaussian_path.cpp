@@ -6,41 +6,11 @@
 #include <limits>
 #include <utility>
 
-#include "bsdf/cook_torrance.h"
 #include "core/error.h"
 #include "core/parallel.h"
-#include "math/frame.h"
-#include "math/morton.h"
-#include "math/owen_sobol.h"
+#include "render/ray_order.h"
 
 namespace glint {
-
-bool continuePath(const TraceRay& ray, const RayResult& result, const PathSettings& settings, uint64_t seed,
-                  const PathKey& key, int k, TraceRay* next, Rgb* weight) {
-  if (!(result.normalLength >= settings.invalidNormalLength)) return false;
-  if (settings.minReflectance > 0 && std::max({result.f0.x, result.f0.y, result.f0.z}) < settings.minReflectance)
-    return false;
-  Vec3f n = result.normal / result.normalLength;
-  // Blended normals may face away from the incoming ray (Gaussians seen from behind);
-  // the surface is then taken as seen from the ray's side.
-  if (dot(n, ray.direction) > 0) n = -n;
-  Frame<float> frame = Frame<float>::fromNormal(n);
-  Vec3f wo = frame.toLocal(-ray.direction);
-  float rho = std::max(std::clamp(result.roughness, 0.0f, 1.0f), settings.minRoughness);
-  CookTorranceLobe lobe(result.f0, rho * rho);
-  // Dimension k of the pixel's stratified stream: a pixel's samples spread their
-  // directions of segment k evenly over the lobe, which at 64 samples leaves far less
-  // noise on glossy surfaces than independent numbers.
-  BsdfSample s =
-      lobe.sample(wo, stratifiedSample2(hashKeys({seed, key.view, key.pixel, uint64_t(k)}), uint32_t(key.sample)));
-  if (!s.valid) return false;
-  *weight = s.weight;
-  next->origin = ray.origin + ray.direction * result.depth + n * settings.normalOffset;
-  next->direction = normalize(frame.toWorld(s.wi));
-  next->tMin = 0.0f;
-  next->backfaceSkip = settings.backfaceSkip;
-  return true;
-}
 
 namespace {
 
@@ -170,13 +140,7 @@ void PathBatch::sortByOriginAndOctant() {
   for (const TraceRay& r : rays_) lo = min(lo, r.origin), hi = max(hi, r.origin);
   const Vec3f extent = max(hi - lo, Vec3f(1e-20f));
   sortKeys_.resize(m);
-  for (size_t j = 0; j < m; ++j) {
-    const TraceRay& r = rays_[j];
-    uint32_t q[3];
-    for (int a = 0; a < 3; ++a) q[a] = uint32_t(std::clamp((r.origin[a] - lo[a]) / extent[a], 0.0f, 1.0f) * 1023.0f);
-    uint64_t octant = uint64_t(r.direction.x < 0) | uint64_t(r.direction.y < 0) << 1 | uint64_t(r.direction.z < 0) << 2;
-    sortKeys_[j] = {octant << 30 | mortonCode3(q[0], q[1], q[2]), uint32_t(j)};
-  }
+  for (size_t j = 0; j < m; ++j) sortKeys_[j] = {rayOrderKey(rays_[j].origin, rays_[j].direction, lo, extent), uint32_t(j)};
   std::sort(sortKeys_.begin(), sortKeys_.end());
   // Gathered into the next level's candidate arrays (unused until the next level is
   // drawn), then swapped in, so sorting allocates nothing once warm.

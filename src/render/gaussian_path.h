@@ -16,32 +16,9 @@
 
 #include "raytrace/gaussian_tracer.h"
 #include "raytrace/ray_backward.h"
+#include "render/path_step.h"
 
 namespace glint {
-
-// The order in which a wavefront's reflected rays go to traceBatch: as their paths come
-// (pixel order), or sorted by origin and direction octant (render_bench and train_bench
-// measure both).
-enum class ReflectedRayOrder { PathOrder, OriginAndOctant };
-
-struct PathSettings {
-  int bounces = 0;  // segments after the first; the paper's default is 2 (path length 3)
-  // A blended normal shorter than this before normalisation is invalid and ends the path
-  // (paper text 0.6, the authors' code 0.7).
-  float invalidNormalLength = 0.7f;
-  float minRoughness = 0.01f;  // alpha = max(roughness, this)^2
-  float normalOffset = 1e-3f;  // reflection origins move this far along the normal
-  // Reflection rays ignore back-facing Gaussians this close to their origin (appendix B).
-  float backfaceSkip = 0.1f;
-  // A path ends where the blended F0 it meets is below this in every channel (0: never).
-  // Relighting ends its rays at dielectrics, which reflect a few percent.
-  float minReflectance = 0.0f;
-  size_t hitListCapacity = 512;  // of the hit lists recorded in PathSegment
-  ReflectedRayOrder reflectedOrder = ReflectedRayOrder::OriginAndOctant;  // PathBatch only; no effect on results
-  // PathBatch only, no effect on results: the first segments are camera rays of whole
-  // images (Coherent), or pixels scattered over images (training's batches).
-  RayCoherence primaryCoherence = RayCoherence::Coherent;
-};
 
 // Reflected segments whose light PathResult also keeps one by one (the viewer's per-bounce
 // modes); the light of later segments is only in the sum.
@@ -64,20 +41,6 @@ struct PathSegment {
   RayResult result;
   HitList hits;    // its composited hits, front to back
 };
-
-// The keys of a path's random numbers: the direction of segment k is drawn with sample
-// `sample` of the stratified stream hashKeys({seed, view, pixel, k}) (math/owen_sobol.h),
-// so any path can be re-run alone from its keys, and the samples of one pixel are
-// stratified.
-struct PathKey {
-  uint64_t view = 0, pixel = 0, sample = 0;
-};
-
-// The step from segment k - 1 (traced along `ray`, giving `result`) to segment k >= 1:
-// false when the path ends there (an invalid blended normal or an invalid sample); else
-// the next segment's ray and the factor its throughput gains.
-bool continuePath(const TraceRay& ray, const RayResult& result, const PathSettings& settings, uint64_t seed,
-                  const PathKey& key, int k, TraceRay* next, Rgb* weight);
 
 // Traces one path. With `segments`, every segment is traced with its hit list and recorded
 // in the first PathResult::segments entries (entries beyond them are left from earlier

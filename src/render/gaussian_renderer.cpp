@@ -6,27 +6,18 @@
 #include <array>
 
 #include "core/parallel.h"
-#include "math/owen_sobol.h"
+#include "render/device_view_renderer.h"
+#include "render/pixel_sample.h"
 
 namespace glint {
 
-namespace {
-
-// The sub-pixel position of a pixel's sample: dimension 0 of its stratified stream (the
-// path's segments use dimensions 1, 2, ...), so a pixel's samples cover it evenly.
-Vec2f pixelSampleOffset(const RenderSettings& settings, uint64_t viewKey, uint64_t pixel, uint32_t sample) {
-  if (!settings.jitter) return Vec2f(0.5f, 0.5f);
-  return stratifiedSample2(hashKeys({settings.seed, viewKey, pixel, 0}), sample);
-}
-
-}  // namespace
 
 std::vector<std::vector<PathSegment>> tracePixelPaths(const GaussianTracer& tracer, const Camera& camera,
                                                       const RenderSettings& settings, uint64_t viewKey, int x, int y) {
   uint64_t pixel = uint64_t(y) * uint64_t(camera.width) + uint64_t(x);
   std::vector<std::vector<PathSegment>> paths(size_t(settings.spp));
   for (int s = 0; s < settings.spp; ++s) {
-    Vec2f offset = pixelSampleOffset(settings, viewKey, pixel, uint32_t(settings.firstSample + s));
+    Vec2f offset = pixelSampleOffset(settings.jitter, settings.seed, viewKey, pixel, uint32_t(settings.firstSample + s));
     Ray ray = camera.generateRay(x + offset.x, y + offset.y);
     PathResult path = tracePath(tracer, {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f}, settings.path,
                                 settings.seed, viewKey, pixel, uint64_t(settings.firstSample + s), &paths[size_t(s)]);
@@ -41,24 +32,6 @@ namespace {
 // accumulators in a few megabytes at any image size, and still gives every thread
 // hundreds of bundles.
 constexpr size_t kRaysPerTile = size_t(1) << 16;
-
-// The per-pixel sums of one tile, in structure-of-arrays form.
-struct TileSums {
-  std::vector<Rgb> diffuse, specular, normal, f0;
-  std::vector<float> depth, roughness;
-  std::vector<std::vector<Rgb>> bounces;  // [k][pixel]
-
-  void reset(size_t pixels, int separate) {
-    diffuse.assign(pixels, Rgb(0.0f));
-    specular.assign(pixels, Rgb(0.0f));
-    normal.assign(pixels, Rgb(0.0f));
-    f0.assign(pixels, Rgb(0.0f));
-    depth.assign(pixels, 0.0f);
-    roughness.assign(pixels, 0.0f);
-    bounces.resize(size_t(separate));
-    for (auto& b : bounces) b.assign(pixels, Rgb(0.0f));
-  }
-};
 
 }  // namespace
 
@@ -84,9 +57,37 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
   const int separate = bounceLight ? std::clamp(settings.path.bounces, 0, kSeparateBounces) : 0;
   if (bounceLight) bounceLight->assign(size_t(separate), Image(camera.width, rowEnd - rowBegin, 3));
   const size_t width = size_t(camera.width);
+  PixelSums sums;
+  // The averages of rows [y0, y1), whose sums `sums` holds.
+  auto writeRows = [&](int y0, int y1) {
+    const size_t pixels = size_t(y1 - y0) * width;
+    parallelForChunks(int64_t(pixels), 1024, [&](int64_t begin, int64_t end) {
+      for (int64_t j = begin; j < end; ++j) {
+        const int x = int(size_t(j) % width), y = y0 - rowBegin + int(size_t(j) / width);  // row in the band
+        const Rgb diffuse = sums.diffuse[size_t(j)], specular = sums.specular[size_t(j)];
+        out[Buffer::Diffuse].setRgb(x, y, diffuse * invSpp);
+        out[Buffer::Specular].setRgb(x, y, specular * invSpp);
+        out[Buffer::Render].setRgb(x, y, (diffuse + specular) * invSpp);
+        out[Buffer::Depth].at(x, y) = sums.depth[size_t(j)] * invSpp;
+        const Rgb normal = sums.normal[size_t(j)];
+        out[Buffer::Normal].setRgb(x, y, settings.normalizeNormals ? normalize(normal) : normal * invSpp);
+        out[Buffer::Roughness].at(x, y) = sums.roughness[size_t(j)] * invSpp;
+        out[Buffer::F0].setRgb(x, y, sums.f0[size_t(j)] * invSpp);
+        for (int k = 0; k < separate; ++k)
+          (*bounceLight)[size_t(k)].setRgb(x, y, sums.bounces[size_t(k)][size_t(j)] * invSpp);
+      }
+    });
+  };
+  // A tracer with its own device (the GPU) sums the whole band there, in one piece.
+  if (const auto* device = dynamic_cast<const DeviceViewRenderer*>(&tracer)) {
+    if (rowEnd > rowBegin) {
+      device->sumView(camera, settings, viewKey, rowBegin, rowEnd, separate, &sums);
+      writeRows(rowBegin, rowEnd);
+    }
+    return out;
+  }
   const int rowsPerTile = int(std::max<size_t>(1, kRaysPerTile / std::max<size_t>(width, 1)));
   PathBatch batch;
-  TileSums sums;
   std::vector<TraceRay> rays;
   std::vector<PathKey> keys;
   std::vector<PathResult> paths;
@@ -105,7 +106,7 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
         for (int64_t j = begin; j < end; ++j) {
           const int x = int(size_t(j) % width), y = y0 + int(size_t(j) / width);
           const uint64_t pixel = uint64_t(y) * uint64_t(width) + uint64_t(x);
-          Vec2f offset = pixelSampleOffset(settings, viewKey, pixel, sample);
+          Vec2f offset = pixelSampleOffset(settings.jitter, settings.seed, viewKey, pixel, sample);
           Ray ray = camera.generateRay(x + offset.x, y + offset.y);
           rays[size_t(j)] = {Vec3f(ray.origin), Vec3f(ray.direction), 0.0f};
           keys[size_t(j)] = {viewKey, pixel, sample};
@@ -126,22 +127,7 @@ ViewBuffers renderGaussianView(const GaussianTracer& tracer, const Camera& camer
         }
       });
     }
-    parallelForChunks(int64_t(pixels), 1024, [&](int64_t begin, int64_t end) {
-      for (int64_t j = begin; j < end; ++j) {
-        const int x = int(size_t(j) % width), y = y0 - rowBegin + int(size_t(j) / width);  // row in the band
-        const Rgb diffuse = sums.diffuse[size_t(j)], specular = sums.specular[size_t(j)];
-        out[Buffer::Diffuse].setRgb(x, y, diffuse * invSpp);
-        out[Buffer::Specular].setRgb(x, y, specular * invSpp);
-        out[Buffer::Render].setRgb(x, y, (diffuse + specular) * invSpp);
-        out[Buffer::Depth].at(x, y) = sums.depth[size_t(j)] * invSpp;
-        const Rgb normal = sums.normal[size_t(j)];
-        out[Buffer::Normal].setRgb(x, y, settings.normalizeNormals ? normalize(normal) : normal * invSpp);
-        out[Buffer::Roughness].at(x, y) = sums.roughness[size_t(j)] * invSpp;
-        out[Buffer::F0].setRgb(x, y, sums.f0[size_t(j)] * invSpp);
-        for (int k = 0; k < separate; ++k)
-          (*bounceLight)[size_t(k)].setRgb(x, y, sums.bounces[size_t(k)][size_t(j)] * invSpp);
-      }
-    });
+    writeRows(y0, y1);
   }
   return out;
 }

@@ -31,14 +31,6 @@ Camera Camera::resized(int newWidth, int newHeight) const {
   return camera;
 }
 
-Ray Camera::generateRay(double px, double py) const {
-  Vec3d local((px - cx) / fx, -(py - cy) / fy, -1.0);
-  Ray ray;
-  ray.origin = cameraToWorld.column(3);
-  ray.direction = normalize(cameraToWorld.transformVector(local));
-  return ray;
-}
-
 bool Camera::project(const Mat4& worldToCamera, const Vec3d& p, Vec2d* pixel) const {
   // generateRay's camera-space direction ((px - cx)/fx, -(py - cy)/fy, -1), solved for (px, py).
   Vec3d local = worldToCamera.transformPoint(p);

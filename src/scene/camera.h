@@ -2,6 +2,7 @@
 // and principal point cx, cy in pixels (docs/data-format.md, "Cameras").
 #pragma once
 
+#include "core/cpu_gpu.h"
 #include "math/mat3.h"
 #include "math/mat4.h"
 #include "math/vec.h"
@@ -33,7 +34,13 @@ struct Camera {
   // Ray through the continuous pixel position (px, py), px in [0, width) from the left,
   // py in [0, height) from the top: the pixel (i, j) has its centre at (i + 0.5, j + 0.5).
   // In camera space the direction is ((px - cx)/fx, -(py - cy)/fy, -1), normalised.
-  Ray generateRay(double px, double py) const;
+  GLINT_CPU_GPU Ray generateRay(double px, double py) const {
+    Vec3d local((px - cx) / fx, -(py - cy) / fy, -1.0);
+    Ray ray;
+    ray.origin = cameraToWorld.column(3);
+    ray.direction = normalize(cameraToWorld.transformVector(local));
+    return ray;
+  }
   Vec3d position() const { return cameraToWorld.column(3); }
   // The camera-to-world rotation (OpenGL camera axes).
   Mat3d rotation() const {

@@ -4,16 +4,30 @@
 #include "raytrace/fast/fast_tracer.h"
 #include "raytrace/gaussian_tracer.h"
 #include "raytrace/reference/reference_tracer.h"
+#include "tracers/compute_device.h"
 #include "tracers/embree_tracer.h"
+
+#ifdef GLINT_HAVE_CUDA
+#include "cuda/cuda_tracer.h"
+#endif
 
 namespace glint {
 
-std::vector<std::string> gaussianTracerNames() { return {"fast", "embree-k16", "reference"}; }
+std::vector<std::string> gaussianTracerNames() {
+  std::vector<std::string> names{"fast", "embree-k16", "reference"};
+  if (builtWithCuda()) names.push_back("cuda");
+  return names;
+}
 
 std::unique_ptr<GaussianTracer> makeGaussianTracer(const std::string& kind) {
   if (kind == "fast") return std::make_unique<FastGaussianTracer>();
   if (kind == "embree-k16") return std::make_unique<EmbreeK16Tracer>();
   if (kind == "reference") return std::make_unique<ReferenceTracer>();
+#ifdef GLINT_HAVE_CUDA
+  if (kind == "cuda") return makeCudaGaussianTracer();
+#else
+  if (kind == "cuda") throw Error("the GPU tracer: " + cudaBuildDescription() + " (glint --version)");
+#endif
   std::string names;
   for (const std::string& n : gaussianTracerNames()) names += (names.empty() ? "" : ", ") + n;
   throw Error("unknown tracer '" + kind + "' (available: " + names + ")");

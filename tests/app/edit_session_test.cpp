@@ -51,7 +51,7 @@ TEST(EditSession, RefitsInPlaceOnlyWhenTheCountStaysAndTheSceneIsFree) {
   EXPECT_EQ(shown->scene->roughness[3], 0.9f);
   EXPECT_EQ(shown->scene->position[7].x, pristine.position[7].x + 0.25f);
   // The refitted structure traces the edited scene exactly as one built on it.
-  std::unique_ptr<GaussianTracer> fresh = makeGaussianTracer(kViewerTracer);
+  std::unique_ptr<GaussianTracer> fresh = makeGaussianTracer(viewerTracer());
   fresh->build(*shown->scene, TraceSettings{});
   Rng rng(11);
   for (int i = 0; i < 200; ++i) {

@@ -1,10 +1,15 @@
-// Random overlapping Gaussian clouds and directions for the tracer tests (seeded).
+// Random overlapping Gaussian clouds, directions and rays for the tracer tests (seeded).
 #pragma once
 
 #include <cmath>
 #include <cstdint>
+#include <initializer_list>
+#include <string>
+#include <vector>
 
 #include "math/rng.h"
+#include "raytrace/gaussian_tracer.h"
+#include "raytrace/trace_settings.h"
 #include "scene/gaussians.h"
 
 namespace glint {
@@ -44,6 +49,55 @@ inline GaussianScene randomScene(size_t n, uint64_t seed) {
     scene.f0[i] = {rng.uniform(), rng.uniform(), rng.uniform()};
   }
   return scene;
+}
+
+// Rays from outside the cloud towards it, from inside it (often inside Gaussians, with
+// Gaussians behind the origin), and inside ones with tMin > 0 that cuts Gaussians.
+inline std::vector<TraceRay> randomRays(size_t n, uint64_t seed) {
+  Rng rng(seed);
+  std::vector<TraceRay> rays(n);
+  for (size_t i = 0; i < n; ++i) {
+    TraceRay& ray = rays[i];
+    switch (i % 3) {
+      case 0: {
+        ray.origin = randomDirection(rng) * 3.0f;
+        Vec3f target(uniform(rng, -0.8f, 0.8f), uniform(rng, -0.8f, 0.8f), uniform(rng, -0.8f, 0.8f));
+        ray.direction = normalize(target - ray.origin);
+        break;
+      }
+      case 1:
+        ray.origin = {uniform(rng, -0.9f, 0.9f), uniform(rng, -0.9f, 0.9f), uniform(rng, -0.9f, 0.9f)};
+        ray.direction = randomDirection(rng);
+        break;
+      default:
+        ray.origin = {uniform(rng, -0.9f, 0.9f), uniform(rng, -0.9f, 0.9f), uniform(rng, -0.9f, 0.9f)};
+        ray.direction = randomDirection(rng);
+        ray.tMin = uniform(rng, 0.0f, 0.5f);
+        break;
+    }
+  }
+  return rays;
+}
+
+// The tracer tests' settings: every given kernel power with minTransmittance 1e-4 and
+// 0.01, each without and with the exact tail.
+inline std::vector<TraceSettings> traceSettingsGrid(std::initializer_list<float> powers) {
+  std::vector<TraceSettings> grid;
+  for (float power : powers)
+    for (float minT : {1e-4f, 0.01f})
+      for (bool exactTail : {false, true}) {
+        TraceSettings settings;
+        settings.kernelPower = power;
+        settings.minTransmittance = minT;
+        settings.exactTail = exactTail;
+        grid.push_back(settings);
+      }
+  return grid;
+}
+
+inline std::string describe(const TraceSettings& s) {
+  return "p=" + std::to_string(s.kernelPower) + " minT=" + std::to_string(s.minTransmittance) +
+         (s.exactTail ? " exact tail" : "");
 }
 
 }  // namespace glint

@@ -21,34 +21,6 @@
 namespace glint {
 namespace {
 
-// Rays from outside the cloud towards it, from inside it (often inside Gaussians, with
-// Gaussians behind the origin), and inside ones with tMin > 0 that cuts Gaussians.
-std::vector<TraceRay> randomRays(size_t n, uint64_t seed) {
-  Rng rng(seed);
-  std::vector<TraceRay> rays(n);
-  for (size_t i = 0; i < n; ++i) {
-    TraceRay& ray = rays[i];
-    switch (i % 3) {
-      case 0: {
-        ray.origin = randomDirection(rng) * 3.0f;
-        Vec3f target(uniform(rng, -0.8f, 0.8f), uniform(rng, -0.8f, 0.8f), uniform(rng, -0.8f, 0.8f));
-        ray.direction = normalize(target - ray.origin);
-        break;
-      }
-      case 1:
-        ray.origin = {uniform(rng, -0.9f, 0.9f), uniform(rng, -0.9f, 0.9f), uniform(rng, -0.9f, 0.9f)};
-        ray.direction = randomDirection(rng);
-        break;
-      default:
-        ray.origin = {uniform(rng, -0.9f, 0.9f), uniform(rng, -0.9f, 0.9f), uniform(rng, -0.9f, 0.9f)};
-        ray.direction = randomDirection(rng);
-        ray.tMin = uniform(rng, 0.0f, 0.5f);
-        break;
-    }
-  }
-  return rays;
-}
-
 struct Traced {
   std::vector<RayResult> results;
   std::vector<HitList> hits;
@@ -97,29 +69,17 @@ void expectSame(const Traced& got, const Traced& want, float tolerance, const st
   }
 }
 
-std::string describe(const TraceSettings& s) {
-  return "p=" + std::to_string(int(s.kernelPower)) + " minT=" + std::to_string(s.minTransmittance) +
-         (s.exactTail ? " exact tail" : "");
-}
 
 TEST(FastTracer, MatchesTheOracleOnRandomScenes) {
   GaussianScene scene = randomScene(2000, 11);
   std::vector<TraceRay> rays = randomRays(1200, 12);
   int64_t composited = 0;
-  for (float power : {1.0f, 3.0f}) {
-    for (float minT : {1e-4f, 0.01f}) {
-      for (bool exactTail : {false, true}) {
-        TraceSettings settings;
-        settings.kernelPower = power;
-        settings.minTransmittance = minT;
-        settings.exactTail = exactTail;
-        FastGaussianTracer tracer;
-        tracer.build(scene, settings);
-        Traced fast = traceFast(tracer, rays);
-        expectSame(fast, traceOracle(scene, settings, rays), 1e-4f, describe(settings));
-        for (const RayResult& r : fast.results) composited += r.hitCount;
-      }
-    }
+  for (const TraceSettings& settings : traceSettingsGrid({1.0f, 3.0f})) {
+    FastGaussianTracer tracer;
+    tracer.build(scene, settings);
+    Traced fast = traceFast(tracer, rays);
+    expectSame(fast, traceOracle(scene, settings, rays), 1e-4f, describe(settings));
+    for (const RayResult& r : fast.results) composited += r.hitCount;
   }
   // The scenes are dense: rays composite dozens of overlapping Gaussians on average.
   EXPECT_GT(double(composited) / (8.0 * rays.size()), 20.0);

@@ -123,7 +123,7 @@ void EditSession::update(const TracerUpdateContext& context) {
   else
     shownScene_ = std::make_shared<GaussianScene>(std::move(edited));
   bool refitPossible = previous != nullptr;
-  UpdatedTracer updated = updateTracerAfterEdit(std::move(previous), *shownScene_, trace_, kViewerTracer,
+  UpdatedTracer updated = updateTracerAfterEdit(std::move(previous), *shownScene_, trace_, viewerTracer(),
                                                 refitPossible, context.probeCamera, context.workRays);
   pending_.reset();
   // An edit that moves, adds and removes nothing (a material edit) has no changed region to
@@ -161,7 +161,7 @@ void EditSession::show(std::unique_ptr<GaussianTracer> tracer) {
 
 const GaussianTracer& EditSession::pristineTracer() {
   if (!pristineTracer_) {
-    pristineTracer_ = makeGaussianTracer(kViewerTracer);
+    pristineTracer_ = makeGaussianTracer(viewerTracer());
     pristineTracer_->build(*pristine_, trace_);
   }
   return *pristineTracer_;
@@ -222,7 +222,7 @@ std::shared_ptr<const TracedScene> EditSession::relightPreview() {
   // are kept for the full relighting, which must trace the colours as the edit left them.
   auto relit = std::make_shared<GaussianScene>(std::move(job->relit));
   lock.unlock();
-  std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(kViewerTracer);
+  std::unique_ptr<GaussianTracer> tracer = makeGaussianTracer(viewerTracer());
   tracer->build(*relit, trace_);
   lock.lock();
   if (*job->stale || !pending_ || pending_->unrelit) return current_;
@@ -251,7 +251,7 @@ std::shared_ptr<const TracedScene> EditSession::relight(const TracerUpdateContex
     tracer->refit();  // tracers may keep copies of the colours
   } else {
     shownScene_ = std::make_shared<GaussianScene>(std::move(job->relit));
-    tracer = makeGaussianTracer(kViewerTracer);
+    tracer = makeGaussianTracer(viewerTracer());
     tracer->build(*shownScene_, trace_);
   }
   show(std::move(tracer));

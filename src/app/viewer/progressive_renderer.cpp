@@ -18,10 +18,20 @@ constexpr std::chrono::seconds kIdleAfter{3};
 
 }  // namespace
 
+namespace {
+std::string& viewerTracerKind() {
+  static std::string kind = "fast";
+  return kind;
+}
+}  // namespace
+
+const std::string& viewerTracer() { return viewerTracerKind(); }
+void setViewerTracer(const std::string& kind) { viewerTracerKind() = kind; }
+
 std::shared_ptr<TracedScene> traceScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace) {
   auto traced = std::make_shared<TracedScene>();
   traced->scene = std::move(scene);
-  traced->tracer = makeGaussianTracer(kViewerTracer);
+  traced->tracer = makeGaussianTracer(viewerTracer());
   traced->tracer->build(*traced->scene, trace);
   return traced;
 }
@@ -102,7 +112,7 @@ DisplaySettings ProgressiveRenderer::settings() const {
   return settings_;
 }
 
-std::shared_ptr<const Frame> ProgressiveRenderer::waitForFrame(uint64_t after, std::chrono::milliseconds timeout) const {
+std::shared_ptr<const ViewerFrame> ProgressiveRenderer::waitForFrame(uint64_t after, std::chrono::milliseconds timeout) const {
   std::unique_lock lock(mutex_);
   bool wasIdle = std::chrono::steady_clock::now() - lastRequest_ > kIdleAfter;
   lastRequest_ = std::chrono::steady_clock::now();
@@ -112,7 +122,7 @@ std::shared_ptr<const Frame> ProgressiveRenderer::waitForFrame(uint64_t after, s
 }
 
 void ProgressiveRenderer::publish(Image image, int samples, double seconds) {
-  auto frame = std::make_shared<Frame>();
+  auto frame = std::make_shared<ViewerFrame>();
   frame->id = nextId_++;
   frame->image = std::move(image);
   frame->samples = samples;

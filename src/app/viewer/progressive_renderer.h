@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <string>
 #include <thread>
 
 #include "app/viewer/display_settings.h"
@@ -29,14 +30,16 @@ struct TracedScene {
   std::unique_ptr<GaussianTracer> tracer;
 };
 
-// The tracer the viewer renders with.
-constexpr const char* kViewerTracer = "fast";
+// The tracer the viewer renders with: "fast" (the CPU) unless `glint view --device` chose
+// the GPU at start-up.
+const std::string& viewerTracer();
+void setViewerTracer(const std::string& kind);
 
 // Builds a TracedScene with the viewer's tracer.
 std::shared_ptr<TracedScene> traceScene(std::shared_ptr<const GaussianScene> scene, const TraceSettings& trace);
 
 // One published frame: the display image (RGB in [0, 1]) and what it holds.
-struct Frame {
+struct ViewerFrame {
   uint64_t id = 0;  // increases with every published frame
   Image image;
   int samples = 0;  // full-resolution samples accumulated; 0 for a low-resolution frame
@@ -71,7 +74,7 @@ class ProgressiveRenderer {
   int height() const { return height_; }
 
   // The newest frame once its id exceeds `after`, or the newest (possibly null) after timeout.
-  std::shared_ptr<const Frame> waitForFrame(uint64_t after, std::chrono::milliseconds timeout) const;
+  std::shared_ptr<const ViewerFrame> waitForFrame(uint64_t after, std::chrono::milliseconds timeout) const;
 
  private:
   void run();
@@ -96,7 +99,7 @@ class ProgressiveRenderer {
   int movingScale_ = 4;  // the first level's divisor, raised when frames get slow
   bool redisplay_ = false;
   FrameAccumulator accumulator_;
-  std::shared_ptr<const Frame> latest_;
+  std::shared_ptr<const ViewerFrame> latest_;
   mutable std::chrono::steady_clock::time_point lastRequest_;  // of a frame
   uint64_t nextId_ = 1;
   std::thread thread_;

@@ -142,7 +142,7 @@ void ViewerServer::addRoutes() {
     if (req.has_param("after")) after = parseQueryCount(req.get_param_value("after"), "after");
     std::string format = req.has_param("format") ? req.get_param_value("format") : "jpeg";
     if (format != "png" && format != "jpeg") throw RequestError(400, "\"format\" must be png or jpeg");
-    std::shared_ptr<const Frame> frame = renderer_->waitForFrame(after, kFrameWait);
+    std::shared_ptr<const ViewerFrame> frame = renderer_->waitForFrame(after, kFrameWait);
     if (!frame) throw RequestError(503, "no frame rendered yet");
     res.set_header("X-Glint-Frame", std::to_string(frame->id));
     res.set_header("X-Glint-Samples", std::to_string(frame->samples));

@@ -11,6 +11,7 @@
 #include <immintrin.h>
 #endif
 
+#include "core/cpu_gpu.h"
 #include "raytrace/trace_settings.h"
 #include "scene/gaussians.h"
 
@@ -59,11 +60,11 @@ struct alignas(64) Bvh8Node {
   int32_t child[kBvhWidth];
 
   static constexpr int32_t kNoChild = INT32_MIN;
-  static bool isLeaf(int32_t c) { return c < 0; }
+  GLINT_CPU_GPU static bool isLeaf(int32_t c) { return c < 0; }
   // A leaf is a run of 1 to kMaxLeafBlocks consecutive Bvh8Blocks.
-  static int32_t leafCode(uint32_t firstBlock, int blocks) { return ~int32_t(firstBlock << 3 | uint32_t(blocks - 1)); }
-  static uint32_t leafFirstBlock(int32_t c) { return uint32_t(~c) >> 3; }
-  static int leafBlocks(int32_t c) { return int(uint32_t(~c) & 7u) + 1; }
+  GLINT_CPU_GPU static int32_t leafCode(uint32_t firstBlock, int blocks) { return ~int32_t(firstBlock << 3 | uint32_t(blocks - 1)); }
+  GLINT_CPU_GPU static uint32_t leafFirstBlock(int32_t c) { return uint32_t(~c) >> 3; }
+  GLINT_CPU_GPU static int leafBlocks(int32_t c) { return int(uint32_t(~c) & 7u) + 1; }
 };
 
 // What the kernel needs of one Gaussian: its GaussianFrame (gaussian_kernel.h) in float.
@@ -115,6 +116,8 @@ class Bvh8 {
   bool empty() const { return nodes_.empty(); }
   const Bvh8Node* nodes() const { return nodes_.data(); }
   const Bvh8Block* blocks() const { return blocks_.data(); }
+  size_t nodeCount() const { return nodes_.size(); }
+  size_t blockCount() const { return blocks_.size(); }
   const GaussianScene* scene() const { return scene_; }
   const TraceSettings& settings() const { return settings_; }
   const Bvh8Stats& stats() const { return stats_; }

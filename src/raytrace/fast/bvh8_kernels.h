@@ -1,4 +1,4 @@
-// The fast tracer's 8-lane tests: a ray against the 8 child boxes of a node (slab test),
+// The 8-lane tests of the 8-wide BVH (the scalar ones run on the GPU too): a ray against the 8 child boxes of a node (slab test),
 // against the 8 Gaussians of a leaf block, and a Gaussian against a packet of 8 rays (the
 // proxy part of evaluateGaussian in gaussian_kernel.h). Each has an AVX2 version and a scalar one that performs the same
 // float operations in the same order (explicit fused multiply-adds), so both give
@@ -12,6 +12,7 @@
 #include <immintrin.h>
 #endif
 
+#include "core/cpu_gpu.h"
 #include "raytrace/fast/bvh8.h"
 #include "raytrace/gaussian_tracer.h"
 
@@ -27,7 +28,7 @@ struct Bvh8Ray {
   int farPlane[3];
   float tMin;
 
-  explicit Bvh8Ray(const TraceRay& ray) {
+  GLINT_CPU_GPU explicit Bvh8Ray(const TraceRay& ray) {
     // Normalised again (as the reference tracer does), so distances are lengths.
     Vec3f d = normalize(ray.direction);
     for (int a = 0; a < 3; ++a) {
@@ -53,9 +54,11 @@ struct Bvh8BlockCandidates {
 };
 
 // Child boxes hit in [tMin, inf): returns the lane mask and each lane's entry distance
-// max(box entry, tMin).
-inline uint32_t intersectNodeScalar(const Bvh8Node& node, const Bvh8Ray& ray, float tNear[kBvhWidth]) {
+// max(box entry, tMin) (and, when tFar is given, its exit distance).
+GLINT_CPU_GPU inline uint32_t intersectNodeScalar(const Bvh8Node& node, const Bvh8Ray& ray, float tNear[kBvhWidth],
+                                                  float* tFar = nullptr) {
   uint32_t mask = 0;
+  GLINT_UNROLL
   for (int c = 0; c < kBvhWidth; ++c) {
     float n[3], f[3];
     for (int a = 0; a < 3; ++a) {
@@ -66,6 +69,7 @@ inline uint32_t intersectNodeScalar(const Bvh8Node& node, const Bvh8Ray& ray, fl
     float tn = std::max(std::max(n[0], n[1]), std::max(n[2], ray.tMin));
     float tf = std::min(std::min(f[0], f[1]), f[2]);
     tNear[c] = tn;
+    if (tFar) tFar[c] = tf;
     if (tn <= tf) mask |= 1u << c;
   }
   return mask;
@@ -82,7 +86,7 @@ struct alignas(32) RayPacket {
 // The proxy test of evaluateGaussian for one (Gaussian, ray) pair: Gaussian `g` of `block`,
 // ray (o, d, tMin) with d unit length; writes lane `i` of *out and returns whether it passes.
 // Both the block and the packet tests use it, so they agree bit for bit.
-inline bool proxyTestScalar(const Bvh8Block& block, int g, const float o[3], const float d[3], float tMin,
+GLINT_CPU_GPU inline bool proxyTestScalar(const Bvh8Block& block, int g, const float o[3], const float d[3], float tMin,
                             Bvh8BlockCandidates* out, int i) {
   // Move the origin to the ray's closest point to the mean (world space) first.
   float dox = o[0] - block.mean[0][g], doy = o[1] - block.mean[1][g], doz = o[2] - block.mean[2][g];
@@ -115,7 +119,7 @@ inline bool proxyTestScalar(const Bvh8Block& block, int g, const float o[3], con
 
 // The proxy test for the 8 Gaussians of a block and one ray; returns the mask of lanes
 // that pass.
-inline uint32_t intersectBlockScalar(const Bvh8Block& block, const Bvh8Ray& ray, Bvh8BlockCandidates* out) {
+GLINT_CPU_GPU inline uint32_t intersectBlockScalar(const Bvh8Block& block, const Bvh8Ray& ray, Bvh8BlockCandidates* out) {
   uint32_t mask = 0;
   for (int i = 0; i < kBvhWidth; ++i)
     mask |= uint32_t(proxyTestScalar(block, i, ray.origin, ray.direction, ray.tMin, out, i)) << i;

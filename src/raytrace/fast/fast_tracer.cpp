@@ -14,6 +14,7 @@
 #include "raytrace/compositor.h"
 #include "raytrace/fast/bvh8_kernels.h"
 #include "raytrace/fast/hit_buffer.h"
+#include "raytrace/fast/kernel_response.h"
 #include "raytrace/fast/pending_subtrees.h"
 #include "raytrace/fast/ray_bundle.h"
 #include "core/parallel.h"
@@ -32,15 +33,11 @@ using Pending = PendingSubtrees<kHeapCapacity, kStackCapacity>;
 // Turns the lanes of a tested leaf block into hits: the rest of evaluateGaussian, in float.
 class LaneHits {
  public:
-  explicit LaneHits(const TraceSettings& settings) : settings_(settings) {
-    float p = settings.kernelPower;
-    integerPower_ = (p == std::round(p) && p >= 1.0f && p <= 4.0f) ? int(p) : 0;
-    exponentScale_ = -1.0f / (2.0f * p);
-  }
+  explicit LaneHits(const TraceSettings& settings) : settings_(settings), response_(settings.kernelPower) {}
 
   // Lane i of `block` (whose proxy test passed, giving c); false when its alpha is below alphaMin.
   bool make(const Bvh8Block& block, const Bvh8BlockCandidates& c, int i, float tMin, KeyedHit* h) const {
-    float alpha = kMaxAlpha * block.opacity[i] * response(c.r2[i]);
+    float alpha = response_.alpha(block.opacity[i], c.r2[i]);
     if (alpha < settings_.alphaMin) return false;
     *h = {key(c, i, tMin), block.id[i], alpha};
     return true;
@@ -51,13 +48,13 @@ class LaneHits {
   // alphaMin. All 8 lanes at once for the integer powers.
   uint32_t alphas(const Bvh8BlockCandidates& c, uint32_t mask, float opacity, float alpha[kBvhWidth]) const {
 #ifdef __AVX2__
-    if (integerPower_ != 0) {
+    if (const int power = response_.integerPower(); power != 0) {
       __m256 r2 = _mm256_load_ps(c.r2);
       __m256 r2p = r2;
-      if (integerPower_ == 2) r2p = _mm256_mul_ps(r2, r2);
-      if (integerPower_ == 3) r2p = _mm256_mul_ps(_mm256_mul_ps(r2, r2), r2);
-      if (integerPower_ == 4) r2p = _mm256_mul_ps(_mm256_mul_ps(r2, r2), _mm256_mul_ps(r2, r2));
-      __m256 g = expNonPositiveAvx2(_mm256_mul_ps(r2p, _mm256_set1_ps(exponentScale_)));
+      if (power == 2) r2p = _mm256_mul_ps(r2, r2);
+      if (power == 3) r2p = _mm256_mul_ps(_mm256_mul_ps(r2, r2), r2);
+      if (power == 4) r2p = _mm256_mul_ps(_mm256_mul_ps(r2, r2), _mm256_mul_ps(r2, r2));
+      __m256 g = expNonPositiveAvx2(_mm256_mul_ps(r2p, _mm256_set1_ps(response_.exponentScale())));
       __m256 a = _mm256_mul_ps(_mm256_set1_ps(kMaxAlpha * opacity), g);
       _mm256_store_ps(alpha, a);
       return mask & uint32_t(_mm256_movemask_ps(_mm256_cmp_ps(a, _mm256_set1_ps(settings_.alphaMin), _CMP_GE_OQ)));
@@ -66,7 +63,7 @@ class LaneHits {
     uint32_t passing = 0;
     for (uint32_t m = mask; m; m &= m - 1) {
       int i = std::countr_zero(m);
-      alpha[i] = kMaxAlpha * opacity * response(c.r2[i]);
+      alpha[i] = response_.alpha(opacity, c.r2[i]);
       passing |= uint32_t(!(alpha[i] < settings_.alphaMin)) << i;
     }
     return passing;
@@ -74,29 +71,12 @@ class LaneHits {
 
   // The sort key of lane i: the peak clamped into the proxy's chord beyond tMin.
   static float key(const Bvh8BlockCandidates& c, int i, float tMin) {
-    float tEnter = c.tPeak[i] - c.half[i], tExit = c.tPeak[i] + c.half[i];
-    return std::clamp(c.tPeak[i], std::max(tEnter, tMin), tExit);
+    return hitKey(c.tPeak[i], c.tPeak[i] - c.half[i], c.tPeak[i] + c.half[i], tMin);
   }
 
  private:
-  // gaussianResponse in float; small integer powers (1 and 3 are the common ones) as
-  // products, within an ulp or two of powf and several times faster, and the exponential
-  // inline (a libm call from AVX code measured 7% of bundled tracing with its vzeroupper).
-  float response(float r2) const {
-    float r2p;
-    switch (integerPower_) {
-      case 1: r2p = r2; break;
-      case 2: r2p = r2 * r2; break;
-      case 3: r2p = (r2 * r2) * r2; break;
-      case 4: r2p = (r2 * r2) * (r2 * r2); break;
-      default: return gaussianResponse(r2, settings_.kernelPower);
-    }
-    return expNonPositive(r2p * exponentScale_);
-  }
-
   const TraceSettings& settings_;
-  int integerPower_;     // kernelPower when it is 1, 2, 3 or 4, else 0
-  float exponentScale_;  // -1 / (2 p): the response is exp(r2^p exponentScale_)
+  KernelResponse response_;
 };
 
 using FastHitBuffer = HitBuffer<FastGaussianTracer::kMaxHitBufferCapacity>;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cstdint>
 
+#include "core/cpu_gpu.h"
 #include "raytrace/gaussian_kernel.h"
 
 namespace glint {
@@ -14,7 +15,7 @@ struct HitOrder {
   float key;
   uint32_t id;
 
-  bool operator<(const HitOrder& b) const { return key < b.key || (key == b.key && id < b.id); }
+  GLINT_CPU_GPU bool operator<(const HitOrder& b) const { return key < b.key || (key == b.key && id < b.id); }
 };
 
 // What a ray keeps of a hit while it waits to be composited: the compositor reads only
@@ -25,8 +26,8 @@ struct KeyedHit {
   uint32_t id;
   float alpha;
 
-  HitOrder order() const { return {key, id}; }
-  KernelHit<float> kernelHit() const { return {0.0f, 0.0f, 0.0f, key, 0.0f, alpha, Vec3f(0.0f)}; }
+  GLINT_CPU_GPU HitOrder order() const { return {key, id}; }
+  GLINT_CPU_GPU KernelHit<float> kernelHit() const { return {0.0f, 0.0f, 0.0f, key, 0.0f, alpha, Vec3f(0.0f)}; }
 };
 
 // Kept sorted, nearest first, from head_ to end_: hits arrive nearly in order (BVH

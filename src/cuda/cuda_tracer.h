@@ -1,0 +1,16 @@
+// The GPU Gaussian tracer: the CPU's 8-wide BVH uploaded to the GPU and traversed there with
+// the shared k-buffer traversal (raytrace/fast/kbuffer_traversal.h), one thread per ray; it
+// also renders whole views there as wavefronts of paths (render/device_view_renderer.h).
+// Plain C++ header: the CUDA code stays in cuda_tracer.cu.
+#pragma once
+
+#include <memory>
+
+#include "raytrace/gaussian_tracer.h"
+
+namespace glint {
+
+// Throws Error when no GPU can be used (tracers/compute_device.h says why).
+std::unique_ptr<GaussianTracer> makeCudaGaussianTracer();
+
+}  // namespace glint
