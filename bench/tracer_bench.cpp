@@ -107,6 +107,7 @@ std::vector<std::pair<std::string, std::function<std::unique_ptr<GaussianTracer>
   if (std::optional<GpuInfo> gpu = findGpu(&why)) {
     std::printf("tracer_bench: GPU %s\n", gpu->name.c_str());
     tracers.push_back({"cuda", [] { return makeGaussianTracer("cuda"); }});
+    tracers.push_back({"cuda-warp", [] { return makeGaussianTracer("cuda-warp"); }});
   } else {
     std::printf("tracer_bench: no GPU tracer: %s\n", why.c_str());
   }

@@ -48,9 +48,9 @@ if command -v compute-sanitizer >/dev/null; then
 fi
 
 # 2. The tracer alone: the GPU against the fast CPU tracer, same rays, on 2 and on all cores.
-step tracer_2_threads 120 "$bin/bench/tracer_bench" --tracers fast cuda --threads 2 --gaussians 500000 \
+step tracer_2_threads 120 "$bin/bench/tracer_bench" --tracers fast cuda cuda-warp --threads 2 --gaussians 500000 \
   --res-width 1024 --res-height 768 --repeats 2 --json "$out/tracer_2.json"
-[ "$quick" = 1 ] || step tracer_all_threads 90 "$bin/bench/tracer_bench" --tracers fast cuda --threads "$cores" \
+[ "$quick" = 1 ] || step tracer_all_threads 90 "$bin/bench/tracer_bench" --tracers fast cuda cuda-warp --threads "$cores" \
   --gaussians 500000 --res-width 1024 --res-height 768 --repeats 3 --json "$out/tracer_all.json"
 
 # 3. Rendering through renderGaussianView on both devices; writes the scene and cameras.

@@ -57,9 +57,11 @@ std::string resolveTracerForDevice(const std::string& device, const std::string&
                                    const std::string& command) {
   const DeviceRequest request = parseDeviceRequest(device);
   if (tracerGiven) {
-    if ((request == DeviceRequest::Cuda) != (tracer == "cuda") && request != DeviceRequest::Auto)
-      throw Error("--tracer " + tracer + " and --device " + device + " disagree (the cuda tracer is the GPU's)");
-    if (tracer == "cuda") std::fprintf(stderr, "%s: %s\n", command.c_str(), resolveDevice(DeviceRequest::Cuda).description.c_str());
+    const bool gpuTracer = tracer == "cuda" || tracer == "cuda-warp";
+    if ((request == DeviceRequest::Cuda) != gpuTracer && request != DeviceRequest::Auto)
+      throw Error("--tracer " + tracer + " and --device " + device + " disagree (the cuda tracers are the GPU's)");
+    if (gpuTracer)
+      std::fprintf(stderr, "%s: %s\n", command.c_str(), resolveDevice(DeviceRequest::Cuda).description.c_str());
     return tracer;
   }
   ResolvedDevice resolved = resolveDevice(request, tracer);

@@ -19,7 +19,7 @@
 
 // Unrolls the loop that follows, so that small arrays indexed by its counter stay in
 // registers on the GPU (an array indexed at run time lives in slow local memory there).
-#if defined(__CUDA_ARCH__)
+#if defined(__CUDACC__)
 #define GLINT_UNROLL _Pragma("unroll")
 #elif defined(__GNUC__) && !defined(__clang__)
 #define GLINT_UNROLL _Pragma("GCC unroll 8")

@@ -17,6 +17,7 @@
 #include "cuda/cuda_check.h"
 #include "cuda/device_buffer.h"
 #include "cuda/gpu_query.h"
+#include "cuda/warp_traversal.cuh"
 #include "raytrace/fast/bvh8.h"
 #include "raytrace/fast/kbuffer_traversal.h"
 #include "render/device_view_renderer.h"
@@ -31,30 +32,44 @@ constexpr int kThreadsPerBlock = 128;
 
 unsigned blocksFor(size_t n) { return unsigned((n + kThreadsPerBlock - 1) / kThreadsPerBlock); }
 
-// What every kernel reads of the scene.
+// What every kernel reads of the scene, and how rays walk the tree.
 struct DeviceScene {
   Bvh8View bvh;
   GaussianAttributes attributes;
   TraceSettings settings;
+  bool warpWalk;  // the warp's rays together (warp_traversal.cuh), else each ray alone
 };
 
-GLINT_GPU RayResult traceOne(const DeviceScene& scene, const TraceRay& ray) {
-  return traceKBuffer<kGpuKBufferHits>(scene.bvh, scene.attributes, scene.settings, ray, NoHitRecorder{});
+// Traces `ray` when `active`. Every thread of a block calls it, in step (the warp-wide walk
+// needs every lane), so kernels do not return early.
+template <typename Recorder>
+GLINT_GPU RayResult traceRay(const DeviceScene& scene, const TraceRay& ray, bool active, Recorder recorder) {
+  if (scene.warpWalk) {
+    __shared__ cuda::WarpStack stacks[kThreadsPerBlock / 32];
+    return cuda::traceKBufferWarp<kGpuKBufferHits>(scene.bvh, scene.attributes, scene.settings, ray, active,
+                                                    recorder, stacks[threadIdx.x / 32]);
+  }
+  if (!active) return RayResult{};
+  return traceKBuffer<kGpuKBufferHits>(scene.bvh, scene.attributes, scene.settings, ray, recorder);
 }
 
 // One ray per thread; with `hits`, each ray records up to `capacity` composited hits.
 __global__ void traceRaysKernel(DeviceScene scene, const TraceRay* rays, RayResult* results, size_t n,
                                 HitRecord* hits, uint32_t capacity, uint32_t* counts, bool* overflowed) {
   const size_t i = size_t(blockIdx.x) * blockDim.x + threadIdx.x;
-  if (i >= n) return;
+  const bool active = i < n;
+  const TraceRay ray = active ? rays[i] : TraceRay{};
   if (!hits) {
-    results[i] = traceOne(scene, rays[i]);
+    const RayResult r = traceRay(scene, ray, active, NoHitRecorder{});
+    if (active) results[i] = r;
     return;
   }
   uint32_t count = 0;
   bool over = false;
-  results[i] = traceKBuffer<kGpuKBufferHits>(scene.bvh, scene.attributes, scene.settings, rays[i],
-                                              ArrayHitRecorder{hits + i * capacity, capacity, &count, &over});
+  const RayResult r =
+      traceRay(scene, ray, active, ArrayHitRecorder{hits + (active ? i * capacity : 0), capacity, &count, &over});
+  if (!active) return;
+  results[i] = r;
   counts[i] = count;
   overflowed[i] = over;
 }
@@ -108,13 +123,16 @@ GLINT_GPU void continueInto(const ViewWave& v, uint32_t j, const TraceRay& ray, 
 // first segment into the sums, and the reflected segment drawn.
 __global__ void cameraLevelKernel(DeviceScene scene, ViewWave v, DeviceSums sums, PathLevel next) {
   const uint32_t j = blockIdx.x * blockDim.x + threadIdx.x;
-  if (j >= v.pixels) return;
-  const int x = int(j % v.width), y = v.rowBegin + int(j / v.width);
-  const PathKey key = pathKey(v, j);
-  const Vec2f offset = pixelSampleOffset(v.settings.jitter, v.settings.seed, v.viewKey, key.pixel, v.sample);
-  const Ray cameraRay = v.camera.generateRay(x + offset.x, y + offset.y);
-  const TraceRay ray{Vec3f(cameraRay.origin), Vec3f(cameraRay.direction), 0.0f};
-  const RayResult r = traceOne(scene, ray);
+  const bool active = j < v.pixels;
+  TraceRay ray;
+  if (active) {
+    const int x = int(j % v.width), y = v.rowBegin + int(j / v.width);
+    const Vec2f offset = pixelSampleOffset(v.settings.jitter, v.settings.seed, v.viewKey, pathKey(v, j).pixel, v.sample);
+    const Ray cameraRay = v.camera.generateRay(x + offset.x, y + offset.y);
+    ray = {Vec3f(cameraRay.origin), Vec3f(cameraRay.direction), 0.0f};
+  }
+  const RayResult r = traceRay(scene, ray, active, NoHitRecorder{});
+  if (!active) return;
   sums.diffuse[j] += r.diffuse;
   sums.depth[j] += r.depth;
   sums.normal[j] += r.normal;
@@ -128,11 +146,12 @@ __global__ void cameraLevelKernel(DeviceScene scene, ViewWave v, DeviceSums sums
 __global__ void reflectedLevelKernel(DeviceScene scene, ViewWave v, DeviceSums sums, PathLevel current, uint32_t count,
                                      int k, PathLevel next) {
   const uint32_t slot = blockIdx.x * blockDim.x + threadIdx.x;
-  if (slot >= count) return;
+  const bool active = slot < count;
+  const TraceRay ray = active ? current.rays[slot] : TraceRay{};
+  const RayResult r = traceRay(scene, ray, active, NoHitRecorder{});
+  if (!active) return;
   const uint32_t j = current.pixel[slot];
-  const TraceRay ray = current.rays[slot];
   const Rgb throughput = current.throughput[slot];
-  const RayResult r = traceOne(scene, ray);
   const Rgb light = throughput * r.diffuse;
   sums.pathSpecular[j] += light;
   if (k <= v.separate) sums.bounces[size_t(k - 1) * v.pixels + j] += light;
@@ -165,12 +184,12 @@ __global__ void addSpecularKernel(DeviceSums sums, uint32_t pixels) {
 
 class CudaGaussianTracer final : public GaussianTracer, public DeviceViewRenderer {
  public:
-  CudaGaussianTracer() {
+  explicit CudaGaussianTracer(GpuWalk walk) : walk_(walk) {
     std::string why;
     if (!cuda::queryGpu(&why)) throw Error("the GPU tracer cannot start: " + why);
   }
 
-  const char* name() const override { return "cuda"; }
+  const char* name() const override { return walk_ == GpuWalk::Warp ? "cuda-warp" : "cuda"; }
 
   void build(const GaussianScene& scene, const TraceSettings& settings) override {
     std::lock_guard lock(mutex_);
@@ -327,11 +346,12 @@ class CudaGaussianTracer final : public GaussianTracer, public DeviceViewRendere
   DeviceScene deviceScene() const {
     return {{nodes_.data(), blocks_.data(), bvh_.empty()},
             {diffuse_.data(), normal_.data(), roughness_.data(), f0_.data()},
-            settings_};
+            settings_,
+            walk_ == GpuWalk::Warp};
   }
 
   void upload() {
-    if (!bvh_.empty() && bvh_.maxStackSize() > kKBufferStackCapacity)
+    if (!bvh_.empty() && !fitsKBufferStack(bvh_))
       throw Error("the GPU tracer cannot trace this scene: its BVH is " + std::to_string(bvh_.stats().depth) +
                   " levels deep, and the GPU traversal holds at most " + std::to_string(kKBufferStackCapacity) +
                   " pending subtrees (use --device cpu)");
@@ -357,6 +377,7 @@ class CudaGaussianTracer final : public GaussianTracer, public DeviceViewRendere
     sceneExtent_ = max(hi - lo, Vec3f(1e-20f));
   }
 
+  GpuWalk walk_;
   const GaussianScene* scene_ = nullptr;
   TraceSettings settings_;
   Bvh8 bvh_;
@@ -386,6 +407,6 @@ class CudaGaussianTracer final : public GaussianTracer, public DeviceViewRendere
 
 }  // namespace
 
-std::unique_ptr<GaussianTracer> makeCudaGaussianTracer() { return std::make_unique<CudaGaussianTracer>(); }
+std::unique_ptr<GaussianTracer> makeCudaGaussianTracer(GpuWalk walk) { return std::make_unique<CudaGaussianTracer>(walk); }
 
 }  // namespace glint

@@ -10,7 +10,12 @@
 
 namespace glint {
 
+// How the GPU's rays walk the BVH: each alone with its own stack in local memory, or the 32
+// rays of a warp together with one stack in shared memory (cuda/warp_traversal.cuh). Both
+// give the same hits; gpu_bench and tracer_bench measure both.
+enum class GpuWalk { PerRay, Warp };
+
 // Throws Error when no GPU can be used (tracers/compute_device.h says why).
-std::unique_ptr<GaussianTracer> makeCudaGaussianTracer();
+std::unique_ptr<GaussianTracer> makeCudaGaussianTracer(GpuWalk walk = GpuWalk::PerRay);
 
 }  // namespace glint

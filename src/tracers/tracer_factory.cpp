@@ -15,7 +15,7 @@ namespace glint {
 
 std::vector<std::string> gaussianTracerNames() {
   std::vector<std::string> names{"fast", "embree-k16", "reference"};
-  if (builtWithCuda()) names.push_back("cuda");
+  if (builtWithCuda()) names.insert(names.end(), {"cuda", "cuda-warp"});
   return names;
 }
 
@@ -24,9 +24,11 @@ std::unique_ptr<GaussianTracer> makeGaussianTracer(const std::string& kind) {
   if (kind == "embree-k16") return std::make_unique<EmbreeK16Tracer>();
   if (kind == "reference") return std::make_unique<ReferenceTracer>();
 #ifdef GLINT_HAVE_CUDA
-  if (kind == "cuda") return makeCudaGaussianTracer();
+  if (kind == "cuda") return makeCudaGaussianTracer(GpuWalk::PerRay);
+  if (kind == "cuda-warp") return makeCudaGaussianTracer(GpuWalk::Warp);
 #else
-  if (kind == "cuda") throw Error("the GPU tracer: " + cudaBuildDescription() + " (glint --version)");
+  if (kind == "cuda" || kind == "cuda-warp")
+    throw Error("the GPU tracer: " + cudaBuildDescription() + " (glint --version)");
 #endif
   std::string names;
   for (const std::string& n : gaussianTracerNames()) names += (names.empty() ? "" : ", ") + n;

@@ -20,6 +20,9 @@
 namespace glint {
 namespace {
 
+// Both walks of the GPU tracer (cuda/cuda_tracer.h): each ray alone, the warp's together.
+const char* const kGpuTracers[] = {"cuda", "cuda-warp"};
+
 struct Difference {
   double largest = 0, sum = 0;
   size_t count = 0;
@@ -32,50 +35,54 @@ struct Difference {
   double mean() const { return count ? sum / double(count) : 0.0; }
 };
 
+// 10k rays through `scene` with the GPU tracer `kind` and the fast CPU tracer.
+void expectTheCpusHits(const GaussianScene& scene, const char* kind, bool exactTail) {
+  TraceSettings settings;
+  settings.exactTail = exactTail;
+  settings.minTransmittance = 1e-3f;
+  std::vector<TraceRay> rays = randomRays(10000, 52);
+  for (size_t i = 0; i < rays.size(); i += 4) rays[i].backfaceSkip = 0.5f;
+  FastGaussianTracer cpu;
+  cpu.build(scene, settings);
+  std::unique_ptr<GaussianTracer> gpu = makeGaussianTracer(kind);
+  gpu->build(scene, settings);
+  std::vector<RayResult> cpuResults(rays.size()), gpuResults(rays.size());
+  std::vector<HitList> cpuHits(rays.size()), gpuHits(rays.size());
+  cpu.traceBatch(rays, cpuResults, cpuHits, RayCoherence::Scattered);
+  gpu->traceBatch(rays, gpuResults, gpuHits, RayCoherence::Scattered);
+  size_t differentLists = 0, hits = 0;
+  Difference depth, diffuse, transmittance;
+  for (size_t i = 0; i < rays.size(); ++i) {
+    const std::vector<HitRecord>&a = gpuHits[i].hits, &b = cpuHits[i].hits;
+    bool same = a.size() == b.size() && gpuHits[i].overflowed == cpuHits[i].overflowed;
+    for (size_t k = 0; same && k < a.size(); ++k) same = a[k].id == b[k].id && a[k].t == b[k].t && a[k].alpha == b[k].alpha;
+    differentLists += !same;
+    hits += b.size();
+    depth.add(gpuResults[i].depth, cpuResults[i].depth);
+    diffuse.add(gpuResults[i].diffuse.x, cpuResults[i].diffuse.x);
+    transmittance.add(gpuResults[i].transmittance, cpuResults[i].transmittance);
+  }
+  std::printf("%s, exact tail %d: %zu rays, %zu hits; lists differing: %zu; largest difference: depth %.3g, diffuse %.3g, "
+              "transmittance %.3g\n",
+              kind, int(exactTail), rays.size(), hits, differentLists, depth.largest, diffuse.largest,
+              transmittance.largest);
+  EXPECT_EQ(differentLists, 0u);
+  EXPECT_GT(hits, 20 * rays.size());  // dense enough that order matters
+  EXPECT_LE(depth.largest, 1e-4);
+  EXPECT_LE(diffuse.largest, 1e-4);
+  EXPECT_LE(transmittance.largest, 1e-4);
+}
+
 TEST(GpuTracer, HitListsOfTenThousandRaysEqualTheCpuInOrder) {
   GaussianScene scene = randomScene(20000, 51);
-  for (bool exactTail : {false, true}) {
-    TraceSettings settings;
-    settings.exactTail = exactTail;
-    settings.minTransmittance = 1e-3f;
-    std::vector<TraceRay> rays = randomRays(10000, 52);
-    for (size_t i = 0; i < rays.size(); i += 4) rays[i].backfaceSkip = 0.5f;
-    FastGaussianTracer cpu;
-    cpu.build(scene, settings);
-    std::unique_ptr<GaussianTracer> gpu = makeGaussianTracer("cuda");
-    gpu->build(scene, settings);
-    std::vector<RayResult> cpuResults(rays.size()), gpuResults(rays.size());
-    std::vector<HitList> cpuHits(rays.size()), gpuHits(rays.size());
-    cpu.traceBatch(rays, cpuResults, cpuHits, RayCoherence::Scattered);
-    gpu->traceBatch(rays, gpuResults, gpuHits, RayCoherence::Scattered);
-    size_t differentLists = 0, hits = 0;
-    Difference depth, diffuse, transmittance;
-    for (size_t i = 0; i < rays.size(); ++i) {
-      const std::vector<HitRecord>&a = gpuHits[i].hits, &b = cpuHits[i].hits;
-      bool same = a.size() == b.size() && gpuHits[i].overflowed == cpuHits[i].overflowed;
-      for (size_t k = 0; same && k < a.size(); ++k) same = a[k].id == b[k].id && a[k].t == b[k].t && a[k].alpha == b[k].alpha;
-      differentLists += !same;
-      hits += b.size();
-      depth.add(gpuResults[i].depth, cpuResults[i].depth);
-      diffuse.add(gpuResults[i].diffuse.x, cpuResults[i].diffuse.x);
-      transmittance.add(gpuResults[i].transmittance, cpuResults[i].transmittance);
-    }
-    std::printf("exact tail %d: %zu rays, %zu hits; lists differing: %zu; largest difference: depth %.3g, diffuse %.3g, "
-                "transmittance %.3g\n",
-                int(exactTail), rays.size(), hits, differentLists, depth.largest, diffuse.largest,
-                transmittance.largest);
-    EXPECT_EQ(differentLists, 0u);
-    EXPECT_GT(hits, 20 * rays.size());  // dense enough that order matters
-    EXPECT_LE(depth.largest, 1e-4);
-    EXPECT_LE(diffuse.largest, 1e-4);
-    EXPECT_LE(transmittance.largest, 1e-4);
-  }
+  for (const char* kind : kGpuTracers)
+    for (bool exactTail : {false, true}) expectTheCpusHits(scene, kind, exactTail);
 }
 
 TEST(GpuTracer, RefitFollowsMovedGaussians) {
   GaussianScene scene = randomScene(5000, 53);
   TraceSettings settings;
-  std::unique_ptr<GaussianTracer> gpu = makeGaussianTracer("cuda");
+  std::unique_ptr<GaussianTracer> gpu = makeGaussianTracer("cuda-warp");
   gpu->build(scene, settings);
   for (Vec3f& p : scene.position) p += Vec3f(0.05f, 0.0f, 0.0f);
   gpu->refit();
@@ -92,11 +99,13 @@ TEST(GpuTracer, RefitFollowsMovedGaussians) {
 
 TEST(GpuTracer, EmptySceneGivesEmptyRays) {
   GaussianScene scene;
-  std::unique_ptr<GaussianTracer> gpu = makeGaussianTracer("cuda");
-  gpu->build(scene, TraceSettings{});
-  RayResult r = gpu->trace({Vec3f(0.0f), Vec3f(0, 0, 1), 0.0f});
-  EXPECT_EQ(r.hitCount, 0);
-  EXPECT_EQ(r.transmittance, 1.0f);
+  for (const char* kind : kGpuTracers) {
+    std::unique_ptr<GaussianTracer> gpu = makeGaussianTracer(kind);
+    gpu->build(scene, TraceSettings{});
+    RayResult r = gpu->trace({Vec3f(0.0f), Vec3f(0, 0, 1), 0.0f});
+    EXPECT_EQ(r.hitCount, 0);
+    EXPECT_EQ(r.transmittance, 1.0f);
+  }
 }
 
 // Every buffer of a view rendered on the GPU and the CPU, per-pixel.
@@ -119,13 +128,10 @@ void expectSameViews(const ViewBuffers& gpu, const ViewBuffers& cpu, const std::
   }
 }
 
-TEST(GpuRenderer, ViewsEqualTheCpuForTheSameSeeds) {
-  GaussianScene scene = randomScene(30000, 55);
-  TraceSettings trace;
-  FastGaussianTracer cpu;
-  cpu.build(scene, trace);
-  std::unique_ptr<GaussianTracer> gpu = makeGaussianTracer("cuda");
-  gpu->build(scene, trace);
+// Views of `scene` rendered by the GPU tracer `kind` and the fast CPU tracer at the same seeds.
+void expectTheCpusViews(const GaussianScene& scene, const FastGaussianTracer& cpu, const char* kind) {
+  std::unique_ptr<GaussianTracer> gpu = makeGaussianTracer(kind);
+  gpu->build(scene, TraceSettings{});
   const Camera camera =
       Camera::fromFieldOfView(Mat4::lookAt(Vec3d(0.3, 0.5, 3.2), Vec3d(0, 0, 0), Vec3d(0, 1, 0)), 0.9, 160, 120);
   for (int bounces : {0, 2, 4}) {
@@ -136,7 +142,7 @@ TEST(GpuRenderer, ViewsEqualTheCpuForTheSameSeeds) {
     std::vector<Image> gpuBounces, cpuBounces;
     ViewBuffers g = renderGaussianView(*gpu, camera, settings, 3, &gpuBounces);
     ViewBuffers c = renderGaussianView(cpu, camera, settings, 3, &cpuBounces);
-    expectSameViews(g, c, gpuBounces, cpuBounces, std::to_string(bounces) + " bounces");
+    expectSameViews(g, c, gpuBounces, cpuBounces, std::string(kind) + ", " + std::to_string(bounces) + " bounces");
   }
   // Reflected rays traced in path order (not sorted by origin and octant): the same image.
   RenderSettings unsorted;
@@ -145,7 +151,7 @@ TEST(GpuRenderer, ViewsEqualTheCpuForTheSameSeeds) {
   unsorted.path.reflectedOrder = ReflectedRayOrder::PathOrder;
   std::vector<Image> none;
   expectSameViews(renderGaussianView(*gpu, camera, unsorted, 2), renderGaussianView(cpu, camera, unsorted, 2), none,
-                  none, "reflected rays unsorted");
+                  none, std::string(kind) + ", reflected rays unsorted");
   // A band of rows, starting at a later sample (as MPI ranks and the viewer render).
   RenderSettings band;
   band.spp = 2;
@@ -154,7 +160,14 @@ TEST(GpuRenderer, ViewsEqualTheCpuForTheSameSeeds) {
   band.rowEnd = 81;
   band.path.bounces = 2;
   expectSameViews(renderGaussianView(*gpu, camera, band, 1), renderGaussianView(cpu, camera, band, 1), none, none,
-                  "rows 37-81, samples 5-6");
+                  std::string(kind) + ", rows 37-81, samples 5-6");
+}
+
+TEST(GpuRenderer, ViewsEqualTheCpuForTheSameSeeds) {
+  GaussianScene scene = randomScene(30000, 55);
+  FastGaussianTracer cpu;
+  cpu.build(scene, TraceSettings{});
+  for (const char* kind : kGpuTracers) expectTheCpusViews(scene, cpu, kind);
 }
 
 TEST(GpuDevice, AutoPicksTheGpuAndSaysWhich) {

@@ -58,7 +58,7 @@ void expectSameAsFastTracer(const GaussianScene& scene, const std::vector<TraceR
                             const TraceSettings& settings, const std::string& what, int* passes) {
   FastGaussianTracer fast;
   fast.build(scene, settings);
-  ASSERT_LE(fast.bvh().maxStackSize(), kKBufferStackCapacity);
+  ASSERT_TRUE(fitsKBufferStack(fast.bvh()));
   int failures = 0;
   KBufferTraceStats stats;
   for (size_t i = 0; i < rays.size() && failures < 5; ++i) {

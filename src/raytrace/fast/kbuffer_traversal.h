@@ -50,8 +50,12 @@ struct ArrayHitRecorder {
 // Hits a ray keeps per pass on the GPU.
 constexpr int kGpuKBufferHits = 32;
 
-// Stack entries of one pass: the tree's depth bound (Bvh8::maxStackSize) must fit.
+// Stack entries of one pass.
 constexpr int kKBufferStackCapacity = 192;
+
+// Whether a depth-first walk of the tree fits the stack: its depth bound plus a node's
+// children pushed at once.
+inline bool fitsKBufferStack(const Bvh8& bvh) { return bvh.maxStackSize() + kBvhWidth <= kKBufferStackCapacity; }
 
 // A ray's K nearest hits found so far in a pass, nearest first.
 template <int K>
@@ -88,137 +92,203 @@ struct KBufferTraceStats {
   int blocks = 0;  // 8-lane leaf blocks tested
 };
 
+// One ray's state in the k-buffer traversal, pass by pass: what both the per-ray walk below
+// and the GPU's warp-wide walk (cuda/warp_traversal.cuh) do at a node, at a leaf and at the
+// end of a pass. Only the order of the walk, the stack, differs between them.
+template <int K, typename Recorder>
+class KBufferRay {
+ public:
+  GLINT_CPU_GPU KBufferRay(const GaussianAttributes& attributes, const TraceSettings& settings,
+                           const TraceRay& traceRay, Recorder recorder)
+      : compositor_(attributes, settings, recorder),
+        settings_(settings),
+        ray_(traceRay),
+        response_(settings.kernelPower) {
+    if (traceRay.backfaceSkip > 0) compositor_.skipBackfacing(traceRay.direction, traceRay.backfaceSkip);
+  }
+
+  GLINT_CPU_GPU float tMin() const { return ray_.tMin; }
+
+  // Starts a pass: an empty buffer, no cutoff yet.
+  GLINT_CPU_GPU void startPass() {
+    buffer_ = NearestHits<K>();
+    hasCutoff_ = false;
+    lost_ = false;
+    startTransmittance_ = float(compositor_.transmittance());
+  }
+
+  // Whether a subtree entered at tNear can be passed over: it lies behind the cutoff, or
+  // behind a full buffer's farthest hit (its hits are then lost to this pass).
+  GLINT_CPU_GPU bool skips(float tNear) {
+    if (hasCutoff_ && tNear > cutoff_.key) return true;
+    if (!tail_ && buffer_.full() && tNear > buffer_.farthest().key) {
+      lost_ = true;
+      return true;
+    }
+    return false;
+  }
+
+  // The children of `node` to visit: those the ray enters that are not wholly before lo
+  // (every key is at most the box's exit distance) nor skipped; tNear receives their entry
+  // distances.
+  GLINT_CPU_GPU uint32_t children(const Bvh8Node& node, float tNear[kBvhWidth]) {
+    float tFar[kBvhWidth];
+    const uint32_t mask = intersectNodeScalar(node, ray_, tNear, tFar);
+    uint32_t keep = 0;
+    GLINT_UNROLL
+    for (int c = 0; c < kBvhWidth; ++c) {
+      if (!(mask >> c & 1u)) continue;
+      if (hasLo_ && tFar[c] < lo_.key) continue;
+      if (skips(tNear[c])) continue;
+      keep |= 1u << c;
+    }
+    return keep;
+  }
+
+  // Tests the Gaussians of a leaf: the hits behind lo go to the buffer (or, in the exact
+  // tail's last pass, straight into the final transmittance).
+  GLINT_CPU_GPU void visitLeaf(const Bvh8View& bvh, int32_t code) {
+    const Bvh8Block* blocks = bvh.blocks + Bvh8Node::leafFirstBlock(code);
+    const int count = Bvh8Node::leafBlocks(code);
+    for (int b = 0; b < count; ++b) {
+      const Bvh8Block& block = blocks[b];
+      for (int i = 0; i < kBvhWidth; ++i) {
+        Bvh8BlockCandidates c;
+        if (!proxyTestScalar(block, i, ray_.origin, ray_.direction, ray_.tMin, &c, 0)) continue;
+        const float alpha = response_.alpha(block.opacity[i], c.r2[0]);
+        if (alpha < settings_.alphaMin) continue;
+        accept({hitKey(c.tPeak[0], c.tPeak[0] - c.half[0], c.tPeak[0] + c.half[0], ray_.tMin), block.id[i], alpha});
+      }
+    }
+  }
+
+  // Composites the pass's buffer; returns true when the ray is done (terminated, or every
+  // hit composited), false when another pass must continue behind the buffer.
+  GLINT_CPU_GPU bool finishPass() {
+    if (tail_) return true;
+    for (int i = 0; i < buffer_.size(); ++i) {
+      if (compositor_.add(buffer_[i].id, buffer_[i].kernelHit())) continue;
+      if (!settings_.exactTail) return true;
+      // Terminated: the buffer's remaining hits only multiply into the tail; the last
+      // pass takes every hit behind this buffer.
+      tail_ = true;
+      for (int j = i + 1; j < buffer_.size(); ++j) compositor_.add(buffer_[j].id, buffer_[j].kernelHit());
+      break;
+    }
+    // Without a lost hit, every hit behind lo (and before the cutoff) was in the buffer.
+    if (!lost_ || buffer_.size() == 0) return true;
+    lo_ = buffer_.farthest().order();
+    hasLo_ = true;
+    return false;
+  }
+
+  GLINT_CPU_GPU RayResult finish() const { return compositor_.finish(); }
+
+ private:
+  GLINT_CPU_GPU void accept(const KeyedHit& h) {
+    if (hasLo_ && !(lo_ < h.order())) return;  // composited in an earlier pass
+    if (tail_) {
+      compositor_.add(h.id, h.kernelHit());
+      return;
+    }
+    if (compositor_.skips(h.id, h.key)) return;  // invisible to the compositor
+    if (hasCutoff_ && !(h.order() < cutoff_)) return;
+    lost_ |= !buffer_.insert(h);
+    if (settings_.exactTail) return;
+    // Where the buffered hits end the ray, compositing as the compositor does.
+    float t = startTransmittance_;
+    for (int k = 0; k < buffer_.size(); ++k) {
+      t *= 1.0f - buffer_[k].alpha;
+      if (t < settings_.minTransmittance) {
+        cutoff_ = buffer_[k].order();
+        hasCutoff_ = true;
+        buffer_.truncate(k + 1);
+        return;
+      }
+    }
+  }
+
+  Compositor<float, Recorder> compositor_;
+  const TraceSettings& settings_;
+  Bvh8Ray ray_;
+  KernelResponse response_;
+  HitOrder lo_{0.0f, 0};
+  bool hasLo_ = false;
+  // Terminated with exactTail: the last pass multiplies every hit behind lo into the
+  // final transmittance, in any order.
+  bool tail_ = false;
+  // This pass: the buffer; the buffered hit at which the transmittance (from the hits
+  // composited in earlier passes and the buffered ones) falls below the threshold, without
+  // the exact tail; whether a hit behind lo (and before the cutoff) did not fit.
+  NearestHits<K> buffer_;
+  HitOrder cutoff_{0.0f, 0};
+  bool hasCutoff_ = false;
+  bool lost_ = false;
+  float startTransmittance_ = 1.0f;
+};
+
+// Where child c of `keep` goes on a stack that pops the nearest first: its rank among the
+// kept children by decreasing entry distance, ties by lane, computed without a sort so that
+// nothing is indexed at run time.
+GLINT_CPU_GPU inline int farthestFirstRank(uint32_t keep, const float tNear[kBvhWidth], int c) {
+  int rank = 0;
+  GLINT_UNROLL
+  for (int d = 0; d < kBvhWidth; ++d)
+    rank += int((keep >> d & 1u) && (tNear[d] > tNear[c] || (tNear[d] == tNear[c] && d < c)));
+  return rank;
+}
+
+// Pushes the children of `keep` farthest first; returns how many.
+GLINT_CPU_GPU inline int pushNearestLast(const Bvh8Node& node, uint32_t keep, const float tNear[kBvhWidth],
+                                         int32_t* stack, float* stackNear) {
+  int count = 0;
+  GLINT_UNROLL
+  for (int c = 0; c < kBvhWidth; ++c) {
+    if (!(keep >> c & 1u)) continue;
+    const int rank = farthestFirstRank(keep, tNear, c);
+    stack[rank] = node.child[c];
+    stackNear[rank] = tNear[c];
+    ++count;
+  }
+  return count;
+}
+
 // Traces one ray through `bvh`, compositing into a Compositor that records its hits with
-// `recorder`. The tree's maxStackSize() must not exceed kKBufferStackCapacity (callers
-// check it once per build).
+// `recorder`: each pass walks the tree depth-first with the ray's own stack. The tree must
+// fit the stack (fitsKBufferStack; callers check it once per build).
 template <int K, typename Recorder>
 GLINT_CPU_GPU RayResult traceKBuffer(const Bvh8View& bvh, const GaussianAttributes& attributes,
                                      const TraceSettings& settings, const TraceRay& traceRay, Recorder recorder,
                                      KBufferTraceStats* stats = nullptr) {
-  Compositor<float, Recorder> compositor(attributes, settings, recorder);
-  if (traceRay.backfaceSkip > 0) compositor.skipBackfacing(traceRay.direction, traceRay.backfaceSkip);
-  if (bvh.empty) return compositor.finish();
-  const Bvh8Ray ray(traceRay);
-  const KernelResponse response(settings.kernelPower);
-  HitOrder lo{0.0f, 0};
-  bool hasLo = false;
-  // Terminated with exactTail: the last pass multiplies every hit behind `lo` into the
-  // final transmittance, in any order.
-  bool tail = false;
-  const float minTransmittance = settings.minTransmittance;
-  for (;;) {
+  KBufferRay<K, Recorder> ray(attributes, settings, traceRay, recorder);
+  if (bvh.empty) return ray.finish();
+  for (bool done = false; !done;) {
     if (stats) ++stats->passes;
-    NearestHits<K> buffer;
-    // Without the exact tail: the buffered hit at which the transmittance, from the hits
-    // composited in earlier passes and the buffered ones, falls below the threshold.
-    HitOrder cutoff{0.0f, 0};
-    bool hasCutoff = false;
-    // A hit behind lo (and before the cutoff) did not fit the buffer: another pass follows.
-    bool lost = false;
-    const float startTransmittance = float(compositor.transmittance());
+    ray.startPass();
     int32_t stack[kKBufferStackCapacity];
     float stackNear[kKBufferStackCapacity];
     int top = 0;
-    stack[top] = 0, stackNear[top] = ray.tMin, ++top;
+    stack[top] = 0, stackNear[top] = ray.tMin(), ++top;
     while (top > 0) {
       --top;
       const int32_t code = stack[top];
       // Every hit in the subtree has a key at least its entry distance.
-      if (hasCutoff && stackNear[top] > cutoff.key) continue;
-      if (!tail && buffer.full() && stackNear[top] > buffer.farthest().key) {
-        lost = true;
-        continue;
-      }
+      if (ray.skips(stackNear[top])) continue;
       if (Bvh8Node::isLeaf(code)) {
-        const Bvh8Block* blocks = bvh.blocks + Bvh8Node::leafFirstBlock(code);
-        const int count = Bvh8Node::leafBlocks(code);
-        if (stats) stats->blocks += count;
-        for (int b = 0; b < count; ++b) {
-          const Bvh8Block& block = blocks[b];
-          for (int i = 0; i < kBvhWidth; ++i) {
-            Bvh8BlockCandidates c;
-            if (!proxyTestScalar(block, i, ray.origin, ray.direction, ray.tMin, &c, 0)) continue;
-            const float alpha = response.alpha(block.opacity[i], c.r2[0]);
-            if (alpha < settings.alphaMin) continue;
-            const KeyedHit h{hitKey(c.tPeak[0], c.tPeak[0] - c.half[0], c.tPeak[0] + c.half[0], ray.tMin),
-                             block.id[i], alpha};
-            if (hasLo && !(lo < h.order())) continue;  // composited in an earlier pass
-            if (tail) {
-              compositor.add(h.id, h.kernelHit());
-              continue;
-            }
-            if (compositor.skips(h.id, h.key)) continue;  // invisible to the compositor
-            if (hasCutoff && !(h.order() < cutoff)) continue;
-            lost |= !buffer.insert(h);
-            if (settings.exactTail) continue;
-            // Where the buffered hits end the ray, compositing as the compositor does.
-            float t = startTransmittance;
-            for (int k = 0; k < buffer.size(); ++k) {
-              t *= 1.0f - buffer[k].alpha;
-              if (t < minTransmittance) {
-                cutoff = buffer[k].order();
-                hasCutoff = true;
-                buffer.truncate(k + 1);
-                break;
-              }
-            }
-          }
-        }
+        if (stats) stats->blocks += Bvh8Node::leafBlocks(code);
+        ray.visitLeaf(bvh, code);
         continue;
       }
       if (stats) ++stats->nodes;
       const Bvh8Node& node = bvh.nodes[code];
-      float tNear[kBvhWidth], tFar[kBvhWidth];
-      const uint32_t mask = intersectNodeScalar(node, ray, tNear, tFar);
-      // The children that can still hold a hit to keep: not wholly before lo (every key is
-      // at most the box's exit distance), nor behind the cutoff or a full buffer's farthest.
-      uint32_t keep = 0;
-      GLINT_UNROLL
-      for (int c = 0; c < kBvhWidth; ++c) {
-        if (!(mask >> c & 1u)) continue;
-        if (hasLo && tFar[c] < lo.key) continue;
-        if (hasCutoff && tNear[c] > cutoff.key) continue;
-        if (!tail && buffer.full() && tNear[c] > buffer.farthest().key) {
-          lost = true;
-          continue;
-        }
-        keep |= 1u << c;
-      }
-      // Pushed farthest first (so the nearest is visited next): child c goes to its rank
-      // among the kept children by decreasing entry distance, ties by lane, computed
-      // without a sort so that nothing is indexed at run time.
-      int count = 0;
-      GLINT_UNROLL
-      for (int c = 0; c < kBvhWidth; ++c) count += int(keep >> c & 1u);
-      if (top + count > kKBufferStackCapacity) count = 0, keep = 0;  // never: the depth bound is checked at build
-      GLINT_UNROLL
-      for (int c = 0; c < kBvhWidth; ++c) {
-        if (!(keep >> c & 1u)) continue;
-        int rank = 0;
-        GLINT_UNROLL
-        for (int d = 0; d < kBvhWidth; ++d)
-          rank += int((keep >> d & 1u) && (tNear[d] > tNear[c] || (tNear[d] == tNear[c] && d < c)));
-        stack[top + rank] = node.child[c];
-        stackNear[top + rank] = tNear[c];
-      }
-      top += count;
+      float tNear[kBvhWidth];
+      uint32_t keep = ray.children(node, tNear);
+      if (top + kBvhWidth > kKBufferStackCapacity) keep = 0;  // never: callers check the depth bound
+      top += pushNearestLast(node, keep, tNear, stack + top, stackNear + top);
     }
-    if (tail) break;
-    // Every hit behind lo (and before the cutoff) is in the buffer.
-    const bool complete = !lost;
-    for (int i = 0; i < buffer.size(); ++i) {
-      if (compositor.add(buffer[i].id, buffer[i].kernelHit())) continue;
-      if (!settings.exactTail) return compositor.finish();
-      // Terminated: the buffer's remaining hits only multiply into the tail.
-      tail = true;
-      for (int j = i + 1; j < buffer.size(); ++j) compositor.add(buffer[j].id, buffer[j].kernelHit());
-      break;
-    }
-    if (complete || buffer.size() == 0) break;
-    lo = buffer.farthest().order();
-    hasLo = true;
+    done = ray.finishPass();
   }
-  return compositor.finish();
+  return ray.finish();
 }
 
 }  // namespace glint
