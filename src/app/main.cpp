@@ -91,7 +91,13 @@ int runGlint(int argc, char** argv) {
         }
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // A missing or malformed flag: one line naming the command, and exit status 1 as for
+    // every other error (CLI11's own codes, such as 106, mean nothing to a user).
+    std::string command = "glint";
+    for (const CLI::App* sub : app.get_subcommands()) command += " " + sub->get_name();
+    std::fprintf(stderr, "%s: error: %s (see %s --help)\n", command.c_str(), e.what(), command.c_str());
+    return 1;
   } catch (const glint::Error& e) {
     return fail(e.what());
   } catch (const std::exception& e) {

@@ -55,10 +55,10 @@ SceneSource loadSceneSource(const fs::path& p, PlyLayout layout) {
 void addInputLayoutFlag(CLI::App& command, std::string& layout) {
   command
       .add_option("--input-layout", layout,
-                  "How to read the scene .ply: auto (from its header: Glint's comment or material properties "
-                  "mean glint, f_rest_*/nx ny nz or Glint's 3DGS export comment mean 3dgs; a file with both or "
-                  "neither is refused), glint (f_dc is linear diffuse colour) or 3dgs (f_dc is the SH DC of a "
-                  "display-referred colour; missing materials become a rough dielectric)")
+                  "How to read the scene .ply: auto (Glint's header or material properties mean glint, "
+                  "anything else 3dgs; a Glint header over 3DGS properties is refused), glint (f_dc is linear "
+                  "diffuse colour) or 3dgs (f_dc is the SH DC of a display-referred colour; missing materials "
+                  "become a rough dielectric)")
       ->check(CLI::IsMember({"auto", "glint", "3dgs"}))
       ->capture_default_str();
 }

@@ -141,31 +141,37 @@ const char* plyLayoutName(PlyLayout layout) {
 
 int shRestPerChannel(int degree) { return (degree + 1) * (degree + 1) - 1; }
 
-PlyLayout detectGaussianPlyLayout(const PlyTable& table) {
+PlyLayout detectGaussianPlyLayout(const PlyTable& table, bool* assumedThreeDgs) {
   auto ambiguous = [&](const std::string& why) {
     return Error(sourceName(table), "cannot tell whether f_dc_0..2 is Glint's linear colour or 3DGS's SH "
                                     "coefficient: " + why + "; pass --input-layout glint or --input-layout 3dgs");
   };
-  // What Glint wrote says so in a comment.
-  bool glintComment = hasCommentStartingWith(table, kGlintComment);
-  bool exportComment = std::any_of(table.comments.begin(), table.comments.end(), isSplatColourComment);
-  if (glintComment && exportComment) throw ambiguous("the header carries both Glint's scene and 3DGS export comments");
-  if (glintComment) return PlyLayout::Glint;
+  if (assumedThreeDgs) *assumedThreeDgs = false;
+  // What Glint wrote says so in a comment; only then can the file contradict itself.
+  const bool glintComment = hasCommentStartingWith(table, kGlintComment);
+  const bool exportComment = std::any_of(table.comments.begin(), table.comments.end(), isSplatColourComment);
+  const std::string glintOnly = firstGlintMaterialProperty(table);
+  const std::string splatOnly = first3dgsOnlyProperty(table);
+  if (glintComment) {
+    if (exportComment) throw ambiguous("the header carries both Glint's scene and 3DGS export comments");
+    if (!splatOnly.empty()) throw ambiguous("its header says Glint's layout, but it has 3DGS's '" + splatOnly + "'");
+    return PlyLayout::Glint;
+  }
   if (exportComment) return PlyLayout::ThreeDgs;
-  // Otherwise the properties only one layout writes.
-  std::string glintOnly = firstGlintMaterialProperty(table);
-  std::string splatOnly = first3dgsOnlyProperty(table);
-  if (!glintOnly.empty() && !splatOnly.empty())
-    throw ambiguous("it has both Glint's '" + glintOnly + "' and 3DGS's '" + splatOnly + "'");
-  if (!glintOnly.empty()) return PlyLayout::Glint;
-  if (!splatOnly.empty()) return PlyLayout::ThreeDgs;
-  throw ambiguous("it has only the properties both layouts share (x y z f_dc_0..2 opacity scale_0..2 rot_0..3), "
-                  "no material, f_rest or nx ny nz properties and no Glint comment");
+  // Glint's material properties without any of 3DGS's own: Glint's layout, header lost.
+  if (!glintOnly.empty() && splatOnly.empty()) return PlyLayout::Glint;
+  // Everything else is what splat tools write (a degree-0 file has only the shared
+  // properties); the caller says so when nothing but the missing header decided.
+  if (assumedThreeDgs) *assumedThreeDgs = splatOnly.empty();
+  return PlyLayout::ThreeDgs;
 }
 
 std::string describeImport(const GaussianPlyImport& import) {
   if (import.layout != PlyLayout::ThreeDgs) return "";
-  std::string line = "imported 3DGS layout: colour read as ";
+  std::string line = import.layoutAssumed
+                         ? "no Glint header or material properties, so read as a 3DGS file (--input-layout glint "
+                           "reads it as Glint's); colour read as "
+                         : "imported 3DGS layout: colour read as ";
   if (import.colour.colour == SplatColourSpace::Linear) {
     line += "linear";
   } else {
@@ -195,7 +201,8 @@ GaussianScene gaussianSceneFromPly(const PlyTable& table, PlyLayout layout, Gaus
   std::array<std::vector<const std::vector<float>*>, kGaussianParameterCount> columns;
   forEachParameterInPlyOrder(
       [&](const auto& p) { columns[p.index] = columnGroup(table, p.plyNames, p.plyRequired); });
-  if (layout == PlyLayout::Auto) layout = detectGaussianPlyLayout(table);
+  bool layoutAssumed = false;
+  if (layout == PlyLayout::Auto) layout = detectGaussianPlyLayout(table, &layoutAssumed);
 
   GaussianScene scene;
   scene.resize(table.count);  // absent optional groups keep their neutral values
@@ -214,6 +221,7 @@ GaussianScene gaussianSceneFromPly(const PlyTable& table, PlyLayout layout, Gaus
   }
   GaussianPlyImport info;
   info.layout = layout;
+  info.layoutAssumed = layoutAssumed;
   if (layout == PlyLayout::ThreeDgs) {
     auto present = [&](auto member) { return !columns[parameterOf(member).index].empty(); };
     importThreeDgs(table, present(&GaussianScene::normal), present(&GaussianScene::roughness),

@@ -24,17 +24,19 @@ const char* plyLayoutName(PlyLayout layout);  // "auto", "glint", "3dgs"
 
 // The layout of a table, from its comments and its whole set of property names:
 // 1. A comment decides: Glint's writer says "Glint Gaussian scene: ...", its 3DGS export
-//    "Glint 3DGS export: ...".
-// 2. Otherwise Glint's material properties (normal_0..2, roughness, f0_0..2) mean Glint and
-//    3DGS's own (f_rest_*, nx ny nz) mean 3DGS.
-// A table with both, or with neither (e.g. exactly x y z f_dc_0..2 opacity scale_0..2
-// rot_0..3, which both could hold), is ambiguous: throws Error naming table.source and the
-// --input-layout flag. Never returns Auto.
-PlyLayout detectGaussianPlyLayout(const PlyTable& table);
+//    "Glint 3DGS export: ...". A file whose header says Glint's layout but that has 3DGS's
+//    own properties (f_rest_*, nx ny nz), or that carries both comments, contradicts itself:
+//    throws Error naming table.source and the --input-layout flag.
+// 2. Otherwise Glint's material properties (normal_0..2, roughness, f0_0..2) without any of
+//    3DGS's own mean Glint's layout, and anything else is a 3DGS file, as splat tools write
+//    them (*assumedThreeDgs is set when nothing but the missing header decided: a degree-0
+//    file holds only the properties both layouts share). Never returns Auto.
+PlyLayout detectGaussianPlyLayout(const PlyTable& table, bool* assumedThreeDgs = nullptr);
 
 // What reading a Gaussian PLY did, for the command line to report.
 struct GaussianPlyImport {
   PlyLayout layout = PlyLayout::Glint;  // the layout used (never Auto)
+  bool layoutAssumed = false;           // 3DGS for want of Glint's header or properties alone
   // 3DGS only:
   SplatColourEncoding colour;       // how f_dc was decoded (the export comment's, else display)
   // Which material groups the file lacked and were set to the imported defaults.

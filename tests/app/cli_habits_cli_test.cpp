@@ -1,6 +1,7 @@
 // The command line's habits end to end: bare `glint` fails with the command list, unknown
-// flags and commands name the nearest known one, every computing command takes --threads,
-// and `train --view` stops serving when training ends unless --keep-serving.
+// flags and commands name the nearest known one, a missing or malformed flag is one line
+// and exit status 1, every computing command takes --threads, and `train --view` stops
+// serving when training ends unless --keep-serving.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -42,6 +43,18 @@ TEST_F(CliHabitsTest, AnUnknownFlagOrCommandNamesTheNearestOne) {
   Outcome command = runGlint("trian D -o R");
   EXPECT_NE(command.status, 0);
   EXPECT_NE(command.output.find("did you mean 'train'?"), std::string::npos) << command.output;
+}
+
+TEST_F(CliHabitsTest, AMissingOrMalformedFlagIsOneLineAndStatusOne) {
+  Outcome missing = runGlint("train " + path("D"));
+  EXPECT_EQ(missing.status, 1) << missing.output;
+  EXPECT_EQ(missing.output, "glint train: error: --output is required (see glint train --help)\n");
+  Outcome malformed = runGlint("render " + path("scene.ply") + " --spp many");
+  EXPECT_EQ(malformed.status, 1) << malformed.output;
+  EXPECT_EQ(malformed.output.rfind("glint render: error: ", 0), 0u) << malformed.output;
+  EXPECT_NE(malformed.output.find("--spp"), std::string::npos) << malformed.output;
+  // --help is not an error.
+  EXPECT_EQ(runGlint("train --help").status, 0);
 }
 
 TEST_F(CliHabitsTest, EveryComputingCommandTakesThreads) {

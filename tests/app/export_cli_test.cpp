@@ -192,8 +192,9 @@ TEST_F(ExportCliTest, FarFieldIsDroppedAroundTheTrainingCamerasAndCropKeepsABox)
   EXPECT_NE(badBox.output.find("--crop"), std::string::npos) << badBox.output;
 }
 
-// A 3DGS file as `splat-transform -H 0` writes it: the properties both layouts share.
-void writeCoreOnly3dgs(const fs::path& file) {
+// A 3DGS file as `splat-transform -H 0` writes it: the properties both layouts share. With
+// `contradicting`, a header that says Glint's layout and a 3DGS-only f_rest_0 as well.
+void writeCoreOnly3dgs(const fs::path& file, bool contradicting = false) {
   PlyTable table;
   table.add("x", {0.0f, 0.2f});
   table.add("y", {0.6f, 0.7f});
@@ -203,7 +204,12 @@ void writeCoreOnly3dgs(const fs::path& file) {
   for (const char* name : {"scale_0", "scale_1", "scale_2"}) table.add(name, {-2.0f, -2.5f});
   table.add("rot_0", {1.0f, 1.0f});
   for (const char* name : {"rot_1", "rot_2", "rot_3"}) table.add(name, {0.0f, 0.0f});
-  writePly(file, table);
+  PlyWriteOptions options;
+  if (contradicting) {
+    table.add("f_rest_0", {0.0f, 0.0f});
+    options.comments = {"Glint Gaussian scene: f_dc_0..2 is linear diffuse colour (not SH)"};
+  }
+  writePly(file, table, options);
 }
 
 TEST_F(ExportCliTest, EveryCommandThatLoadsASceneTakesTheInputLayout) {
@@ -212,28 +218,36 @@ TEST_F(ExportCliTest, EveryCommandThatLoadsASceneTakesTheInputLayout) {
     EXPECT_NE(help.output.find("--input-layout"), std::string::npos) << command;
   }
   writeCoreOnly3dgs(path("h0.ply"));
+  writeCoreOnly3dgs(path("contradicting.ply"), /*contradicting=*/true);
   std::ofstream(path("edits.json")) << R"({"glint_edits": 1, "operations": []})";
-  // Ambiguous: refused, naming the file and the flag, by every command before other work.
+  // A file whose header says Glint's layout but holds 3DGS's f_rest: refused, naming the
+  // file and the flag, by every command before other work.
   for (const std::string& args :
-       {"edit " + path("h0.ply") + " " + path("edits.json") + " -o " + path("edited.ply"),
-        "render " + path("h0.ply") + " -o " + path("frames") + " --dataset " + path("none"),
-        "eval " + path("h0.ply") + " -o " + path("metrics.json") + " --dataset " + path("none"),
-        "export " + path("h0.ply") + " -o " + path("out.ply")}) {
+       {"edit " + path("contradicting.ply") + " " + path("edits.json") + " -o " + path("edited.ply"),
+        "render " + path("contradicting.ply") + " -o " + path("frames") + " --dataset " + path("none"),
+        "eval " + path("contradicting.ply") + " -o " + path("metrics.json") + " --dataset " + path("none"),
+        "export " + path("contradicting.ply") + " -o " + path("out.ply")}) {
     Outcome run = runGlint(args);
     EXPECT_NE(run.status, 0) << args;
-    EXPECT_NE(run.output.find("h0.ply"), std::string::npos) << args << "\n" << run.output;
+    EXPECT_NE(run.output.find("contradicting.ply"), std::string::npos) << args << "\n" << run.output;
     EXPECT_NE(run.output.find("--input-layout"), std::string::npos) << args << "\n" << run.output;
   }
-  // Given the layout, it loads with the imported materials, and says so.
-  Outcome edit = runGlint("edit " + path("h0.ply") + " " + path("edits.json") + " -o " + path("edited.ply") +
-                          " --input-layout 3dgs");
+  // A degree-0 splat file without Glint's header loads as 3DGS with the imported
+  // materials, and says why.
+  Outcome edit = runGlint("edit " + path("h0.ply") + " " + path("edits.json") + " -o " + path("edited.ply"));
   ASSERT_EQ(edit.status, 0) << edit.output;
-  EXPECT_NE(edit.output.find("imported 3DGS layout"), std::string::npos) << edit.output;
+  EXPECT_NE(edit.output.find("no Glint header or material properties, so read as a 3DGS file"), std::string::npos)
+      << edit.output;
   EXPECT_NE(edit.output.find("materials set to a rough dielectric"), std::string::npos) << edit.output;
   GaussianScene edited = readGaussianPly(path("edited.ply"));
   ASSERT_EQ(edited.size(), 2u);
   EXPECT_EQ(edited.roughness[0], 0.9f);
   EXPECT_NEAR(tonemapFilmic(edited.diffuse[0].x), 0.5 + kShC0 * 0.4, 5e-5);
+  // --input-layout glint still reads it as Glint's linear colour.
+  Outcome asGlint = runGlint("edit " + path("h0.ply") + " " + path("edits.json") + " -o " + path("raw.ply") +
+                             " --input-layout glint");
+  ASSERT_EQ(asGlint.status, 0) << asGlint.output;
+  EXPECT_EQ(readGaussianPly(path("raw.ply")).diffuse[0].x, 0.4f);
 }
 
 }  // namespace

@@ -153,26 +153,33 @@ TEST(GaussianPly, LayoutDetectionRuleAndExplicitOverride) {
   };
   PlyTable plain = minimalTable(1);
   plain.source = "table.ply";
-  expectAmbiguous(plain, "only the properties both layouts share");
+  // Only the properties both layouts share, no header: a degree-0 splat file, read as 3DGS,
+  // and the caller is told that the missing header alone decided.
+  bool assumed = false;
+  EXPECT_EQ(detectGaussianPlyLayout(plain, &assumed), PlyLayout::ThreeDgs);
+  EXPECT_TRUE(assumed);
   // The properties only one layout writes decide ...
   for (const char* splatOnly : {"f_rest_0", "f_rest_44", "nx", "nz"}) {
     PlyTable table = plain;
     table.add(splatOnly, {0.0f});
-    EXPECT_EQ(detectGaussianPlyLayout(table), PlyLayout::ThreeDgs) << splatOnly;
+    EXPECT_EQ(detectGaussianPlyLayout(table, &assumed), PlyLayout::ThreeDgs) << splatOnly;
+    EXPECT_FALSE(assumed);
   }
   for (const char* glintOnly : {"normal_0", "roughness", "f0_1"}) {
     PlyTable table = plain;
     table.add(glintOnly, {0.0f});
     EXPECT_EQ(detectGaussianPlyLayout(table), PlyLayout::Glint) << glintOnly;
-    // ... and both at once are refused.
+    // ... and with 3DGS's own as well, a file without Glint's header is 3DGS's.
     table.add("f_rest_0", {0.0f});
-    expectAmbiguous(table, std::string("'") + glintOnly + "'");
+    EXPECT_EQ(detectGaussianPlyLayout(table), PlyLayout::ThreeDgs) << glintOnly;
   }
-  // A comment decides before the properties.
+  // A comment decides before the properties; a Glint header contradicted by 3DGS's own
+  // properties, or both comments, are refused.
   PlyTable commented = plain;
-  commented.add("f_rest_0", {0.0f});
   commented.comments = {"Glint Gaussian scene: f_dc_0..2 is linear diffuse colour (not SH)"};
   EXPECT_EQ(detectGaussianPlyLayout(commented), PlyLayout::Glint);
+  commented.add("f_rest_0", {0.0f});
+  expectAmbiguous(commented, "header says Glint's layout, but it has 3DGS's 'f_rest_0'");
   PlyTable exported = plain;
   exported.comments = {"made by hand", splatColourComment({})};
   EXPECT_EQ(detectGaussianPlyLayout(exported), PlyLayout::ThreeDgs);
@@ -344,17 +351,23 @@ PlyTable coreOnlyThreeDgsTable() {
   return table;
 }
 
-TEST(GaussianPly, DegreeZeroThreeDgsWithoutNormalsIsRefusedUnlessTheLayoutIsGiven) {
+TEST(GaussianPly, DegreeZeroThreeDgsWithoutNormalsIsReadAs3dgsAndSaysSo) {
   TempFolder folder;
   PlyTable table = coreOnlyThreeDgsTable();
   fs::path path = folder / "h0.ply";
   writePly(path, table);
-  expectErrorNaming([&] { readGaussianPly(path); }, path, {"--input-layout glint", "--input-layout 3dgs"});
+  GaussianPlyImport detected;
+  readGaussianPly(path, PlyLayout::Auto, &detected);
+  EXPECT_EQ(detected.layout, PlyLayout::ThreeDgs);
+  EXPECT_NE(describeImport(detected).find("no Glint header or material properties, so read as a 3DGS file"),
+            std::string::npos)
+      << describeImport(detected);
+  EXPECT_NE(describeImport(detected).find("--input-layout glint"), std::string::npos);
 
-  // Given the layout, its colours come back: Glint's filmic render of the read diffuse
+  // Its colours come back: Glint's filmic render of the read diffuse
   // shows the file's display colour, 0.5 + C0 f_dc (within the accuracy of
   // untonemapFilmic's published constants, far below an 8-bit level).
-  GaussianScene scene = readGaussianPly(path, PlyLayout::ThreeDgs);
+  GaussianScene scene = readGaussianPly(path);
   ASSERT_EQ(scene.size(), 3u);
   for (size_t i = 0; i < 3; ++i) {
     for (int k = 0; k < 3; ++k) {

@@ -92,27 +92,27 @@ int compare(const std::string& referencePath, const std::string& decodedPath, co
   return failures.empty() ? 0 : 1;
 }
 
-// splat-transform's PLY read by Glint's loader as `glint render FILE` reads it. A file with
-// f_rest_* can only be 3DGS and must be detected; one without (degree 0) is ambiguous and
-// must be refused naming --input-layout, then read with it. Either way, Glint's 8-bit
-// filmic display of the imported diffuse must be the viewer's 0.5 + C0 f_dc within half a
-// level (1 level where the viewer's colour lies above what the tonemap reaches).
+// splat-transform's PLY read by Glint's loader as `glint render FILE` reads it: a file with
+// f_rest_* is 3DGS by its properties, one without (degree 0) for want of Glint's header,
+// which the import must say. Either way, Glint's 8-bit filmic display of the imported
+// diffuse must be the viewer's 0.5 + C0 f_dc within half a level (1 level where the
+// viewer's colour lies above what the tonemap reaches).
 int importCheck(const std::string& decodedPath) {
   const test::DecodedSplats viewer = splatsOf(decodedPath, nullptr);
   GaussianPlyImport import;
   GaussianScene scene;
-  std::string how = "detected as 3DGS";
   try {
     scene = readGaussianPly(decodedPath, PlyLayout::Auto, &import);
   } catch (const Error& e) {
-    const bool namesFlag = std::string(e.what()).find("--input-layout") != std::string::npos;
-    if (viewer.shDegree != 0 || !namesFlag) {
-      std::printf("%s: MISMATCH: refused: %s\n", decodedPath.c_str(), e.what());
-      return 1;
-    }
-    scene = readGaussianPly(decodedPath, PlyLayout::ThreeDgs, &import);
-    how = "refused as ambiguous naming --input-layout, then read as 3DGS";
+    std::printf("%s: MISMATCH: refused: %s\n", decodedPath.c_str(), e.what());
+    return 1;
   }
+  if (import.layoutAssumed != (viewer.shDegree == 0)) {
+    std::printf("%s: MISMATCH: the import %s that the missing header decided\n", decodedPath.c_str(),
+                import.layoutAssumed ? "says" : "does not say");
+    return 1;
+  }
+  const std::string how = import.layoutAssumed ? "read as 3DGS for want of Glint's header" : "detected as 3DGS";
   if (import.layout != PlyLayout::ThreeDgs || scene.size() != viewer.size()) {
     std::printf("%s: MISMATCH: read as Glint's layout or with a different count\n", decodedPath.c_str());
     return 1;
