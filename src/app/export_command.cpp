@@ -34,7 +34,7 @@ struct ExportOptions {
   // 3DGS colour and view dependence.
   std::string colour = "display";
   float exposure = 1.0f;
-  int shDegree = -1;  // -1: 3 when baking, else 0
+  int shDegree = -1;  // -1: 3 for 3dgs (INRIA's layout) or when baking, else 0
   BakeFlags bake;
   int threads = 0;
   // Which Gaussians to write.
@@ -92,6 +92,21 @@ std::vector<bool> keptGaussians(const ExportOptions& o, bool splatFormat, const 
   return keep;
 }
 
+// A splat format stores one colour per Gaussian (and its SH): without a bake, the
+// reflections Glint traces are not in it, and mirrors and metals show their diffuse colour,
+// which is dark. Says so when the scene has such Gaussians.
+void warnAboutUnbakedReflections(const GaussianScene& scene) {
+  constexpr float kReflectiveF0 = 0.3f;  // well above dielectrics' 0.02-0.08: metals and mirrors
+  size_t reflective = 0;
+  for (const Rgb& f0 : scene.f0) reflective += maxComponent(f0) > kReflectiveF0;
+  if (reflective == 0) return;
+  std::fprintf(stderr,
+               "glint export: warning: %zu of %zu Gaussians are reflective (F0 above %g: metal or mirror), and "
+               "without --bake-reflections a plain splat viewer shows only their diffuse colour, dark or black for "
+               "chrome and mirrors\n",
+               reflective, scene.size(), double(kReflectiveF0));
+}
+
 void runExport(const ExportOptions& o) {
   const bool glintLayout = o.format == "glint", threeDgs = o.format == "3dgs";
   if (glintLayout && (o.colour != "display" || o.exposure != 1.0f || o.shDegree > 0 || o.bake.given()))
@@ -105,7 +120,9 @@ void runExport(const ExportOptions& o) {
   // Refuse what can be refused before reading a large scene.
   refuseExistingOutput(o.output, o.force);
   if (!o.crop.empty()) parseBox(o.crop, "--crop");
-  const int shDegree = o.shDegree >= 0 ? o.shDegree : (o.bake.given() ? 3 : 0);
+  // 3dgs writes INRIA's layout, all 45 f_rest (zeros without a bake: Glint's diffuse colour
+  // has no view dependence), which every 3DGS loader expects.
+  const int shDegree = o.shDegree >= 0 ? o.shDegree : (o.bake.given() || threeDgs ? 3 : 0);
 
   SceneSource source = loadSceneSource(o.input, parseInputLayout(o.inputLayout));
   GaussianScene& scene = source.scene;
@@ -116,6 +133,7 @@ void runExport(const ExportOptions& o) {
   const std::vector<bool> keep = keptGaussians(o, !glintLayout, source);
   scene.filter(keep);
   if (colour) colour->filter(keep);
+  if (!glintLayout && !o.bake.given()) warnAboutUnbakedReflections(scene);
 
   std::string written;
   if (glintLayout) {
@@ -180,9 +198,9 @@ void addExportCommand(CLI::App& app) {
       ->check(positiveNumber())
       ->capture_default_str();
   cmd->add_option("--sh-degree", o->shDegree,
-                  "Splat formats: spherical-harmonics degree, 0..3 (3dgs writes 0, 9, 24 or 45 f_rest). Default 3 with "
-                  "--bake-reflections, which fits them, else 0 (without a bake they are zeros: Glint's diffuse colour "
-                  "has no view dependence)")
+                  "Splat formats: spherical-harmonics degree, 0..3 (3dgs writes 0, 9, 24 or 45 f_rest). Default 3 for "
+                  "3dgs (INRIA's layout) and with --bake-reflections, which fits them, else 0 (without a bake they "
+                  "are zeros: Glint's diffuse colour has no view dependence)")
       ->check(CLI::Range(0, 3));
   cmd->add_flag("--keep-far-field", o->keepFarField,
                 "Splat formats: keep the far-field Gaussians (dropped by default: a Gaussian is far field when its centre lies "

@@ -79,7 +79,7 @@ TEST_F(ExportCliTest, ColourShDegreeAndExposureReachTheFile) {
   for (size_t i = 0; i < scene.size(); ++i)
     EXPECT_NEAR(0.5 + kShC0 * table.column("f_dc_0")[i], tonemapFilmic(2.0f * scene.diffuse[i].x), 1e-6) << i;
 
-  run = runGlint("export " + path("scene.ply") + " -o " + path("linear.ply") + " --colour linear");
+  run = runGlint("export " + path("scene.ply") + " -o " + path("linear.ply") + " --colour linear --sh-degree 0");
   ASSERT_EQ(run.status, 0) << run.output;
   table = readPly(path("linear.ply"));
   EXPECT_FALSE(table.has("f_rest_0"));
@@ -190,6 +190,59 @@ TEST_F(ExportCliTest, FarFieldIsDroppedAroundTheTrainingCamerasAndCropKeepsABox)
   Outcome badBox = runGlint("export " + path("scene.ply") + " -o " + path("bad.ply") + " --crop 1,2,3");
   EXPECT_NE(badBox.status, 0);
   EXPECT_NE(badBox.output.find("--crop"), std::string::npos) << badBox.output;
+}
+
+// The INRIA 3DGS code's vertex properties, in its order (construct_list_of_attributes in
+// its scene/gaussian_model.py): what its loader and every viewer built on it read.
+std::vector<std::string> inriaProperties() {
+  std::vector<std::string> names = {"x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1", "f_dc_2"};
+  for (int k = 0; k < 45; ++k) names.push_back("f_rest_" + std::to_string(k));
+  for (const char* name : {"opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3"})
+    names.push_back(name);
+  return names;
+}
+
+TEST_F(ExportCliTest, TheDefault3dgsExportIsInriasLayoutAndWarnsAboutUnbakedMirrors) {
+  GaussianScene scene = sceneAt({{0, 0, 0}, {1, 0, 0}, {0, 2, 0}});
+  scene.f0[1] = Rgb(0.95f);  // a mirror
+  writeGaussianPly(path("scene.ply"), scene);
+  Outcome run = runGlint("export " + path("scene.ply") + " -o " + path("inria.ply"));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("warning: 1 of 3 Gaussians are reflective"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("--bake-reflections"), std::string::npos) << run.output;
+  // A loader written from the layout's documented property list, not Glint's reader: the
+  // header, then 62 little-endian floats per vertex, read by position.
+  std::ifstream in(path("inria.ply"), std::ios::binary);
+  std::string line;
+  std::vector<std::string> properties;
+  size_t vertices = 0;
+  std::getline(in, line);
+  ASSERT_EQ(line, "ply");
+  while (std::getline(in, line) && line != "end_header") {
+    if (line.rfind("format ", 0) == 0) EXPECT_EQ(line, "format binary_little_endian 1.0");
+    if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
+    if (line.rfind("property ", 0) == 0) {
+      EXPECT_EQ(line.rfind("property float ", 0), 0u) << line;
+      properties.push_back(line.substr(line.rfind(' ') + 1));
+    }
+  }
+  ASSERT_EQ(properties, inriaProperties());
+  ASSERT_EQ(vertices, scene.size());
+  std::vector<float> values(vertices * properties.size());
+  in.read(reinterpret_cast<char*>(values.data()), std::streamsize(values.size() * sizeof(float)));
+  ASSERT_TRUE(in.good());
+  for (size_t i = 0; i < vertices; ++i) {
+    const float* v = &values[i * properties.size()];
+    EXPECT_EQ(v[0], scene.position[i].x);
+    EXPECT_EQ(v[1], scene.position[i].y);
+    EXPECT_EQ(v[54], scene.opacityLogit[i]);  // opacity, after the 45 f_rest
+    for (int k = 9; k < 54; ++k) EXPECT_EQ(v[k], 0.0f) << "f_rest_" << k - 9;
+  }
+  // Baked, the reflections are in the colours and nothing needs saying.
+  Outcome baked = runGlint("export " + path("scene.ply") + " -o " + path("baked.ply") +
+                           " --bake-reflections --bake-directions 4");
+  ASSERT_EQ(baked.status, 0) << baked.output;
+  EXPECT_EQ(baked.output.find("are reflective"), std::string::npos) << baked.output;
 }
 
 // A 3DGS file as `splat-transform -H 0` writes it: the properties both layouts share. With
