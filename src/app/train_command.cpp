@@ -234,6 +234,15 @@ class TrainPrinter : public TrainingObserver {
   double lastPsnr_ = NAN;
 };
 
+// The run's settings at its start, as config.json holds them (floats as written), one line
+// per setting or section, so a log of the run says what it ran with.
+void printSettings(const TrainConfig& config, const RunFolder& run) {
+  std::fprintf(stderr, "glint train: settings (%s):\n", run.configFile().string().c_str());
+  const nlohmann::json settings = toJson(config);
+  for (auto it = settings.begin(); it != settings.end(); ++it)
+    std::fprintf(stderr, "  %s: %s\n", it.key().c_str(), it.value().dump().c_str());
+}
+
 void runTrain(const TrainOptions& o, const CLI::App& cmd) {
   const RunFolder run(o.output);
   if (fs::exists(run.root()) && !fs::is_directory(run.root()))
@@ -277,6 +286,7 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
     undoFailedStart = undoFailedStart && cluster::isRoot();
   }
 
+  if (cluster::isRoot()) printSettings(config, run);
   TrainPrinter printer(o, config, run);
   TrainingOutcome outcome;
   try {

@@ -1,6 +1,8 @@
-// Reading a JSON file with one error that names the file.
+// Reading a JSON file with one error that names the file; floats written as their shortest decimal.
 #include "io/json_file.h"
 
+#include <charconv>
+#include <cmath>
 #include <string>
 
 #include "core/input_file.h"
@@ -38,6 +40,15 @@ nlohmann::json readJsonFile(const std::filesystem::path& path) {
     // nlohmann quotes the bytes it stopped at, which need not be printable.
     throw Error(path.string(), "is not valid JSON: " + printableText(e.what(), std::string::npos));
   }
+}
+
+double jsonNumber(float value) {
+  if (!std::isfinite(value)) return double(value);
+  char text[32];
+  const auto written = std::to_chars(text, text + sizeof(text), value);  // shortest round trip
+  double shortest = 0;
+  std::from_chars(text, written.ptr, shortest);
+  return shortest;
 }
 
 }  // namespace glint

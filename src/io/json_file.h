@@ -1,4 +1,5 @@
-// Reading a JSON file with one error that names the file when it is not valid JSON.
+// Reading a JSON file with one error that names the file when it is not valid JSON, and
+// writing float settings as people wrote them.
 #pragma once
 
 #include <filesystem>
@@ -18,5 +19,9 @@ nlohmann::json readJsonFile(const std::filesystem::path& path);
 constexpr int kMaxJsonNesting = 256;
 // Throws Error(fileName, ...) naming the byte where `text` nests deeper than kMaxJsonNesting.
 void checkJsonNesting(std::string_view text, const std::string& fileName);
+
+// A float as the JSON number of its shortest decimal: 0.9f is written 0.9, not the
+// 0.8999999761581421 of the double it widens to, and reads back as the same float.
+double jsonNumber(float value);
 
 }  // namespace glint

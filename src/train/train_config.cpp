@@ -17,7 +17,9 @@ namespace glint {
 
 // {"min": [x, y, z], "max": [x, y, z], "count": n}; nlohmann's exceptions name what is wrong.
 void to_json(nlohmann::json& j, const FarFieldBox& b) {
-  j = {{"min", {b.min.x, b.min.y, b.min.z}}, {"max", {b.max.x, b.max.y, b.max.z}}, {"count", b.count}};
+  j = {{"min", {jsonNumber(b.min.x), jsonNumber(b.min.y), jsonNumber(b.min.z)}},
+       {"max", {jsonNumber(b.max.x), jsonNumber(b.max.y), jsonNumber(b.max.z)}},
+       {"count", b.count}};
 }
 
 void from_json(const nlohmann::json& j, FarFieldBox& b) {
@@ -141,11 +143,14 @@ bool numberFits(const nlohmann::json& v) {
   return std::abs(v.get<double>()) <= double(std::numeric_limits<Field>::max());
 }
 
-// The JSON form of one field: a choice enum is written as its word.
+// The JSON form of one field: a choice enum is written as its word, a float as its
+// shortest decimal.
 template <typename Field>
 nlohmann::json jsonValue(const Field& field) {
   if constexpr (Choice<Field>)
     return choiceName(field);
+  else if constexpr (std::is_same_v<Field, float>)
+    return jsonNumber(field);
   else
     return field;
 }

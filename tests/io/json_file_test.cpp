@@ -1,14 +1,18 @@
 // Tests of reading JSON files: one error naming the file, and nesting bounded before the
-// recursive parser sees it (a file of 100,000 brackets overflowed the stack, issue 39).
+// recursive parser sees it (a file of 100,000 brackets overflowed the stack, issue 39); and
+// of writing floats as their shortest decimal.
 #include "io/json_file.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
 #include <string>
 
 #include "common/expect_error.h"
 #include "core/atomic_file.h"
 #include "io/temp_folder.h"
+#include "math/rng.h"
 
 namespace glint {
 namespace {
@@ -31,6 +35,28 @@ TEST(JsonFile, NestingCountsBracketsOutsideStringsOnly) {
   const auto text = folder / "ok.json";
   writeTextAtomically(text, "{\"name\": \"[[[[\", \"list\": [[1], [2]]}");
   EXPECT_EQ(readJsonFile(text)["list"][1][0], 2);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(JsonFile, FloatsAreWrittenAsTheirShortestDecimalAndReadBackExactly) {
+  EXPECT_EQ(nlohmann::json(jsonNumber(0.9f)).dump(), "0.9");
+  EXPECT_EQ(nlohmann::json(jsonNumber(1e-3f)).dump(), "0.001");
+  EXPECT_EQ(nlohmann::json(jsonNumber(0.005f)).dump(), "0.005");
+  // Every float comes back as itself through the JSON text, whatever its magnitude.
+  Rng rng(7);
+  for (int i = 0; i < 200000; ++i) {
+    const uint32_t bits = rng.nextUint();
+    float value;
+    std::memcpy(&value, &bits, sizeof value);
+    if (!std::isfinite(value)) continue;
+    const nlohmann::json parsed = nlohmann::json::parse(nlohmann::json(jsonNumber(value)).dump());
+    ASSERT_EQ(parsed.get<float>(), value) << nlohmann::json(jsonNumber(value)).dump();
+  }
 }
 
 }  // namespace

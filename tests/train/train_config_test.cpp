@@ -62,7 +62,10 @@ TEST(TrainConfig, DefaultsAreThePapers) {
   nlohmann::json j = toJson(c);
   EXPECT_EQ(j["trace"]["kernel_power"], 2.0);  // Glint's choice, not the paper code's 3 (trace_settings.h)
   EXPECT_EQ(j["batch_rays"], 16384);
-  EXPECT_EQ(j["densify"]["fraction"], 0.1f);  // Glint's: the paper does not densify (densify.h)
+  EXPECT_EQ(j["densify"]["fraction"], 0.1);  // Glint's: the paper does not densify (densify.h)
+  // Floats are written as people write them, not as the doubles they widen to.
+  EXPECT_EQ(j["densify"]["fraction"].dump(), "0.1");
+  EXPECT_EQ(j["trace"]["alpha_min"].dump(), "0.005");
   EXPECT_EQ(j["render_bounces"], 4);
 }
 
