@@ -32,6 +32,8 @@ void RunFolder::removeFailedStart(bool madeByThisStart) const {
   std::error_code ignored;  // best effort: the error being reported matters more
   fs::remove(configFile(), ignored);
   fs::remove(logFile(), ignored);
+  for (const fs::directory_entry& e : fs::directory_iterator(root_, ignored))
+    if (e.path().filename().string().rfind("events.out.tfevents.", 0) == 0) fs::remove(e.path(), ignored);
   const fs::path checkpointFolder = checkpointFile().parent_path();
   if (fs::is_directory(checkpointFolder, ignored) && fs::is_empty(checkpointFolder, ignored))
     fs::remove(checkpointFolder, ignored);

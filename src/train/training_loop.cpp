@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "core/activity.h"
@@ -15,6 +16,7 @@
 #include "core/error.h"
 #include "core/parallel.h"
 #include "eval/training_log.h"
+#include "io/tensorboard_events.h"
 #include "scene/capture_summary.h"
 #include "scene/gaussian_ply.h"
 #include "train/camera_culling.h"
@@ -58,6 +60,25 @@ double truncateLog(const fs::path& log, int64_t step) {
   }
   writeTextAtomically(log, kept);
   return wall;
+}
+
+// The row's figures as TensorBoard scalars, under the names of log.csv's columns.
+void writeScalars(TensorBoardWriter& board, const StepReport& r, const std::optional<TestScore>& score) {
+  board.scalar("loss", r.step, r.loss);
+  board.scalar("loss/diffuse_l1", r.step, r.terms.diffuse);
+  board.scalar("loss/depth_l1", r.step, r.terms.depth);
+  board.scalar("loss/normal_l1", r.step, r.terms.normal);
+  board.scalar("loss/roughness_l1", r.step, r.terms.roughness);
+  board.scalar("loss/f0_l1", r.step, r.terms.f0);
+  board.scalar("loss/specular_l1", r.step, r.terms.specular);
+  board.scalar("gaussians", r.step, float(r.gaussians));
+  board.scalar("hits_per_ray", r.step, float(double(r.hits) / double(std::max<int64_t>(r.rays, 1))));
+  board.scalar("rays_per_s", r.step, float(double(r.rays) / r.seconds));
+  if (score) {
+    board.scalar("test/diffuse_psnr", r.step, float(score->diffusePsnr));
+    board.scalar("test/normal_deg", r.step, float(score->normalDegrees));
+  }
+  board.flush();
 }
 
 // One row of log.csv; the test columns are empty on steps without a score.
@@ -188,6 +209,9 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
   // Rank 0 alone writes the log, checkpoints and scene, and scores the test views.
   std::ofstream log;
   if (cluster::isRoot()) log.open(run.logFile(), std::ios::app);
+  // The same figures for TensorBoard, in an event file beside log.csv, from the first step
+  // (a start that fails before it leaves none).
+  std::optional<TensorBoardWriter> board;
   auto start = std::chrono::steady_clock::now();
   DivergenceMonitor divergence(trainer->sceneExtent());
   bool saveDue = false;  // a checkpoint waits while the monitor suspects a collapse
@@ -208,7 +232,11 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     std::optional<TestScore> score;
     if (!testViews.empty() && (r.step % config.evalEvery == 0 || r.step == config.iters))
       score = testViews.score(trainer->tracer(), session.evalSpp, config.path());
-    if (cluster::isRoot()) log << logRow(r, wall, score) << std::flush;
+    if (cluster::isRoot()) {
+      log << logRow(r, wall, score) << std::flush;
+      if (!board) board.emplace(run.root());
+      writeScalars(*board, r, score);
+    }
     observer.stepped(r, score);
     saveDue = saveDue || r.step % config.saveEvery == 0 || r.step == config.iters;
     if (saveDue && (divergence.clean() || r.step == config.iters)) {

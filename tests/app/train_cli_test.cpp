@@ -1,5 +1,6 @@
 // `glint train` and `glint eval` end to end: a run killed with SIGKILL and resumed writes
-// the same scene.ply, byte for byte, as the uninterrupted run; bad input is refused.
+// the same scene.ply, byte for byte, as the uninterrupted run; bad input is refused; the
+// log reaches TensorBoard.
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -14,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/run_glint.h"
+#include "common/tfrecord_reader.h"
 
 namespace glint {
 namespace {
@@ -109,6 +111,21 @@ TEST_F(TrainCliTest, RgbBaselineTrainsOnTheRenderBufferAlone) {
   EXPECT_GT(config["loss"]["diffuse"].get<double>(), 0.0);
   std::string log = readBytes(path("rgb") + "/log.csv");
   EXPECT_EQ(std::count(log.begin(), log.end(), '\n'), 21);
+  // The same steps, beside log.csv, for `tensorboard --logdir RUN`.
+  std::vector<fs::path> events;
+  for (const fs::directory_entry& e : fs::directory_iterator(path("rgb")))
+    if (e.path().filename().string().rfind("events.out.tfevents.", 0) == 0) events.push_back(e.path());
+  ASSERT_EQ(events.size(), 1u);
+  const test::EventFile board = test::readEventFile(events[0].string());
+  EXPECT_TRUE(board.framingValid);
+  EXPECT_EQ(board.fileVersion, "brain.Event:2");
+  int losses = 0, scores = 0;
+  for (const test::ScalarEvent& e : board.scalars) {
+    losses += e.tag == "loss";
+    scores += e.tag == "test/diffuse_psnr";
+  }
+  EXPECT_EQ(losses, 20);
+  EXPECT_EQ(scores, 1);  // the last step is scored
 
   Outcome mixed = runGlint("train " + path("D") + " -o " + path("rgb2") + " --baseline rgb --bounces 2 --iters 5");
   EXPECT_NE(mixed.status, 0);
