@@ -202,13 +202,23 @@ std::vector<OtherEvaluation> otherEvaluations(const fs::path& primary, const Dat
   return others;
 }
 
+// `p` relative to the run folder: the page names no one's home folder, and stays right when
+// the run and its dataset move together.
+std::string relativeToRun(const fs::path& run, const fs::path& p) {
+  const fs::path relative =
+      fs::absolute(p).lexically_normal().lexically_relative(fs::absolute(run).lexically_normal());
+  return relative.empty() ? p.string() : relative.string();
+}
+
 std::vector<std::pair<std::string, std::string>> headerFacts(const ReportOptions& o, const fs::path& datasetPath,
                                                              const DatasetSplit& split,
                                                              const std::optional<TrainConfig>& config,
                                                              const TrainingLog& log, const EvalMetrics& metrics) {
   std::vector<std::pair<std::string, std::string>> facts;
-  facts.emplace_back("run", o.run);
-  facts.emplace_back("dataset", datasetPath.string() + " (" + split.name + " split: " +
+  const fs::path runFolder = fs::absolute(o.run).lexically_normal();
+  facts.emplace_back("run", runFolder.filename().empty() ? runFolder.parent_path().filename().string()
+                                                         : runFolder.filename().string());
+  facts.emplace_back("dataset", relativeToRun(o.run, datasetPath) + " (" + split.name + " split: " +
                                     std::to_string(split.views.size()) + " views, " + std::to_string(split.width) +
                                     "x" + std::to_string(split.height) + ")");
   std::string steps = log.rows() == 0 ? "none logged" : formatMetric(lastValue(log, "step"), 0);
@@ -287,17 +297,21 @@ void runReport(const ReportOptions& o) {
       progress.advance();
     }
   }
+  auto named = [&](const fs::path& p) { return relativeToRun(o.run, p); };
   if (config) {  // the file as written, every setting of the run (defaults included)
-    content.configSource = configFile.string();
-    content.configText = readJsonFile(configFile).dump(2);
+    content.configSource = named(configFile);
+    nlohmann::json settings = readJsonFile(configFile);
+    if (settings.contains("dataset") && settings["dataset"].is_string())
+      settings["dataset"] = named(settings["dataset"].get<std::string>());
+    content.configText = settings.dump(2);
   }
   content.charts = trainingCharts(log);
   content.chartNote = "Lines are running means over " + std::to_string(kSmoothingSteps) +
                       " steps, drawn over the faint per-step values. The test PSNR during training is 8-bit (tonemapped), on "
                       "train's --eval-views views at --eval-spp samples, not scored as by `glint eval`.";
-  content.note = "Written by `glint report` from " + configFile.string() + ", " + logFile.string() + ", " +
-                 metricsFile.string() + " and the images under " + (metricsFile.parent_path() / split.name).string() +
-                 ". Self-contained: no network access, no other files.";
+  content.note = "Written by `glint report` from " + named(configFile) + ", " + named(logFile) + ", " +
+                 named(metricsFile) + " and the images under " + named(metricsFile.parent_path() / split.name) +
+                 " (paths relative to the run). Self-contained: no network access, no other files.";
 
   std::string html = renderHtmlReport(content);
   writeTextAtomically(output, html);

@@ -200,9 +200,11 @@ std::string renderHtmlReport(const HtmlReportContent& c) {
 
   html += "<section><h2>Metrics (mean over " + std::to_string(c.perView.size()) + " views)</h2>\n" + meanTable(c.mean);
   html += "<p class=\"hint\">PSNR and SSIM in linear space (data range 1) and on 8-bit images made with the filmic "
-          "tonemap, as shown below. SSIM: 11x11 Gaussian window, sigma 1.5. Depth and normals where the ground "
-          "truth has a surface. LPIPS is not reported: it needs the trained weights of a neural network, which Glint "
-          "neither ships nor downloads.</p>\n</section>\n";
+          "tonemap, as shown below. A linear PSNR can be negative: radiance is not bounded by 1 (highlights and "
+          "light sources in the ground truth go above it), so the mean squared error with data range 1 can exceed "
+          "1; the 8-bit figures, on tonemapped images, cannot. SSIM: 11x11 Gaussian window, sigma 1.5. Depth and "
+          "normals where the ground truth has a surface. LPIPS is not reported: it needs the trained weights of a "
+          "neural network, which Glint neither ships nor downloads.</p>\n</section>\n";
   if (!c.otherEvaluations.empty())
     html += "<section><h2>All evaluations of this run</h2>\n" + evaluationsTable(c) +
             "<p class=\"hint\">Every metrics file of <code>glint eval</code> in the run's eval folder, on the same "

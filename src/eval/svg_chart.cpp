@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
+#include <utility>
 
 namespace glint {
 
@@ -189,7 +191,35 @@ std::string escapeXml(const std::string& text) {
   return out;
 }
 
+namespace {
+
+// The one finite point of a chart's series, when the chart has no more than one: a line
+// through a single point says nothing, and its axis would span a made-up range.
+std::optional<std::pair<double, double>> onlyPoint(const LineChart& chart) {
+  std::optional<std::pair<double, double>> point;
+  for (const ChartSeries& s : chart.series)
+    for (size_t i = 0; i < s.x.size() && i < s.y.size(); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      if (point && (point->first != s.x[i] || point->second != s.y[i])) return std::nullopt;
+      point = std::make_pair(s.x[i], s.y[i]);
+    }
+  return point;
+}
+
+}  // namespace
+
 std::string renderSvgChart(const LineChart& chart) {
+  if (std::optional<std::pair<double, double>> point = onlyPoint(chart)) {
+    // One value: the number, not a chart.
+    const std::string w = std::to_string(chart.width);
+    return "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"chart\" viewBox=\"0 0 " + w + " 48\" width=\"" + w +
+           "\" height=\"48\" role=\"img\" aria-label=\"" + escapeXml(chart.title) +
+           "\" font-family=\"system-ui, sans-serif\" font-size=\"13\">\n<rect width=\"" + w +
+           "\" height=\"48\" fill=\"#ffffff\"/>\n<text x=\"8\" y=\"28\" fill=\"#222\"><tspan font-weight=\"600\">" +
+           escapeXml(chart.title) + ":</tspan> " + escapeXml(formatTick(point->second)) + " (" +
+           escapeXml(chart.yLabel) + ", one value, at " + escapeXml(chart.xLabel.empty() ? "x" : chart.xLabel) + " " +
+           escapeXml(formatTick(point->first)) + ")</text>\n</svg>\n";
+  }
   ChartFrame f = chartFrame(chart);
   const std::string w = std::to_string(chart.width), h = std::to_string(chart.height);
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" class=\"chart\" viewBox=\"0 0 " + w + " " + h +

@@ -53,7 +53,7 @@ std::string formatTick(double value);
 
 // A standalone <svg> element (no XML prolog), text escaped. Long series are thinned to at
 // most four points per horizontal pixel (first, lowest, highest, last), which draws the
-// same picture as every point.
+// same picture as every point. A chart of a single point is drawn as its number.
 std::string renderSvgChart(const LineChart& chart);
 
 // Escapes &, <, >, " and ' for text and attribute values of HTML and SVG.

@@ -219,8 +219,12 @@ TEST_F(ReportCliTest, ShowsTheDatasetTheMetricsWereEvaluatedOn) {
   Outcome report = runGlint("report " + run);
   ASSERT_EQ(report.status, 0) << report.output;
   std::string html = readBytes(run + "/report.html");
-  EXPECT_NE(html.find(path("D_other") + " (test split"), std::string::npos);
-  EXPECT_EQ(html.find(path("D") + " (test split"), std::string::npos);
+  // Named relative to the run (the page names no one's home folder).
+  EXPECT_NE(html.find("<dd>../D_other (test split"), std::string::npos);
+  EXPECT_EQ(html.find("../D (test split"), std::string::npos);
+  const size_t absolute = html.find(root_->string());
+  EXPECT_EQ(absolute, std::string::npos)
+      << "an absolute path in the report: " << html.substr(absolute == std::string::npos ? 0 : absolute - 80, 200);
 
   fs::rename(path("D_other"), path("D_moved"));
   Outcome gone = runGlint("report " + run);
@@ -231,7 +235,7 @@ TEST_F(ReportCliTest, ShowsTheDatasetTheMetricsWereEvaluatedOn) {
       << gone.output;
   Outcome pointed = runGlint("report " + run + " --dataset " + path("D_moved"));
   ASSERT_EQ(pointed.status, 0) << pointed.output;
-  EXPECT_NE(readBytes(run + "/report.html").find(path("D_moved") + " (test split"), std::string::npos);
+  EXPECT_NE(readBytes(run + "/report.html").find("<dd>../D_moved (test split"), std::string::npos);
 }
 
 }  // namespace

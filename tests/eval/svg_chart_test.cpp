@@ -175,3 +175,30 @@ TEST(SvgChartTest, TickLabelsAreShort) {
 
 }  // namespace
 }  // namespace glint
+
+namespace glint {
+namespace {
+
+// A chart of one value (a run scored once) is that number, not a line through one point on
+// an invented axis.
+TEST(SvgChartTest, OnePointIsDrawnAsItsNumber) {
+  LineChart chart;
+  chart.title = "Test diffuse PSNR during training";
+  chart.xLabel = "step";
+  chart.yLabel = "PSNR 8-bit (dB)";
+  ChartSeries s;
+  s.x = {20};
+  s.y = {27.5};
+  chart.series.push_back(s);
+  const std::string svg = renderSvgChart(chart);
+  EXPECT_NE(svg.find("27.5"), std::string::npos) << svg;
+  EXPECT_NE(svg.find("one value, at step 20"), std::string::npos) << svg;
+  EXPECT_EQ(svg.find("<line"), std::string::npos) << "no axes for a single value";
+  // Two points are a chart again.
+  chart.series[0].x.push_back(40);
+  chart.series[0].y.push_back(28.0);
+  EXPECT_NE(renderSvgChart(chart).find("<line"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace glint
