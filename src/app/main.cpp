@@ -11,6 +11,7 @@
 #include <CLI/CLI.hpp>
 
 #include "app/commands.h"
+#include "app/help_formatter.h"
 #include "app/nearest_name.h"
 #include "core/activity.h"
 #include "core/cluster.h"
@@ -35,6 +36,8 @@ int runGlint(int argc, char** argv) {
       "Run `glint COMMAND --help` for the flags of each command.",
       "glint"};
   app.require_subcommand(1);
+  // Every command inherits it: help text within 100 columns, one line per command here.
+  app.formatter(std::make_shared<glint::HelpFormatter>());
   // Scripts (the MPI tests) tell from it whether this build can join an MPI job.
   app.set_version_flag("--version", std::string("glint 0.1.0") +
                                         (glint::cluster::builtWithMpi() ? " (with MPI)" : " (without MPI)") + " (" +

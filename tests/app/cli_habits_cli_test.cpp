@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "app/run_glint.h"
 #include "io/temp_folder.h"
@@ -55,6 +57,35 @@ TEST_F(CliHabitsTest, AMissingOrMalformedFlagIsOneLineAndStatusOne) {
   EXPECT_NE(malformed.output.find("--spp"), std::string::npos) << malformed.output;
   // --help is not an error.
   EXPECT_EQ(runGlint("train --help").status, 0);
+}
+
+TEST_F(CliHabitsTest, HelpFitsAHundredColumnsAndListsACommandPerLine) {
+  const std::vector<std::string> commands = {"synth", "info", "sheet", "train",  "render",
+                                             "eval",  "report", "export", "edit", "view"};
+  for (const std::string& command : commands) {
+    Outcome help = runGlint(command + " --help");
+    ASSERT_EQ(help.status, 0) << command;
+    std::istringstream lines(help.output);
+    std::string line;
+    int count = 0;
+    while (std::getline(lines, line)) {
+      ++count;
+      EXPECT_LE(line.size(), 100u) << "glint " << command << " --help: " << line;
+    }
+    EXPECT_GT(count, 5) << command;
+  }
+  // `glint --help`: each command's summary on its own line (a summary that ran over would
+  // go on in a line indented to the description column).
+  Outcome top = runGlint("--help");
+  ASSERT_EQ(top.status, 0);
+  for (const std::string& command : commands) {
+    const size_t at = top.output.find("\n  " + command + " ");
+    ASSERT_NE(at, std::string::npos) << command << "\n" << top.output;
+    const size_t end = top.output.find('\n', at + 1);
+    ASSERT_NE(end, std::string::npos);
+    EXPECT_NE(top.output.compare(end + 1, 10, std::string(10, ' ')), 0)
+        << "the summary of " << command << " runs over a line:\n" << top.output;
+  }
 }
 
 TEST_F(CliHabitsTest, EveryComputingCommandTakesThreads) {
