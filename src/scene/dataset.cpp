@@ -1,6 +1,7 @@
 // Opening a dataset folder, loading its buffers on demand, and writing cameras and buffers.
 #include "scene/dataset.h"
 
+#include <cctype>
 #include <cmath>
 #include <system_error>
 
@@ -61,6 +62,22 @@ Dataset Dataset::open(const fs::path& root, bool requireBuffers, int holdout) {
   return open(root, reading);
 }
 
+namespace {
+
+// Whether `folder` holds image files (by extension) directly.
+bool holdsPhotographs(const fs::path& folder) {
+  std::error_code error;
+  if (!fs::is_directory(folder, error)) return false;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
+    std::string ext = entry.path().extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".tif" || ext == ".tiff") return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 Dataset Dataset::open(const fs::path& root, const DatasetReading& reading) {
   Dataset dataset;
   dataset.root_ = root;
@@ -82,10 +99,17 @@ void Dataset::openLayout(const DatasetReading& reading) {
     return;
   }
   if (!fs::exists(transformsPath(root, "train")) && !fs::exists(transformsPath(root, "test")) &&
-      !fs::exists(transformsPath(root, "val")))
+      !fs::exists(transformsPath(root, "val"))) {
+    // Photographs without cameras are what most people start from: say how to get cameras.
+    if (holdsPhotographs(root) || holdsPhotographs(root / "images"))
+      throw Error(root.string(),
+                  "holds photographs but no cameras; get them with COLMAP: scripts/install-deps.sh --colmap, then "
+                  "scripts/colmap-capture.sh FOLDER CAPTURE (FOLDER with the photos in FOLDER/images), then train "
+                  "on CAPTURE (README, \"Train on your own photos\")");
     throw Error(transformsPath(root, "train").string(),
                 "file not found (a dataset needs transforms_train.json, transforms_test.json or both; or a capture's "
                 "COLMAP model or transforms.json)");
+  }
   if (isNerfSyntheticFolder(root)) {
     auto source = std::make_shared<CaptureSource>();
     openNerfSynthetic(root, reading.background, reading.requireBuffers, &train_, &test_, source.get());

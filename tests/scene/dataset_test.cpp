@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <limits>
+#include <string>
 
 #include "core/error.h"
 #include "io/temp_folder.h"
@@ -58,6 +61,24 @@ TEST(Dataset, OpenReadsCamerasSizesAndSortsViews) {
   EXPECT_THROW(dataset.split("val"), Error);
   ASSERT_TRUE(dataset.pointCloudPath().has_value());
   EXPECT_EQ(dataset.pointCloudPath()->filename(), "point_cloud_dense.ply");
+}
+
+// A folder of photographs (directly, or in images/) without cameras: the error says how to
+// get them instead of naming a missing transforms file.
+TEST(Dataset, PhotographsWithoutCamerasPointToColmap) {
+  for (const char* where : {"", "images"}) {
+    test::TempFolder folder;
+    std::filesystem::create_directories(folder / where);
+    std::ofstream(folder.path() / where / "IMG_0001.JPG") << "not read";
+    try {
+      Dataset::open(folder.path(), /*requireBuffers=*/false);
+      ADD_FAILURE() << "opened a folder of photographs without cameras";
+    } catch (const Error& e) {
+      const std::string message = e.what();
+      EXPECT_NE(message.find("holds photographs but no cameras"), std::string::npos) << message;
+      EXPECT_NE(message.find("scripts/colmap-capture.sh"), std::string::npos) << message;
+    }
+  }
 }
 
 TEST(Dataset, CameraOnlyDatasetsOpenWithoutBuffers) {
