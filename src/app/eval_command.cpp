@@ -72,7 +72,8 @@ fs::path metricsPath(const EvalOptions& o) {
   return fs::path(o.run) / "eval" / "metrics.json";
 }
 
-void printTable(const DatasetSplit& split, const std::vector<ViewMetrics>& views, const ViewMetrics& mean) {
+void printTable(const DatasetSplit& split, const std::vector<ViewMetrics>& views, const ViewMetrics& mean,
+                Transfer display) {
   std::printf("%-32s %12s %12s %12s %12s %10s %10s\n", "view", "diffuse dB", "diffuse 8b", "final dB", "final 8b",
               "depth RMSE", "normal deg");
   auto row = [](const std::string& name, const ViewMetrics& m) {
@@ -83,8 +84,8 @@ void printTable(const DatasetSplit& split, const std::vector<ViewMetrics>& views
   };
   for (size_t v = 0; v < views.size(); ++v) row(split.views[v].filePath, views[v]);
   row("mean", mean);
-  std::printf("\n%-10s %8s %8s %12s %12s   (mean over views; 8-bit = filmic tonemap, quantised)\n", "pass", "PSNR",
-              "SSIM", "PSNR 8-bit", "SSIM 8-bit");
+  std::printf("\n%-10s %8s %8s %12s %12s   (mean over views; 8-bit = %s, quantised)\n", "pass", "PSNR", "SSIM",
+              "PSNR 8-bit", "SSIM 8-bit", display == Transfer::Filmic ? "filmic tonemap" : transferName(display));
   auto pass = [](const char* name, const PassMetrics& p) {
     std::printf("%-10s %8s %8s %12s %12s\n", name, formatMetric(p.psnr, 2).c_str(), formatMetric(p.ssim, 4).c_str(),
                 formatMetric(p.psnrTonemapped, 2).c_str(), formatMetric(p.ssimTonemapped, 4).c_str());
@@ -193,6 +194,10 @@ void runEval(const EvalOptions& o) {
 
   const DatasetReading reading = o.reading.resolve(source.settings, /*requireBuffers=*/true);
   Dataset dataset = Dataset::open(datasetPath, reading);
+  // The 8-bit figures go through the transfer the dataset's images were stored with
+  // (NeRF-synthetic's and photographs' sRGB, as published methods score them), else the
+  // paper's filmic tonemap of Glint's linear buffers.
+  const Transfer display = dataset.capture() ? dataset.capture()->decoding.photoTransfer : Transfer::Filmic;
   const DatasetSplit& split = dataset.split(o.split);
   if (split.views.empty()) throw Error(datasetPath.string(), "the " + o.split + " split has no views to evaluate");
 
@@ -253,7 +258,7 @@ void runEval(const EvalOptions& o) {
         if (dataset.findBufferFile(split.views[v], b)) truth[b] = dataset.loadBuffer(split, v, b);
       ScoredView& score = scored.emplace_back();
       score.view = v;
-      score.metrics = evaluateView(rendered, truth);
+      score.metrics = evaluateView(rendered, truth, display);
       if (o.breakdown) {
         std::vector<PixelKind> kinds = classifyPixels(split.camera(v), truth);
         // Noise is measured on the raw halves; after --denoise it no longer describes the render.
@@ -299,6 +304,7 @@ void runEval(const EvalOptions& o) {
       {"bounces", rendering.path.bounces},
       {"denoise", o.denoise},
       {"tracer", tracer->name()},
+      {"display_transfer", transferName(display)},  // of the 8-bit ("tonemapped") figures
       {"trace",
        {{"kernel_power", trace.kernelPower},
         {"alpha_min", trace.alphaMin},
@@ -327,7 +333,7 @@ void runEval(const EvalOptions& o) {
   }
   writeTextAtomically(output, report.dump(2) + "\n");
 
-  printTable(split, views, mean);
+  printTable(split, views, mean, display);
   if (region) printRegionTable(split, regions, pooled);
   if (o.breakdown) printBreakdown(breakdown);
   std::printf("\nmetrics: %s%s\n", output.string().c_str(),
@@ -342,7 +348,8 @@ void addEvalCommand(CLI::App& app) {
       "eval",
       "Render every view of a dataset split from a trained scene and compare with the ground truth: PSNR and SSIM "
       "(11x11 Gaussian window, sigma 1.5) of the diffuse, specular and final passes, in linear space (data range 1) "
-      "and on the filmic-tonemapped 8-bit images; depth RMSE and mean normal angle (degrees) where the ground truth "
+      "and on 8-bit images (through the filmic tonemap, or a display-referred dataset's own transfer, such as "
+      "NeRF-synthetic's sRGB); depth RMSE and mean normal angle (degrees) where the ground truth "
       "has a surface. Writes RUN/eval/metrics.json (per view and averaged) and prints a table.");
   cmd->add_option("run", o->run,
                   "Training run folder (scene.ply, config.json), or a Gaussian scene .ply (then -o is required)")

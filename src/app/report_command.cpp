@@ -280,6 +280,8 @@ void runReport(const ReportOptions& o) {
     throw Error(metricsFile.string(), mismatch + "; was it evaluated on another dataset?");
 
   HtmlReportContent content;
+  if (metrics.all.contains("display_transfer") && metrics.all["display_transfer"].is_string())
+    content.displayTransfer = metrics.all["display_transfer"].get<std::string>();
   content.title = "Glint report: " + run.root().lexically_normal().filename().string();
   if (content.title == "Glint report: ") content.title += o.run;
   content.facts = headerFacts(o, datasetPath, split, config, log, metrics);

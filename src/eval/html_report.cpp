@@ -199,10 +199,15 @@ std::string renderHtmlReport(const HtmlReportContent& c) {
   html += "</dl></header>\n";
 
   html += "<section><h2>Metrics (mean over " + std::to_string(c.perView.size()) + " views)</h2>\n" + meanTable(c.mean);
-  html += "<p class=\"hint\">PSNR and SSIM in linear space (data range 1) and on 8-bit images made with the filmic "
-          "tonemap, as shown below. A linear PSNR can be negative: radiance is not bounded by 1 (highlights and "
-          "light sources in the ground truth go above it), so the mean squared error with data range 1 can exceed "
-          "1; the 8-bit figures, on tonemapped images, cannot. SSIM: 11x11 Gaussian window, sigma 1.5. Depth and "
+  const std::string transfer = c.displayTransfer == "filmic"
+                                   ? "the filmic tonemap (the paper's, for Glint's linear datasets)"
+                                   : "the dataset's own " + c.displayTransfer +
+                                         " transfer (its images are display-referred; published figures use it)";
+  html += "<p class=\"hint\">PSNR and SSIM in linear space (data range 1) and on 8-bit images made with " +
+          escapeXml(transfer) +
+          ". Pictures below use the filmic tonemap. A linear PSNR can be negative: radiance is not bounded by 1 "
+          "(highlights and light sources in the ground truth go above it), so the mean squared error with data "
+          "range 1 can exceed 1; the 8-bit figures cannot. SSIM: 11x11 Gaussian window, sigma 1.5. Depth and "
           "normals where the ground truth has a surface. LPIPS is not reported: it needs the trained weights of a "
           "neural network, which Glint neither ships nor downloads.</p>\n</section>\n";
   if (!c.otherEvaluations.empty())

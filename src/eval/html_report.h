@@ -50,6 +50,9 @@ struct HtmlReportContent {
   std::vector<std::pair<std::string, ViewMetrics>> perView;  // view name, its metrics
   std::string evaluationLabel;                               // how `mean` was evaluated
   std::string evaluationEdits;                               // its edit file, empty if unedited
+  // The transfer of the 8-bit figures and pictures: "filmic" (Glint's linear datasets) or
+  // the display-referred dataset's own ("srgb"), as metrics.json's "display_transfer" says.
+  std::string displayTransfer = "filmic";
   std::vector<OtherEvaluation> otherEvaluations;             // more rows of the comparison
   std::vector<ReportView> views;                             // the views shown as images
   std::vector<LineChart> charts;

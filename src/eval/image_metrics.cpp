@@ -1,6 +1,7 @@
 // PSNR, SSIM (separable Gaussian window), depth RMSE and normal angular error.
 #include "eval/image_metrics.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -131,20 +132,20 @@ double ssim(const Image& a, const Image& b) {
   return sum / a.channels;
 }
 
-Image tonemapTo8Bit(const Image& linear) {
+Image tonemapTo8Bit(const Image& linear, Transfer transfer) {
   Image out = linear;
-  for (float& v : out.pixels) v = std::round(tonemapFilmic(v) * 255.0f) / 255.0f;
+  for (float& v : out.pixels) v = std::round(std::clamp(toDisplay(transfer, v), 0.0f, 1.0f) * 255.0f) / 255.0f;
   return out;
 }
 
-double psnrTonemapped8Bit(const Image& a, const Image& b) {
+double psnrTonemapped8Bit(const Image& a, const Image& b, Transfer transfer) {
   requireSameShape(a, b, "PSNR (tonemapped 8-bit)");
-  return psnr(tonemapTo8Bit(a), tonemapTo8Bit(b));
+  return psnr(tonemapTo8Bit(a, transfer), tonemapTo8Bit(b, transfer));
 }
 
-double ssimTonemapped8Bit(const Image& a, const Image& b) {
+double ssimTonemapped8Bit(const Image& a, const Image& b, Transfer transfer) {
   requireSameShape(a, b, "SSIM (tonemapped 8-bit)");
-  return ssim(tonemapTo8Bit(a), tonemapTo8Bit(b));
+  return ssim(tonemapTo8Bit(a, transfer), tonemapTo8Bit(b, transfer));
 }
 
 double depthRmse(const Image& predictedDepth, const Image& truthDepth) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "io/image.h"
+#include "io/transfer.h"
 
 namespace glint {
 
@@ -21,12 +22,14 @@ double psnr(const Image& a, const Image& b);
 // smaller than the window (11 pixels) in either direction.
 double ssim(const Image& a, const Image& b);
 
-// The paper's 8-bit comparison image: filmic tonemap per channel (io/tonemap.h), then
-// quantised to 8 bits, round(y * 255) / 255. Values stay floats in [0, 1].
-Image tonemapTo8Bit(const Image& linear);
-// PSNR and SSIM of the tonemapped 8-bit versions of two linear radiance images.
-double psnrTonemapped8Bit(const Image& a, const Image& b);
-double ssimTonemapped8Bit(const Image& a, const Image& b);
+// The 8-bit comparison image: each channel through the display transfer (the paper's
+// filmic tonemap for Glint's linear datasets; a display-referred dataset's own, such as
+// NeRF-synthetic's sRGB, so that figures compare with published ones), clamped to [0, 1]
+// and quantised to 8 bits, round(y * 255) / 255. Values stay floats in [0, 1].
+Image tonemapTo8Bit(const Image& linear, Transfer transfer = Transfer::Filmic);
+// PSNR and SSIM of the 8-bit versions of two linear radiance images.
+double psnrTonemapped8Bit(const Image& a, const Image& b, Transfer transfer = Transfer::Filmic);
+double ssimTonemapped8Bit(const Image& a, const Image& b, Transfer transfer = Transfer::Filmic);
 
 // Root mean square depth error over the pixels where the ground truth has a surface
 // (hasSurface in scene/buffers.h); a prediction of "no surface" there counts with its

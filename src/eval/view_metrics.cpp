@@ -71,16 +71,16 @@ PassMetrics passFromJson(const nlohmann::json& j, const char* pass, const std::s
 
 }  // namespace
 
-PassMetrics evaluatePass(const Image& predicted, const Image& truth) {
-  return {psnr(predicted, truth), ssim(predicted, truth), psnrTonemapped8Bit(predicted, truth),
-          ssimTonemapped8Bit(predicted, truth)};
+PassMetrics evaluatePass(const Image& predicted, const Image& truth, Transfer display) {
+  return {psnr(predicted, truth), ssim(predicted, truth), psnrTonemapped8Bit(predicted, truth, display),
+          ssimTonemapped8Bit(predicted, truth, display)};
 }
 
-ViewMetrics evaluateView(const ViewBuffers& rendered, const ViewBuffers& truth) {
+ViewMetrics evaluateView(const ViewBuffers& rendered, const ViewBuffers& truth, Transfer display) {
   // A capture's view may lack ground truth for some buffers: their metrics have no value.
   constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
   auto pass = [&](Buffer b) {
-    return truth[b].empty() ? PassMetrics{kNone, kNone, kNone, kNone} : evaluatePass(rendered[b], truth[b]);
+    return truth[b].empty() ? PassMetrics{kNone, kNone, kNone, kNone} : evaluatePass(rendered[b], truth[b], display);
   };
   ViewMetrics m;
   m.diffuse = pass(Buffer::Diffuse);

@@ -7,6 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/transfer.h"
 #include "scene/buffers.h"
 
 namespace glint {
@@ -27,9 +28,11 @@ struct ViewMetrics {
   double normalAngleDegrees = 0;
 };
 
-PassMetrics evaluatePass(const Image& predicted, const Image& truth);
+// The 8-bit metrics use `display` (image_metrics.h: filmic for Glint's linear datasets, a
+// display-referred dataset's own transfer otherwise).
+PassMetrics evaluatePass(const Image& predicted, const Image& truth, Transfer display = Transfer::Filmic);
 // Compares a rendered view with its ground truth (see image_metrics.h for each metric).
-ViewMetrics evaluateView(const ViewBuffers& rendered, const ViewBuffers& truth);
+ViewMetrics evaluateView(const ViewBuffers& rendered, const ViewBuffers& truth, Transfer display = Transfer::Filmic);
 
 // The mean of each metric over the views where it is finite: a view without surface
 // pixels has no depth error rather than a zero one, and a view rendered exactly (infinite

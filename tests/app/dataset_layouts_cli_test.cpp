@@ -60,6 +60,10 @@ TEST_F(DatasetLayoutsCliTest, NerfSyntheticTrainsTheRgbBaselineAndEvaluates) {
   const nlohmann::json metrics = readJsonFile(path("R") + "/eval/metrics.json");
   EXPECT_EQ(metrics["views"], 2);
   EXPECT_EQ(metrics["background"], "white");
+  // NeRF-synthetic images are sRGB: the 8-bit figures are on sRGB images, as published
+  // methods score them, and the table says so.
+  EXPECT_EQ(metrics["display_transfer"], "srgb");
+  EXPECT_NE(eval.output.find("8-bit = srgb, quantised"), std::string::npos) << eval.output;
 
   Outcome render = runGlint("render " + path("R") + " --split test -o " + path("out") + " --threads 1");
   ASSERT_EQ(render.status, 0) << render.output;

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -140,6 +141,22 @@ TEST(ImageMetricsTest, TonemappedVersionQuantisesTheFilmicCurve) {
   Image bright(12, 12, 3, 5.0f), brighter(12, 12, 3, 6.0f);
   EXPECT_NEAR(psnr(bright, brighter), 0.0, 1e-9);
   EXPECT_GT(psnrTonemapped8Bit(bright, brighter), 30.0);
+}
+
+// A display-referred dataset's 8-bit figures use its own transfer (sRGB for NeRF-synthetic);
+// the default stays the paper's filmic curve.
+TEST(ImageMetricsTest, EightBitImagesFollowTheDisplayTransfer) {
+  Image linear(4, 1, 1);
+  linear.at(0, 0) = 0.0f, linear.at(1, 0) = 0.05f, linear.at(2, 0) = 0.5f, linear.at(3, 0) = 3.0f;
+  const Image srgb = tonemapTo8Bit(linear, Transfer::Srgb), filmic = tonemapTo8Bit(linear);
+  for (int x = 0; x < 4; ++x) {
+    EXPECT_EQ(srgb.at(x, 0), std::round(std::clamp(toDisplay(Transfer::Srgb, linear.at(x, 0)), 0.0f, 1.0f) * 255.0f) / 255.0f);
+    EXPECT_EQ(filmic.at(x, 0), std::round(tonemapFilmic(linear.at(x, 0)) * 255.0f) / 255.0f);
+  }
+  EXPECT_EQ(srgb.at(3, 0), 1.0f);  // above 1 clips, as an 8-bit sRGB file does
+  EXPECT_NE(srgb.at(1, 0), filmic.at(1, 0));
+  Image a(12, 12, 3, 0.2f), b(12, 12, 3, 0.25f);
+  EXPECT_NE(psnrTonemapped8Bit(a, b, Transfer::Srgb), psnrTonemapped8Bit(a, b));
 }
 
 TEST(ImageMetricsTest, DepthRmseCountsOnlyGroundTruthSurfaces) {
