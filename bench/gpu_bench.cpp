@@ -18,6 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/parallel.h"
+#include "io/transforms_json.h"
 #include "math/mat4.h"
 #include "raytrace/gaussian_tracer.h"
 #include "render/gaussian_renderer.h"
@@ -43,16 +44,12 @@ Mat4 ringCamera(int v, int n) {
   return Mat4::lookAt(eye, Vec3d(0.0, 0.5, -0.2), Vec3d(0.0, 1.0, 0.0));
 }
 
-// A NeRF-synthetic camera file: the cameras only (glint reads it without images).
-void writeCameras(const std::filesystem::path& path, int views) {
-  nlohmann::json frames = nlohmann::json::array();
-  for (int v = 0; v < views; ++v) {
-    const Mat4 m = ringCamera(v, views);
-    nlohmann::json rows = nlohmann::json::array();
-    for (int r = 0; r < 4; ++r) rows.push_back({m.m[r][0], m.m[r][1], m.m[r][2], m.m[r][3]});
-    frames.push_back({{"file_path", "./views/r_" + std::to_string(v)}, {"transform_matrix", rows}});
-  }
-  std::ofstream(path) << nlohmann::json{{"camera_angle_x", kFieldOfViewX}, {"frames", frames}}.dump(2) << "\n";
+// A NeRF-synthetic camera file of the ring's cameras (no images: glint reads it without).
+TransformsFile ringCameras(int views) {
+  TransformsFile file;
+  file.cameraAngleX = kFieldOfViewX;
+  for (int v = 0; v < views; ++v) file.frames.push_back({"views/r_" + std::to_string(v), ringCamera(v, views)});
+  return file;
 }
 
 struct Timed {
@@ -93,8 +90,8 @@ int main(int argc, char** argv) {
   if (!writeDir.empty()) {
     std::filesystem::create_directories(writeDir + "/dataset");
     writeGaussianPly(writeDir + "/scene.ply", scene);
-    writeCameras(writeDir + "/dataset/transforms_train.json", views);
-    writeCameras(writeDir + "/dataset/transforms_test.json", views);
+    writeTransformsJson(writeDir + "/dataset/transforms_train.json", ringCameras(views));
+    writeTransformsJson(writeDir + "/dataset/transforms_test.json", ringCameras(views));
     std::printf("gpu_bench: wrote %s/scene.ply and %s/dataset (%d cameras)\n", writeDir.c_str(), writeDir.c_str(),
                 views);
   }

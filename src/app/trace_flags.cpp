@@ -57,7 +57,7 @@ std::string resolveTracerForDevice(const std::string& device, const std::string&
                                    const std::string& command) {
   const DeviceRequest request = parseDeviceRequest(device);
   if (tracerGiven) {
-    const bool gpuTracer = tracer == "cuda" || tracer == "cuda-warp";
+    const bool gpuTracer = isGpuTracer(tracer);
     if ((request == DeviceRequest::Cuda) != gpuTracer && request != DeviceRequest::Auto)
       throw Error("--tracer " + tracer + " and --device " + device + " disagree (the cuda tracers are the GPU's)");
     if (gpuTracer)

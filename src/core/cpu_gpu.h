@@ -10,13 +10,6 @@
 #define GLINT_GPU
 #endif
 
-// True while nvcc compiles the device side of a translation unit.
-#if defined(__CUDA_ARCH__)
-#define GLINT_IS_GPU_CODE 1
-#else
-#define GLINT_IS_GPU_CODE 0
-#endif
-
 // Unrolls the loop that follows, so that small arrays indexed by its counter stay in
 // registers on the GPU (an array indexed at run time lives in slow local memory there).
 #if defined(__CUDACC__)

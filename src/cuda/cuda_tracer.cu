@@ -260,7 +260,7 @@ class CudaGaussianTracer final : public GaussianTracer, public DeviceViewRendere
     const size_t pixelCount = size_t(std::max(rowEnd - rowBegin, 0)) * size_t(camera.width);
     GLINT_CHECK(pixelCount < size_t(UINT32_MAX), "a view band of more than 4 billion pixels");
     const uint32_t pixels = uint32_t(pixelCount);
-    sums->reset(pixels, separate);
+    sums->resize(pixels, separate);  // every element is downloaded below
     if (pixels == 0) return;
     ViewWave v{camera, settings, viewKey, rowBegin, uint32_t(camera.width), pixels, 0, separate};
     const char* what = "a view's per-pixel sums";

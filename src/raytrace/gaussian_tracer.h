@@ -58,5 +58,7 @@ class GaussianTracer {
 // itself does not.
 std::unique_ptr<GaussianTracer> makeGaussianTracer(const std::string& kind);
 std::vector<std::string> gaussianTracerNames();
+// Whether the tracer of that name traces on the GPU ("cuda", "cuda-warp").
+bool isGpuTracer(const std::string& kind);
 
 }  // namespace glint

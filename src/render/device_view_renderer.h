@@ -29,13 +29,21 @@ struct PixelSums {
     bounces.resize(size_t(separate));
     for (auto& b : bounces) b.assign(pixels, Rgb(0.0f));
   }
+  // The same sizes, not cleared: for a caller that writes every element (a download).
+  void resize(size_t pixels, int separate) {
+    for (auto* v : {&diffuse, &specular, &normal, &f0}) v->resize(pixels);
+    depth.resize(pixels);
+    roughness.resize(pixels);
+    bounces.resize(size_t(separate));
+    for (auto& b : bounces) b.resize(pixels);
+  }
 };
 
 class DeviceViewRenderer {
  public:
   virtual ~DeviceViewRenderer() = default;
-  // Adds samples firstSample .. firstSample + spp - 1 of every pixel of rows [rowBegin,
-  // rowEnd) into *sums (reset to the band's size with `separate` bounce images), sample by
+  // Sums samples firstSample .. firstSample + spp - 1 of every pixel of rows [rowBegin,
+  // rowEnd) into *sums (sized to the band, with `separate` bounce images), sample by
   // sample, with the paths, random numbers and order of additions of the CPU loop.
   virtual void sumView(const Camera& camera, const RenderSettings& settings, uint64_t viewKey, int rowBegin,
                        int rowEnd, int separate, PixelSums* sums) const = 0;

@@ -1,7 +1,6 @@
 // Opening a dataset folder, loading its buffers on demand, and writing cameras and buffers.
 #include "scene/dataset.h"
 
-#include <cctype>
 #include <cmath>
 #include <system_error>
 
@@ -64,15 +63,12 @@ Dataset Dataset::open(const fs::path& root, bool requireBuffers, int holdout) {
 
 namespace {
 
-// Whether `folder` holds image files (by extension) directly.
+// Whether `folder` holds photographs (8-bit display-referred images) directly.
 bool holdsPhotographs(const fs::path& folder) {
   std::error_code error;
   if (!fs::is_directory(folder, error)) return false;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error)) {
-    std::string ext = entry.path().extension().string();
-    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-    if (ext == ".jpg" || ext == ".jpeg" || ext == ".png" || ext == ".tif" || ext == ".tiff") return true;
-  }
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
+    if (isDisplayReferred(entry.path())) return true;
   return false;
 }
 

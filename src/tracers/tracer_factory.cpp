@@ -19,6 +19,8 @@ std::vector<std::string> gaussianTracerNames() {
   return names;
 }
 
+bool isGpuTracer(const std::string& kind) { return kind == "cuda" || kind == "cuda-warp"; }
+
 std::unique_ptr<GaussianTracer> makeGaussianTracer(const std::string& kind) {
   if (kind == "fast") return std::make_unique<FastGaussianTracer>();
   if (kind == "embree-k16") return std::make_unique<EmbreeK16Tracer>();
@@ -27,7 +29,7 @@ std::unique_ptr<GaussianTracer> makeGaussianTracer(const std::string& kind) {
   if (kind == "cuda") return makeCudaGaussianTracer(GpuWalk::PerRay);
   if (kind == "cuda-warp") return makeCudaGaussianTracer(GpuWalk::Warp);
 #else
-  if (kind == "cuda" || kind == "cuda-warp")
+  if (isGpuTracer(kind))
     throw Error("the GPU tracer: " + cudaBuildDescription() + " (glint --version)");
 #endif
   std::string names;

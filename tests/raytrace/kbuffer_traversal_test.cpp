@@ -125,7 +125,8 @@ TEST(KBufferTraversal, EmptyAndTransparentScenes) {
 TEST(KBufferTraversal, NearestHitsKeepsTheKNearestInOrder) {
   NearestHits<4> buffer;
   const float keys[] = {5, 1, 4, 1, 3, 9, 0.5f, 2};
-  for (uint32_t i = 0; i < 8; ++i) buffer.insert({keys[i], i, 0.5f});
+  bool lost = false;
+  for (uint32_t i = 0; i < 8; ++i) buffer.insert({keys[i], i, 0.5f}, &lost);
   ASSERT_EQ(buffer.size(), 4);
   // (0.5, 6), (1, 1), (1, 3), (2, 7): ties by id.
   EXPECT_EQ(buffer[0].id, 6u);
@@ -133,6 +134,17 @@ TEST(KBufferTraversal, NearestHitsKeepsTheKNearestInOrder) {
   EXPECT_EQ(buffer[2].id, 3u);
   EXPECT_EQ(buffer[3].id, 7u);
   EXPECT_TRUE(buffer.full());
+  EXPECT_TRUE(lost);  // 8 hits in 4 places
+  // Where a hit goes: nowhere behind the farthest of a full buffer, else its place.
+  EXPECT_EQ(buffer.insert({9.0f, 9, 0.5f}, &lost), -1);
+  EXPECT_EQ(buffer.insert({0.1f, 10, 0.5f}, &lost), 0);
+  EXPECT_EQ(buffer[0].id, 10u);
+  NearestHits<4> roomy;
+  bool roomyLost = false;
+  EXPECT_EQ(roomy.insert({2.0f, 0, 0.5f}, &roomyLost), 0);
+  EXPECT_EQ(roomy.insert({1.0f, 1, 0.5f}, &roomyLost), 0);
+  EXPECT_EQ(roomy.insert({3.0f, 2, 0.5f}, &roomyLost), 2);
+  EXPECT_FALSE(roomyLost);
 }
 
 }  // namespace

@@ -37,10 +37,7 @@ class LaneHits {
 
   // Lane i of `block` (whose proxy test passed, giving c); false when its alpha is below alphaMin.
   bool make(const Bvh8Block& block, const Bvh8BlockCandidates& c, int i, float tMin, KeyedHit* h) const {
-    float alpha = response_.alpha(block.opacity[i], c.r2[i]);
-    if (alpha < settings_.alphaMin) return false;
-    *h = {key(c, i, tMin), block.id[i], alpha};
-    return true;
+    return makeLaneHit(response_, settings_.alphaMin, block, i, c, i, tMin, h);
   }
 
   // The alphas of the lanes of c (one Gaussian of the given opacity against a packet of

@@ -6,6 +6,8 @@
 #include <cstdint>
 
 #include "core/cpu_gpu.h"
+#include "raytrace/fast/bvh8_kernels.h"
+#include "raytrace/fast/kernel_response.h"
 #include "raytrace/gaussian_kernel.h"
 
 namespace glint {
@@ -29,6 +31,17 @@ struct KeyedHit {
   GLINT_CPU_GPU HitOrder order() const { return {key, id}; }
   GLINT_CPU_GPU KernelHit<float> kernelHit() const { return {0.0f, 0.0f, 0.0f, key, 0.0f, alpha, Vec3f(0.0f)}; }
 };
+
+// Gaussian g of `block` as a hit, from lane `lane` of the proxy test's candidates c (a test
+// that passed); false when its alpha is below alphaMin. Every walk of the 8-wide BVH, on the
+// CPU and the GPU, makes its hits here, so they agree bit for bit.
+GLINT_CPU_GPU inline bool makeLaneHit(const KernelResponse& response, float alphaMin, const Bvh8Block& block, int g,
+                                      const Bvh8BlockCandidates& c, int lane, float tMin, KeyedHit* h) {
+  const float alpha = response.alpha(block.opacity[g], c.r2[lane]);
+  if (alpha < alphaMin) return false;
+  *h = {hitKey(c.tPeak[lane], c.tPeak[lane] - c.half[lane], c.tPeak[lane] + c.half[lane], tMin), block.id[g], alpha};
+  return true;
+}
 
 // Kept sorted, nearest first, from head_ to end_: hits arrive nearly in order (BVH
 // children nearest first, bundle candidates by the bound of their key), so inserting from

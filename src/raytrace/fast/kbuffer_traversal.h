@@ -69,15 +69,17 @@ class NearestHits {
   GLINT_CPU_GPU void truncate(int n) { size_ = n < size_ ? n : size_; }
 
   // Inserts h in order; when full, h replaces the farthest hit if it comes before it.
-  // Returns false when a hit was lost (h, or the farthest one).
-  GLINT_CPU_GPU bool insert(const KeyedHit& h) {
+  // Returns where h went, or -1 when it did not fit; *lost is set when a hit was lost (h,
+  // or the farthest one pushed out).
+  GLINT_CPU_GPU int insert(const KeyedHit& h, bool* lost) {
     const HitOrder order = h.order();
     const bool wasFull = size_ == K;
-    if (wasFull && !(order < hits_[K - 1].order())) return false;
+    if (wasFull) *lost = true;
+    if (wasFull && !(order < hits_[K - 1].order())) return -1;
     int i = wasFull ? K - 1 : size_++;
     for (; i > 0 && order < hits_[i - 1].order(); --i) hits_[i] = hits_[i - 1];
     hits_[i] = h;
-    return !wasFull;  // when full, the farthest hit was pushed out
+    return i;
   }
 
  private:
@@ -154,10 +156,10 @@ class KBufferRay {
       const Bvh8Block& block = blocks[b];
       for (int i = 0; i < kBvhWidth; ++i) {
         Bvh8BlockCandidates c;
-        if (!proxyTestScalar(block, i, ray_.origin, ray_.direction, ray_.tMin, &c, 0)) continue;
-        const float alpha = response_.alpha(block.opacity[i], c.r2[0]);
-        if (alpha < settings_.alphaMin) continue;
-        accept({hitKey(c.tPeak[0], c.tPeak[0] - c.half[0], c.tPeak[0] + c.half[0], ray_.tMin), block.id[i], alpha});
+        KeyedHit h;
+        if (proxyTestScalar(block, i, ray_.origin, ray_.direction, ray_.tMin, &c, 0) &&
+            makeLaneHit(response_, settings_.alphaMin, block, i, c, 0, ray_.tMin, &h))
+          accept(h);
       }
     }
   }
@@ -193,12 +195,14 @@ class KBufferRay {
     }
     if (compositor_.skips(h.id, h.key)) return;  // invisible to the compositor
     if (hasCutoff_ && !(h.order() < cutoff_)) return;
-    lost_ |= !buffer_.insert(h);
-    if (settings_.exactTail) return;
-    // Where the buffered hits end the ray, compositing as the compositor does.
-    float t = startTransmittance_;
-    for (int k = 0; k < buffer_.size(); ++k) {
+    const int at = buffer_.insert(h, &lost_);
+    if (at < 0 || settings_.exactTail) return;
+    // Where the buffered hits end the ray, compositing as the compositor does. The
+    // transmittance after the hits before `at` is unchanged; only from `at` on is it new.
+    float t = at == 0 ? startTransmittance_ : transmittanceAfter_[at - 1];
+    for (int k = at; k < buffer_.size(); ++k) {
       t *= 1.0f - buffer_[k].alpha;
+      transmittanceAfter_[k] = t;
       if (t < settings_.minTransmittance) {
         cutoff_ = buffer_[k].order();
         hasCutoff_ = true;
@@ -221,6 +225,7 @@ class KBufferRay {
   // composited in earlier passes and the buffered ones) falls below the threshold, without
   // the exact tail; whether a hit behind lo (and before the cutoff) did not fit.
   NearestHits<K> buffer_;
+  float transmittanceAfter_[K];  // the buffered hits' transmittance, hit k's included
   HitOrder cutoff_{0.0f, 0};
   bool hasCutoff_ = false;
   bool lost_ = false;
