@@ -39,7 +39,7 @@ for kind in exact degraded; do
 done
 
 # 2. COLMAP's cameras for the photographs, shared by (b), (c) and (d).
-[ -f "$out/exact_colmap/sparse/0/cameras.txt" ] || "$here/colmap-capture.sh" "$out/exact" "$out/exact_colmap"
+[ -f "$out/exact_colmap/sparse/0/cameras.bin" ] || "$glint" capture "$out/exact" -o "$out/exact_colmap" --force
 # The degraded priors with COLMAP's model (hard links: the files are the same).
 make_variant() {  # make_variant NAME PRIORS_FROM [KIND_TO_LEAVE_OUT]
   local dir="$out/$1"

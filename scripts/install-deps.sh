@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages Glint builds and tests with; does nothing when all are present.
 # With --fuzz, also the clang toolchain and libFuzzer that `make fuzz` builds with; with
-# --colmap, Debian's colmap, which scripts/colmap-capture.sh and the colmap_capture test use
+# --colmap, Debian's colmap, which glint capture and the colmap_capture test use
 # (the test is skipped without it, so `make test` does not need it); with --blender, Debian's
 # Blender, which scripts/blender/ renders the Cycles validation scenes with.
 set -euo pipefail

@@ -7,6 +7,7 @@ namespace glint {
 
 void addSynthCommand(CLI::App& app);
 void addInfoCommand(CLI::App& app);
+void addCaptureCommand(CLI::App& app);
 void addSheetCommand(CLI::App& app);
 void addExportCommand(CLI::App& app);
 void addRenderCommand(CLI::App& app);

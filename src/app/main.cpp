@@ -43,6 +43,7 @@ int runGlint(int argc, char** argv) {
                                         (glint::cluster::builtWithMpi() ? " (with MPI)" : " (without MPI)") + " (" +
                                         glint::cudaBuildDescription() + ")");
   glint::addSynthCommand(app);
+  glint::addCaptureCommand(app);
   glint::addInfoCommand(app);
   glint::addSheetCommand(app);
   glint::addTrainCommand(app);

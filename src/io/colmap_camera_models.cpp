@@ -70,16 +70,22 @@ std::string undistortionCommand(const fs::path& modelFolder) {
          " --output_type COLMAP";
 }
 
+bool hasLensDistortion(const ColmapCamera& camera) {
+  const ColmapCameraModel* model = findColmapCameraModel(camera.model);
+  if (!model || int(camera.params.size()) != model->numParams) return true;
+  bool distorted = !model->perspectiveWhenUndistorted;
+  for (int i = model->firstDistortionParam; i < model->numParams; ++i)
+    if (camera.params[size_t(i)] != 0.0) distorted = true;
+  return distorted;
+}
+
 PinholeIntrinsics colmapPinholeIntrinsics(const ColmapCamera& camera, const std::string& fileName,
                                           const std::string& where, const fs::path& modelFolder) {
   const ColmapCameraModel* model = findColmapCameraModel(camera.model);
   if (!model || int(camera.params.size()) != model->numParams)
     throw Error(fileName, where + "camera " + std::to_string(camera.id) + " has an unknown model or the wrong " +
                               "number of parameters");
-  bool distorted = !model->perspectiveWhenUndistorted;
-  for (int i = model->firstDistortionParam; i < model->numParams; ++i)
-    if (camera.params[size_t(i)] != 0.0) distorted = true;
-  if (distorted) {
+  if (hasLensDistortion(camera)) {
     std::string what = model->perspectiveWhenUndistorted ? "lens distortion (" + distortionText(camera, *model) + ")"
                                                          : "a fisheye or FOV projection";
     throw Error(fileName, where + "camera " + std::to_string(camera.id) + " uses the " + camera.model +

@@ -33,6 +33,10 @@ struct PinholeIntrinsics {
   double fx = 0, fy = 0, cx = 0, cy = 0;
 };
 
+// True unless the camera projects like a pinhole: a fisheye or FOV model, a perspective
+// model with a distortion parameter other than 0, or a model COLMAP does not define.
+bool hasLensDistortion(const ColmapCamera& camera);
+
 // fx, fy, cx, cy of a camera that projects like a pinhole: PINHOLE, SIMPLE_PINHOLE, or a
 // perspective distortion model (SIMPLE_RADIAL, RADIAL, OPENCV, FULL_OPENCV) whose
 // distortion parameters are all exactly 0. Any other camera throws Error naming

@@ -49,7 +49,10 @@ ColmapModel parseColmapModel(const ColmapFiles& files, ColmapFormat format, cons
   return model;
 }
 
-ColmapModel readColmapModel(const fs::path& folder) {
+namespace {
+
+// The model's files (binary when cameras.bin exists, as COLMAP prefers), read and parsed.
+ColmapModel readModelFiles(const fs::path& folder, ColmapFiles* files) {
   std::error_code ignored;
   if (!fs::is_directory(folder, ignored)) throw Error(folder.string(), "COLMAP model folder not found");
   // COLMAP itself prefers the binary files when a folder holds both forms.
@@ -58,11 +61,23 @@ ColmapModel readColmapModel(const fs::path& folder) {
     throw Error(folder.string(), "not a COLMAP sparse model: it has neither cameras.bin nor cameras.txt (a model "
                                  "is the folder holding cameras, images and points3D, usually sparse/0)");
   const char* ext = extension(format);
+  files->cameras = readTextFile(folder / (std::string("cameras") + ext));
+  files->images = readTextFile(folder / (std::string("images") + ext));
+  files->points = readTextFile(folder / (std::string("points3D") + ext));
+  return parseColmapModel(*files, format, folder.string());
+}
+
+}  // namespace
+
+ColmapModel readColmapModelAnyCamera(const fs::path& folder) {
   ColmapFiles files;
-  files.cameras = readTextFile(folder / (std::string("cameras") + ext));
-  files.images = readTextFile(folder / (std::string("images") + ext));
-  files.points = readTextFile(folder / (std::string("points3D") + ext));
-  ColmapModel model = parseColmapModel(files, format, folder.string());
+  return readModelFiles(folder, &files);
+}
+
+ColmapModel readColmapModel(const fs::path& folder) {
+  ColmapFiles files;
+  ColmapModel model = readModelFiles(folder, &files);
+  ColmapFormat format = model.format;
 
   // Glint traces pinhole rays: a distorted camera is refused here, with the command that
   // undistorts it, rather than trained with a wrong projection.

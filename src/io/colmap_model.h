@@ -69,6 +69,9 @@ ColmapModel parseColmapModel(const ColmapFiles& files, ColmapFormat format, cons
 // refuses cameras with lens distortion (colmapPinholeIntrinsics), naming the
 // colmap image_undistorter command that fixes them. Throws Error naming the file.
 ColmapModel readColmapModel(const std::filesystem::path& folder);
+// The same without the distortion check: any camera model COLMAP defines (for glint
+// capture, which reads COLMAP's own output before undistorting it).
+ColmapModel readColmapModelAnyCamera(const std::filesystem::path& folder);
 
 // The three files of a model in COLMAP's text form (with COLMAP's header comments,
 // numbers at full round-trip precision, empty 2D point lines and tracks) or binary form.

@@ -99,9 +99,8 @@ void Dataset::openLayout(const DatasetReading& reading) {
     // Photographs without cameras are what most people start from: say how to get cameras.
     if (holdsPhotographs(root) || holdsPhotographs(root / "images"))
       throw Error(root.string(),
-                  "holds photographs but no cameras; get them with COLMAP: scripts/install-deps.sh --colmap, then "
-                  "scripts/colmap-capture.sh FOLDER CAPTURE (FOLDER with the photos in FOLDER/images), then train "
-                  "on CAPTURE (README, \"Train on your own photos\")");
+                  "holds photographs but no cameras; get them with COLMAP: glint capture " + root.string() +
+                      " -o CAPTURE, then train on CAPTURE (README, \"Train on your own photos\")");
     throw Error(transformsPath(root, "train").string(),
                 "file not found (a dataset needs transforms_train.json, transforms_test.json or both; or a capture's "
                 "COLMAP model or transforms.json)");

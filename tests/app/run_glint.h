@@ -15,9 +15,11 @@ struct Outcome {
 };
 
 // With timeoutSeconds > 0 the program is stopped after that long (coreutils' timeout:
-// status 124), for tests of commands that could otherwise hang.
-inline Outcome runGlint(const std::string& args, int timeoutSeconds = 0) {
-  std::string command = (timeoutSeconds > 0 ? "timeout " + std::to_string(timeoutSeconds) + " " : std::string()) +
+// status 124), for tests of commands that could otherwise hang. `environment` is shell
+// assignments for the program ("NAME=value OTHER=value").
+inline Outcome runGlint(const std::string& args, int timeoutSeconds = 0, const std::string& environment = "") {
+  std::string command = (environment.empty() ? std::string() : environment + " ") +
+                        (timeoutSeconds > 0 ? "timeout " + std::to_string(timeoutSeconds) + " " : std::string()) +
                         std::string(GLINT_BINARY) + " " + args + " 2>&1";
   Outcome run;
   FILE* pipe = popen(command.c_str(), "r");

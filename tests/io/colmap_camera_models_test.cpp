@@ -117,6 +117,11 @@ TEST(ColmapCameraModels, CommandFillsInTheProjectsPaths) {
         << message;
     EXPECT_NE(message.find(expected), std::string::npos) << message;
   }
+  // glint capture reads COLMAP's own distorted output before undistorting it.
+  ColmapModel asStored = readColmapModelAnyCamera(folder / "project/sparse/0");
+  ASSERT_EQ(asStored.cameras.size(), 1u);
+  EXPECT_EQ(asStored.cameras[0].model, "OPENCV");
+  EXPECT_EQ(asStored.cameras[0].params[4], 0.1);
   // In text form the message names the camera's line.
   std::filesystem::remove(folder / "project/sparse/0/cameras.bin");
   writeColmapModelText(folder / "project/sparse/0", model);
@@ -128,6 +133,23 @@ TEST(ColmapCameraModels, CommandFillsInTheProjectsPaths) {
     EXPECT_EQ(message.rfind(project + "/sparse/0/cameras.txt: line 4: camera 1 uses the OPENCV model", 0), 0u)
         << message;
   }
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+TEST(ColmapCameraModels, LensDistortionIsAnyDistortionParameterOrAFisheye) {
+  EXPECT_FALSE(hasLensDistortion(camera("PINHOLE", {500, 500, 320, 240})));
+  EXPECT_FALSE(hasLensDistortion(camera("SIMPLE_PINHOLE", {500, 320, 240})));
+  EXPECT_FALSE(hasLensDistortion(camera("OPENCV", {500, 500, 320, 240, 0, 0, 0, 0})));
+  EXPECT_TRUE(hasLensDistortion(camera("OPENCV", {500, 500, 320, 240, 0, 0, 1e-9, 0})));
+  EXPECT_TRUE(hasLensDistortion(camera("SIMPLE_RADIAL", {500, 320, 240, -0.05})));
+  EXPECT_TRUE(hasLensDistortion(camera("OPENCV_FISHEYE", {500, 500, 320, 240, 0, 0, 0, 0})));
+  EXPECT_TRUE(hasLensDistortion(camera("NO_SUCH_MODEL", {500, 500, 320, 240})));
+  EXPECT_TRUE(hasLensDistortion(camera("PINHOLE", {500, 500, 320})));  // parameters missing
 }
 
 }  // namespace

@@ -76,7 +76,7 @@ TEST(Dataset, PhotographsWithoutCamerasPointToColmap) {
     } catch (const Error& e) {
       const std::string message = e.what();
       EXPECT_NE(message.find("holds photographs but no cameras"), std::string::npos) << message;
-      EXPECT_NE(message.find("scripts/colmap-capture.sh"), std::string::npos) << message;
+      EXPECT_NE(message.find("glint capture"), std::string::npos) << message;
     }
   }
 }

@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # CTest colmap_capture: synthesizes a small capture of builtin:gallery, reconstructs its
-# cameras with Debian's colmap through scripts/colmap-capture.sh, and opens the result with
+# cameras with Debian's colmap through `glint capture` (the capture as it is: PINHOLE, the
+# priors kept; its photographs alone: OPENCV, undistorted), and opens both results with
 # `glint info` (Dataset::open and every buffer). Exits 77 (skipped) when colmap is absent.
 # Usage: colmap_capture_test.sh GLINT_BINARY WORK_FOLDER
 set -euo pipefail
-here="$(cd "$(dirname "$0")" && pwd)"
 if ! command -v colmap >/dev/null; then
-  echo "SKIPPED: colmap is not installed (scripts/install-deps.sh --colmap installs it)"
+  echo "SKIPPED: colmap is not installed (apt-get install colmap, or scripts/install-deps.sh --colmap)"
   exit 77
 fi
 glint="$1"
@@ -19,12 +19,32 @@ mkdir -p "$work"
 # 4 samples per pixel leave COLMAP without an initial pair of 100 inliers).
 "$glint" synth builtin:gallery -o "$work/synth" --layout capture --train 24 --res 320x240 --spp 8 \
   --bounces 3 --points 500
-"$here/../../scripts/colmap-capture.sh" "$work/synth" "$work/colmap" | tee "$work/colmap.log"
-registered="$(sed -n 's/.*registered \([0-9]*\) of \([0-9]*\) images.*/\1/p' "$work/colmap.log")"
-if [ -z "$registered" ] || [ "$registered" -lt 20 ]; then
-  echo "FAILED: COLMAP registered ${registered:-no} images of 24 (at least 20 expected)"
-  exit 1
-fi
-# Dataset::open on COLMAP's cameras, every buffer loaded, the depth fits reported.
-"$glint" info "$work/colmap"
-echo "PASSED: $registered of 24 images registered"
+
+registered() {  # registered LOG: the count glint capture printed
+  sed -n 's/.*registered \([0-9]*\) of \([0-9]*\) photographs.*/\1/p' "$1"
+}
+expect_registered() {  # expect_registered LOG WHAT
+  local count
+  count="$(registered "$1")"
+  if [ -z "$count" ] || [ "$count" -lt 20 ]; then
+    echo "FAILED ($2): COLMAP registered ${count:-no} photographs of 24 (at least 20 expected)"
+    exit 1
+  fi
+  echo "$2: $count of 24 photographs registered"
+}
+
+# The capture as glint synth wrote it: priors/ kept, so a pinhole camera.
+"$glint" capture "$work/synth" -o "$work/capture" 2>&1 | tee "$work/capture.log"
+expect_registered "$work/capture.log" "capture with priors"
+grep -q "cameras: PINHOLE$" "$work/capture.log" || { echo "FAILED: expected a PINHOLE camera"; exit 1; }
+[ -d "$work/capture/priors" ] || { echo "FAILED: priors/ was not kept"; exit 1; }
+"$glint" info "$work/capture"
+
+# The photographs alone: the OPENCV model, then COLMAP's undistortion to pinholes.
+mkdir -p "$work/photos"
+cp "$work/synth/images/"*.jpg "$work/photos/"
+"$glint" capture "$work/photos" -o "$work/photos_capture" 2>&1 | tee "$work/photos.log"
+expect_registered "$work/photos.log" "photographs alone"
+grep -q "cameras: OPENCV, undistorted to pinholes" "$work/photos.log" || { echo "FAILED: expected undistortion"; exit 1; }
+"$glint" info "$work/photos_capture"
+echo "PASSED"
