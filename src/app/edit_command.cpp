@@ -10,10 +10,12 @@
 #include "app/relight_flags.h"
 #include "app/scene_source.h"
 #include "app/thread_flag.h"
+#include "app/trace_flags.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "edit/edit_file.h"
 #include "edit/gaussian_edits.h"
+#include "edit_effects/edit_consequences.h"
 #include "scene/gaussian_ply.h"
 
 namespace glint {
@@ -28,6 +30,7 @@ struct EditOptions {
   bool force = false;
   size_t maxGaussians = kDefaultMaxGaussians;
   int threads = 0;
+  std::string device = "auto";  // where relighting traces
   RelightFlags relight;
   HealFlags heal;
 };
@@ -37,29 +40,26 @@ void runEdit(const EditOptions& o) {
   refuseExistingOutput(o.output, o.force);
   EditDocument document = readEditFile(o.edits);  // validate before loading a large scene
   SceneSource source = loadSceneSource(o.scene, parseInputLayout(o.inputLayout));
-  GaussianScene unedited;
-  EditProvenance provenance;
-  const bool traced = o.relight.on() || o.heal.on();  // both need the unedited scene and the provenance
-  if (traced) unedited = source.scene, provenance = EditProvenance::identity(source.scene.size());
-  EditReport report = applyEdits(document, source.scene, o.maxGaussians, traced ? &provenance : nullptr);
-  std::fprintf(stderr, "glint edit: %s with %s\n%s", o.scene.c_str(), o.edits.c_str(),
-               formatEditReport(report).c_str());
-  HealReport healed;
-  if (o.heal.on()) {  // before relighting, so that the filled surface is relit with the rest
-    std::string line;
-    healed = healAfterEdit(unedited, source.scene, provenance, o.heal.settings(), &line);
-    std::fprintf(stderr, "glint edit: %s\n", line.c_str());
-  }
-  if (o.relight.on()) {  // traced as the scene renders: the run's tracer settings
-    const char* kind = "fast";
-    std::unique_ptr<GaussianTracer> before = makeGaussianTracer(kind), after = makeGaussianTracer(kind);
-    before->build(unedited, source.settings.trace);
-    after->build(source.scene, source.settings.trace);
-    std::fprintf(stderr, "glint edit: %s\n",
-                 relightAfterEdit(*before, unedited, *after, source.scene, provenance, healed,
-                                  o.relight.settings(source.settings.path()))
-                     .c_str());
-  }
+  std::fprintf(stderr, "glint edit: %s with %s\n", o.scene.c_str(), o.edits.c_str());
+  // Relighting traces both scenes as the scene renders (the run's tracer settings), on the
+  // GPU when there is one.
+  const std::string kind =
+      o.relight.on() ? resolveTracerForDevice(o.device, "fast", /*tracerGiven=*/false, "glint edit") : "fast";
+  std::unique_ptr<GaussianTracer> unedited, edited;
+  EditCallbacks callbacks = printingCallbacks("glint edit");
+  callbacks.uneditedTracer = [&](const GaussianScene& scene) -> const GaussianTracer& {
+    unedited = makeGaussianTracer(kind);
+    unedited->build(scene, source.settings.trace);
+    return *unedited;
+  };
+  if (o.relight.on())
+    callbacks.editedTracer = [&](GaussianScene& scene) -> TracedScenePointers {
+      edited = makeGaussianTracer(kind);
+      edited->build(scene, source.settings.trace);
+      return {edited.get(), &scene};
+    };
+  EditConsequenceSettings settings{o.maxGaussians, o.heal.chosen(), o.relight.chosen(source.settings.path())};
+  applyEditDocument(document, source.scene, nullptr, settings, callbacks);
   writeGaussianPly(o.output, source.scene);
   std::fprintf(stderr, "glint edit: wrote %s (%zu Gaussians)\n", o.output.c_str(), source.scene.size());
 }
@@ -85,6 +85,7 @@ void addEditCommand(CLI::App& app) {
       ->check(CLI::Range(size_t(1), size_t(1) << 40))
       ->capture_default_str();
   addThreadsFlag(cmd, &o->threads);
+  addDeviceFlag(cmd, &o->device);
   o->relight.add(cmd);
   o->heal.add(cmd);
   cmd->callback([o]() { runEdit(*o); });

@@ -1,8 +1,5 @@
-// Declaring the --heal flags and healing the uncovered surface after an edit.
+// Declaring the --heal flags.
 #include "app/heal_flags.h"
-
-#include <chrono>
-#include <cstdio>
 
 namespace glint {
 
@@ -31,28 +28,6 @@ void HealFlags::add(CLI::App* cmd) {
                 "surface at the one offset where the texture around the hole repeats best, instead of giving the "
                 "hole the surrounding mean colour; a surface whose texture does not repeat gets the mean either way. "
                 "On by default");
-}
-
-HealReport healAfterEdit(const GaussianScene& before, GaussianScene& after, EditProvenance& provenance,
-                         const HealSettings& settings, std::string* line) {
-  auto started = std::chrono::steady_clock::now();
-  HealReport r = healUncovered(before, after, provenance, settings);
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  char recoloured[64] = "";
-  if (settings.recolourSpacings > 0)
-    std::snprintf(recoloured, sizeof recoloured, ", %zu around them recoloured", r.recoloured);
-  char texture[160] = "";
-  if (r.copied > 0)
-    std::snprintf(texture, sizeof texture, "; %zu continue the texture from %.3g away (correlation %.2f)", r.copied,
-                  double(length(r.textureOffset)), double(r.textureCorrelation));
-  char text[480];
-  std::snprintf(text, sizeof text,
-                "healed the uncovered surface: %zu Gaussians added at %zu points under %zu vacated ones%s%s (%zu support "
-                "Gaussians, spacing %.3g, ring coverage %.2f), %.2f s",
-                r.added, r.candidates, r.vacated, recoloured, texture, r.support, double(r.spacing),
-                double(r.ringCoverage), seconds);
-  *line = text;
-  return r;
 }
 
 }  // namespace glint

@@ -2,13 +2,11 @@
 // `view`): filling the surface a moved or removed object uncovered (edit/heal_uncovered.h).
 #pragma once
 
-#include <string>
+#include <optional>
 
 #include <CLI/CLI.hpp>
 
-#include "edit/gaussian_edits.h"
 #include "edit/heal_uncovered.h"
-#include "scene/gaussians.h"
 
 namespace glint {
 
@@ -18,6 +16,8 @@ class HealFlags {
   void add(CLI::App* cmd);
   bool on() const { return on_; }
   const HealSettings& settings() const { return settings_; }
+  // Those settings with --heal, none with --no-heal.
+  std::optional<HealSettings> chosen() const { return on_ ? std::optional<HealSettings>(settings_) : std::nullopt; }
 
  private:
   // On by default: on builtin:spheres, with relighting, it lowered the final-image drop of a
@@ -26,10 +26,5 @@ class HealFlags {
   bool on_ = true;
   HealSettings settings_;
 };
-
-// Heals the edited scene `after` (healUncovered), appending to it and to its provenance;
-// `line` receives what it did and how long it took.
-HealReport healAfterEdit(const GaussianScene& before, GaussianScene& after, EditProvenance& provenance,
-                         const HealSettings& settings, std::string* line);
 
 }  // namespace glint

@@ -1,10 +1,6 @@
-// Declaring the --relight flags and running differential relighting after an edit.
+// Declaring the --relight flags.
 #include "app/relight_flags.h"
 
-#include <chrono>
-#include <cstdio>
-
-#include "render/healed_lighting.h"
 
 namespace glint {
 
@@ -60,31 +56,6 @@ RelightSettings RelightFlags::settings(const PathSettings& path) const {
   s.path = path;  // the run's reflection settings
   s.path.bounces = bounces;
   return s;
-}
-
-std::string relightAfterEdit(const GaussianTracer& beforeTracer, const GaussianScene& before,
-                             const GaussianTracer& afterTracer, GaussianScene& after, const EditProvenance& provenance,
-                             const HealReport& healed, const RelightSettings& settings) {
-  const ChangedRegion regions[] = {changedRegionOf(before, provenance.movedOrRemoved()),
-                                   changedRegionOf(after, provenance.movedOrAdded())};
-  auto started = std::chrono::steady_clock::now();
-  // The healed Gaussians' light factors first: tracers may keep copies of the colours that
-  // relighting is about to change.
-  uint64_t healedRays = 0;
-  const std::vector<float> lit = healedLightFactors(afterTracer, after, healed, settings, &healedRays);
-  RelightReport r = relightDiffuse(beforeTracer, afterTracer, after, provenance.unmoved(), regions, settings);
-  r.rays += healedRays;
-  continueHealedColours(healed, after);
-  for (size_t k = 0; k < lit.size(); ++k) after.diffuse[healed.healed[k].index] *= lit[k];
-  double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
-  char traced[64] = "";
-  if (r.traced < r.reached) std::snprintf(traced, sizeof traced, ", %zu of them traced", r.traced);
-  char text[320];
-  std::snprintf(text, sizeof text,
-                "relit %zu of the %zu Gaussians left in place (%zu within reach of the edit%s, %zu at the ratio's "
-                "clamp; %zu light regions in the scene), %.2f M rays, %.2f s",
-                r.changed, r.receivers, r.reached, traced, r.clamped, r.lights, double(r.rays) * 1e-6, seconds);
-  return text;
 }
 
 }  // namespace glint

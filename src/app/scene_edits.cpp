@@ -4,7 +4,7 @@
 #include <cstdio>
 
 #include "edit/edit_file.h"
-#include "edit/gaussian_edits.h"
+#include "edit_effects/edit_consequences.h"
 #include "render/tracer_update.h"
 
 namespace glint {
@@ -33,32 +33,27 @@ std::unique_ptr<GaussianTracer> EditsFlag::prepareTracer(GaussianScene& scene, c
   }
   EditDocument document = readEditFile(path_);  // before any work: a bad file fails fast
   tracer->build(scene, settings);
-  // Relighting traces the unedited scene too: it keeps a copy with a tracer of its own.
-  GaussianScene unedited;
-  EditProvenance provenance;
-  const bool traced = relight_.on() || heal_.on();  // both need the unedited scene and the provenance
-  if (traced) unedited = scene, provenance = EditProvenance::identity(scene.size());
-  EditReport report = applyEdits(document, scene, maxGaussians_, traced ? &provenance : nullptr);
-  std::fprintf(stderr, "%s: edits from %s\n%s", command, path_.c_str(), formatEditReport(report).c_str());
-  HealReport healed;
-  if (heal_.on()) {  // before relighting, so that the filled surface is relit with the rest
-    std::string line;
-    healed = healAfterEdit(unedited, scene, provenance, heal_.settings(), &line);
-    std::fprintf(stderr, "%s: %s\n", command, line.c_str());
-  }
-  UpdatedTracer updated = updateTracerAfterEdit(std::move(tracer), scene, settings, kind,
-                                                report.countBefore == scene.size(), probeCamera, workRays);
-  std::fprintf(stderr, "%s: after the edits: %s\n", command, describeTracerUpdate(updated.times).c_str());
-  if (relight_.on()) {
-    std::unique_ptr<GaussianTracer> uneditedTracer = makeGaussianTracer(kind);
-    uneditedTracer->build(unedited, settings);
-    std::fprintf(stderr, "%s: %s\n", command,
-                 relightAfterEdit(*uneditedTracer, unedited, *updated.tracer, scene, provenance, healed,
-                                  relight_.settings(path))
-                     .c_str());
-    updated.tracer->refit();  // tracers may keep copies of the colours
-  }
-  return std::move(updated.tracer);
+  const size_t countBefore = scene.size();
+  std::fprintf(stderr, "%s: edits from %s\n", command, path_.c_str());
+  // The tracer of the unedited scene is refitted or rebuilt for the edited one; relighting
+  // builds another for the unedited scene.
+  std::unique_ptr<GaussianTracer> unedited, edited;
+  EditCallbacks callbacks = printingCallbacks(command);
+  callbacks.uneditedTracer = [&](const GaussianScene& before) -> const GaussianTracer& {
+    unedited = makeGaussianTracer(kind);
+    unedited->build(before, settings);
+    return *unedited;
+  };
+  callbacks.editedTracer = [&](GaussianScene& after) -> TracedScenePointers {
+    UpdatedTracer updated = updateTracerAfterEdit(std::move(tracer), after, settings, kind,
+                                                  countBefore == after.size(), probeCamera, workRays);
+    std::fprintf(stderr, "%s: after the edits: %s\n", command, describeTracerUpdate(updated.times).c_str());
+    edited = std::move(updated.tracer);
+    return {edited.get(), &after};
+  };
+  EditConsequenceSettings consequences{maxGaussians_, heal_.chosen(), relight_.chosen(path)};
+  applyEditDocument(document, scene, nullptr, consequences, callbacks);
+  return edited;
 }
 
 }  // namespace glint

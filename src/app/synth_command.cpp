@@ -45,7 +45,7 @@ struct SynthOptions {
   int threads = 0;
   bool force = false;
   std::string layout = "transforms";
-  int holdout = 8;
+  int holdout = Dataset::kDefaultHoldout;
   std::string degrade = "none";
   int points = 4000;
 };

@@ -327,7 +327,7 @@ HealReport healUncovered(const GaussianScene& before, GaussianScene& after, Edit
   // offset at which the seen texture around the hole repeats (edit/texture_offset.h): each
   // point copies the seen Gaussians at the point shifted by it. Elsewhere, and where that
   // finds no source, the hole takes the ring's mean. Either way relighting lights the copy
-  // where it stands (render/healed_lighting.h), not where its source stands.
+  // where it stands (edit_effects/healed_lighting.h), not where its source stands.
   HoleTexture texture;
   if (settings.continueTexture) {
     std::vector<SurfacePoint> hole;

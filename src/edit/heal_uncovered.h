@@ -49,7 +49,7 @@ struct HealSettings {
   // mirror_room pot move 27.25 / 26.79, deletion 26.45 / 25.62; spheres_room chrome sphere
   // move 32.26 / 32.67, deletion 30.79 / 30.88; builtin:spheres within 0.03. On, as the
   // larger gain (README, "Recolouring within two spacings"). Since the healed colours are lit
-  // where they stand (render/healed_lighting.h) the sphere's costs are 0.07 and none
+  // where they stand (edit_effects/healed_lighting.h) the sphere's costs are 0.07 and none
   // (32.77 / 32.84, 30.96 / 30.88), the pot's gains 0.48 and 0.84.
   float recolourSpacings = 2.0f;
   // Where the texture around the hole repeats elsewhere on its surface (edit/texture_offset.h),

@@ -1,6 +1,7 @@
 // Reading a JSON file with one error that names the file; floats written as their shortest decimal.
 #include "io/json_file.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <string>
@@ -31,15 +32,40 @@ void checkJsonNesting(std::string_view text, const std::string& fileName) {
   }
 }
 
-nlohmann::json readJsonFile(const std::filesystem::path& path) {
-  std::string text = readInputFile(path, kMaxJsonFileBytes);
-  checkJsonNesting(text, path.string());
+namespace {
+
+// nlohmann's messages start with "[json.exception.parse_error.101] "; drop that tag.
+std::string withoutExceptionTag(const std::string& what) {
+  if (!what.empty() && what.front() == '[') {
+    size_t close = what.find("] ");
+    if (close != std::string::npos) return what.substr(close + 2);
+  }
+  return what;
+}
+
+}  // namespace
+
+nlohmann::json parseJsonText(std::string_view text, const std::string& fileName) {
+  checkJsonNesting(text, fileName);
   try {
     return nlohmann::json::parse(text);
+  } catch (const nlohmann::json::parse_error& e) {
+    std::string message =
+        "is not valid JSON at byte " + std::to_string(e.byte) + ": " + withoutExceptionTag(e.what());
+    // Python's json module writes NaN and Infinity, which JSON does not allow.
+    size_t from = e.byte > 16 ? e.byte - 16 : 0;
+    std::string_view near = text.substr(std::min(from, text.size()), 32);
+    if (near.find("NaN") != std::string_view::npos || near.find("Infinity") != std::string_view::npos)
+      message += " (JSON has no NaN or Infinity: every number must be finite)";
+    throw Error(fileName, printableText(message, std::string::npos));  // quotes the bytes it stopped at
   } catch (const nlohmann::json::exception& e) {
-    // nlohmann quotes the bytes it stopped at, which need not be printable.
-    throw Error(path.string(), "is not valid JSON: " + printableText(e.what(), std::string::npos));
+    // For example out_of_range 406 for a number too large for a double (1e999).
+    throw Error(fileName, "is not valid JSON: " + withoutExceptionTag(e.what()) + " (every number must be finite)");
   }
+}
+
+nlohmann::json readJsonFile(const std::filesystem::path& path) {
+  return parseJsonText(readInputFile(path, kMaxJsonFileBytes), path.string());
 }
 
 double jsonNumber(float value) {

@@ -10,8 +10,15 @@
 
 namespace glint {
 
-// The parsed contents of `path`. Throws Error(path, "not found" / "is not valid JSON: ...").
+// The parsed contents of `path` (parseJsonText of the file). Throws Error naming the file
+// when it cannot be read or is not valid JSON.
 nlohmann::json readJsonFile(const std::filesystem::path& path);
+
+// `text` parsed, its nesting checked first (checkJsonNesting). Throws Error(fileName, "is not
+// valid JSON at byte N: ...") with nlohmann's message (its "[json.exception...]" tag
+// dropped, the bytes it quotes made printable), and a hint where Python's NaN or Infinity,
+// which JSON does not allow, stand near that byte.
+nlohmann::json parseJsonText(std::string_view text, const std::string& fileName);
 
 // nlohmann's parser recurses once per nesting level, so a file of 100,000 brackets would
 // overflow the stack: every parse of a file's text checks first that its arrays and objects

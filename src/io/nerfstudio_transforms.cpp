@@ -30,27 +30,6 @@ constexpr const char* kDistortionKeys[] = {"k1", "k2", "k3", "k4", "k5", "k6", "
 // Camera models whose projection is a pinhole's once the distortion keys are 0.
 constexpr const char* kPinholeModels[] = {"OPENCV", "PINHOLE", "SIMPLE_PINHOLE"};
 
-// nlohmann's messages start with "[json.exception.parse_error.101] "; drop that tag.
-std::string withoutExceptionTag(const std::string& what) {
-  if (!what.empty() && what.front() == '[') {
-    size_t close = what.find("] ");
-    if (close != std::string::npos) return what.substr(close + 2);
-  }
-  return what;
-}
-
-Json parseJsonText(const std::string& text, const std::string& fileName) {
-  checkJsonNesting(text, fileName);
-  try {
-    return Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    std::string message = "invalid JSON at byte " + std::to_string(e.byte) + ": " + withoutExceptionTag(e.what());
-    throw Error(fileName, printableText(message, std::string::npos));
-  } catch (const Json::exception& e) {
-    // For example a number too large for a double (1e999).
-    throw Error(fileName, "invalid JSON: " + withoutExceptionTag(e.what()) + " (every number must be finite)");
-  }
-}
 
 // Errors for one object: the file's top level (where = "") or frame i ("frame i: ").
 struct Place {

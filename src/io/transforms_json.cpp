@@ -30,15 +30,6 @@ constexpr double kOrthonormalTolerance = 1e-3;
 // black or one colour, so such a value is a unit mistake, not a camera.
 constexpr double kMinFieldOfView = 0.01 * std::numbers::pi / 180.0;
 
-// nlohmann's messages start with "[json.exception.parse_error.101] "; drop that tag.
-std::string withoutExceptionTag(const std::string& what) {
-  if (!what.empty() && what.front() == '[') {
-    size_t close = what.find("] ");
-    if (close != std::string::npos) return what.substr(close + 2);
-  }
-  return what;
-}
-
 bool endsWithNoCase(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
   return std::equal(suffix.rbegin(), suffix.rend(), s.rbegin(),
@@ -55,23 +46,6 @@ std::string normalizeFilePath(std::string path) {
   return path;
 }
 
-Json parseJsonText(const std::string& text, const std::string& fileName) {
-  checkJsonNesting(text, fileName);
-  try {
-    return Json::parse(text);
-  } catch (const Json::parse_error& e) {
-    std::string message = "invalid JSON at byte " + std::to_string(e.byte) + ": " + withoutExceptionTag(e.what());
-    // Python's json module writes NaN and Infinity, which JSON does not allow.
-    size_t from = e.byte > 16 ? e.byte - 16 : 0;
-    std::string near = text.substr(std::min(from, text.size()), 32);
-    if (near.find("NaN") != std::string::npos || near.find("Infinity") != std::string::npos)
-      message += " (JSON has no NaN or Infinity: every number must be finite)";
-    throw Error(fileName, printableText(message, std::string::npos));  // quotes the bytes it stopped at
-  } catch (const Json::exception& e) {
-    // For example out_of_range 406 for a number too large for a double (1e999).
-    throw Error(fileName, "invalid JSON: " + withoutExceptionTag(e.what()) + " (every number must be finite)");
-  }
-}
 
 Mat4 parseMatrix(const Json& value, const std::string& fileName, const std::string& where) {
   auto fail = [&](const std::string& problem) { throw Error(fileName, where + "transform_matrix " + problem); };

@@ -12,6 +12,7 @@
 #include <span>
 #include <vector>
 
+#include "math/frame.h"
 #include "math/vec.h"
 #include "raytrace/gaussian_tracer.h"
 #include "render/gaussian_path.h"
@@ -122,6 +123,15 @@ struct RadianceKeys {
   uint64_t seed = 0, receiver = 0, sequence = 0;
   uint32_t sample = 0;
 };
+
+// The ray relighting traces from a receiver at p (unit normal n) toward w: offset along n
+// and skipping back faces as the renderer's reflected segments do (path's settings).
+inline TraceRay radianceRay(const Vec3f& p, const Vec3f& n, const Vec3f& w, const PathSettings& path) {
+  return TraceRay{p + n * path.normalOffset, w, 0.0f, path.backfaceSkip};
+}
+
+// Direction k of the stratified stream `stream`, cosine-distributed about frame's normal.
+Vec3f cosineDirection(const Framef& frame, uint64_t stream, int k);
 
 // The radiance arriving at p (unit normal n) from direction w as relighting counts it: the
 // blended diffuse colour the ray meets, plus the light of path.bounces reflected segments

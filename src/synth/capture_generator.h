@@ -5,6 +5,7 @@
 
 #include <filesystem>
 
+#include "scene/dataset.h"
 #include "synth/dataset_generator.h"
 #include "synth/mesh_scene.h"
 
@@ -13,7 +14,7 @@ namespace glint {
 struct CaptureSynthSettings {
   // Every holdout-th view, from the first, is a test view of `glint train --holdout`
   // (LLFF's convention): those are rendered at SynthSettings::testSpp.
-  int holdout = 8;
+  int holdout = Dataset::kDefaultHoldout;
   bool networkLikePriors = false;  // priors through networkLikePriors (network_degradation.h)
   int sparsePoints = 4000;         // points3D: sampled from the training views' exact depth
 };

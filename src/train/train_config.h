@@ -85,7 +85,7 @@ inline constexpr float kMaxLearningRate = 10.0f;
 struct TrainConfig {
   std::string dataset;  // absolute path of the dataset
   // A capture without a split of its own: every holdout-th image is a test view (LLFF's 8).
-  int holdout = 8;
+  int holdout = Dataset::kDefaultHoldout;
   // Behind the NeRF-synthetic layout's transparent pixels (scene/nerf_synthetic.h).
   AlphaBackground background = AlphaBackground::White;
   int downscale = 1;  // every view at 1/N resolution (scene/downscale.h)

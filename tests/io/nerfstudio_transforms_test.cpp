@@ -120,7 +120,7 @@ const std::string kTwoFrames = frameJson("a") + ",";
 INSTANTIATE_TEST_SUITE_P(
     Mistakes, NerfstudioTransformsErrors,
     testing::Values(
-        BadFile{"Syntax", R"({"frames": [})", "invalid JSON at byte"},
+        BadFile{"Syntax", R"({"frames": [})", "is not valid JSON at byte"},
         BadFile{"Overflow", fileJson("", R"("w": 1e999)"), "must be finite"},
         BadFile{"NotAnObject", "[]", "must hold a JSON object"},
         BadFile{"MissingFrames", R"({"w": 4})", "frames is missing"},

@@ -80,7 +80,7 @@ TEST_P(TransformsJsonErrors, NameTheFileFrameAndKey) {
 INSTANTIATE_TEST_SUITE_P(
     Mistakes, TransformsJsonErrors,
     testing::Values(
-        BadFile{"Syntax", R"({"camera_angle_x": 0.7, "frames": [})", "invalid JSON at byte 36"},
+        BadFile{"Syntax", R"({"camera_angle_x": 0.7, "frames": [})", "is not valid JSON at byte 36"},
         BadFile{"NaN", fileJson(frameJson("r", "[[NaN,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")), "must be finite"},
         BadFile{"Overflow", fileJson(frameJson("r", "[[1e999,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
                 "must be finite"},

@@ -18,6 +18,8 @@
 #include "math/sampling.h"
 #include "render/brute_force_irradiance.h"
 #include "render/gaussian_layers.h"
+#include "render/relight_cones.h"
+#include "math/owen_sobol.h"
 
 namespace glint {
 namespace {
@@ -450,6 +452,111 @@ TEST(DifferentialRelight, ChangedRegionBoundsTheGaussiansWithThreeSigmas) {
   EXPECT_NEAR(r.centre.x, 0.0f, 1e-6f);
   EXPECT_NEAR(r.radius, 1.0f + 3 * 0.2f, 1e-5f);
   EXPECT_EQ(changedRegionOf(scene, {}).radius, 0.0f);
+}
+
+}  // namespace
+}  // namespace glint
+
+namespace glint {
+namespace {
+
+// E_after / E_before as the estimator reads, one receiver at a time and one ray at a time
+// (incomingRadiance, addCosineRadiance): the slow, plain reference of the batched tracing.
+Rgb oneReceiverRatio(const GaussianTracer& before, const GaussianTracer& after, const GaussianScene& scene,
+                     uint32_t g, std::span<const ChangedRegion> regions, std::span<const LightRegion> lights,
+                     const RelightSettings& s) {
+  Vec3f p, n;
+  RelightCone cones[kMaxRegions], lightCones[kMaxLights];
+  float solidAngle = 0;
+  const int coneCount = receiverCones(scene, g, regions, s, &p, &n, cones, &solidAngle);
+  if (coneCount == 0) return Rgb(1.0f);
+  const int lightCount = lightConesToward(p, n, lights, std::span<const RelightCone>(cones, size_t(coneCount)),
+                                          lightCones, kMaxLights);
+  PathSettings path = s.path;
+  path.minReflectance = s.minReflectance;
+  const int count =
+      std::clamp(int(std::ceil(float(s.rays) * solidAngle / kFullRaysSolidAngle)), s.minRays, s.rays);
+  const uint64_t stream = hashKeys({s.seed, g, 0});
+  uint64_t rays = 0;
+  Rgb changeSum(0.0f);
+  auto addChange = [&](int begin, int end) {
+    for (int k = begin; k < end; ++k) {
+      Vec2f u = stratifiedSample2(stream, uint32_t(k));
+      const bool towardLight = lightCount > 0 && u.x >= 0.5f;
+      if (lightCount > 0) u.x = towardLight ? 2.0f * u.x - 1.0f : 2.0f * u.x;
+      const Vec3f w = towardLight ? sampleConeMixture(lightCones, lightCount, u) : sampleConeMixture(cones, coneCount, u);
+      const float cosine = dot(n, w), regionPdf = coneMixturePdf(cones, coneCount, w);
+      if (cosine <= 0 || !(regionPdf > 0)) continue;
+      const float pdf = lightCount > 0 ? 0.5f * (regionPdf + coneMixturePdf(lightCones, lightCount, w)) : regionPdf;
+      Rgb difference = incomingRadiance(after, p, n, w, path, {s.seed, g, 0, uint32_t(k)}, &rays) -
+                       incomingRadiance(before, p, n, w, path, {s.seed, g, 0, uint32_t(k)}, &rays);
+      changeSum += difference * (cosine / pdf);
+    }
+  };
+  auto ratioOf = [&](const Rgb& irradiance, const Rgb& change) {
+    const float lumBefore = luminance(irradiance);
+    const float lumRatio = lumBefore > 1e-6f ? (lumBefore + luminance(change)) / lumBefore : 1.0f;
+    Rgb ratio;
+    for (int c = 0; c < 3; ++c) {
+      float r = irradiance[c] > 1e-6f ? (irradiance[c] + change[c]) / irradiance[c] : lumRatio;
+      ratio[c] = std::clamp(std::isfinite(r) ? r : 1.0f, 1.0f / s.maxRatio, s.maxRatio);
+    }
+    return ratio;
+  };
+  addChange(0, count);
+  Rgb change = changeSum * (1.0f / float(count));
+  if (change == Rgb(0.0f)) return Rgb(1.0f);
+  const uint64_t hemisphere = hashKeys({s.seed, g, 1});
+  Rgb sum(0.0f);
+  const int quick = std::min(s.quickRays, s.hemisphereRays);
+  addCosineRadiance(before, p, n, path, hemisphere, {s.seed, g, 1, 0}, 0, quick, &sum, &rays);
+  if (std::max({std::abs(change.x), std::abs(change.y), std::abs(change.z)}) <
+      s.minRelativeChange * luminance(sum * (kPi / float(quick))))
+    return Rgb(1.0f);
+  addCosineRadiance(before, p, n, path, hemisphere, {s.seed, g, 1, 0}, quick, s.hemisphereRays, &sum, &rays);
+  Rgb ratio = ratioOf(sum * (kPi / float(s.hemisphereRays)), change);
+  const float lumRatio = luminance(ratio);
+  if (s.refineFactor > 1 && (lumRatio > s.refineBeyond || lumRatio * s.refineBeyond < 1)) {
+    addChange(count, count * s.refineFactor);
+    addCosineRadiance(before, p, n, path, hemisphere, {s.seed, g, 1, 0}, s.hemisphereRays,
+                      s.hemisphereRays * s.refineFactor, &sum, &rays);
+    ratio = ratioOf(sum * (kPi / float(s.hemisphereRays * s.refineFactor)), changeSum * (1.0f / float(count * s.refineFactor)));
+  }
+  return ratio;
+}
+
+// The batched tracing (every receiver's rays of a step in one wavefront) gives, bit for bit,
+// the ratios of tracing one receiver and one ray at a time: the same rays, keys and sums in
+// the same order. Over the plate's deletion and a lamp it shades (light cones, refinement).
+TEST(DifferentialRelight, BatchedRatiosAreThoseOfOneReceiverAtATime) {
+  for (bool lamp : {false, true}) {
+    GaussianScene beforeScene, afterScene;
+    std::vector<uint32_t> receivers, changed;
+    if (lamp) {
+      LampRoom before = lampRoom(false), after = lampRoom(true);
+      beforeScene = before.scene, afterScene = after.scene, receivers = after.floor, changed = after.plate;
+    } else {
+      auto [before, after] = deletedPlate();
+      beforeScene = before.scene, afterScene = after.scene, receivers = after.floor, changed = before.plate;
+    }
+    std::unique_ptr<GaussianTracer> beforeTracer = tracerOf(beforeScene), afterTracer = tracerOf(afterScene);
+    const ChangedRegion regions[] = {changedRegionOf(lamp ? afterScene : beforeScene, changed)};
+    RelightSettings settings;
+    settings.filterRadius = 0;  // the filter mixes receivers: compared apart from it
+    settings.setRays(16);
+    settings.seed = 7;
+    const std::vector<Rgb> batched = relightRatios(*beforeTracer, *afterTracer, afterScene, receivers, regions, settings);
+    const std::vector<LightRegion> lights = lightRegionsOf(afterScene, settings.lights);
+    size_t differing = 0, notOne = 0;
+    for (size_t i = 0; i < receivers.size(); ++i) {
+      const Rgb reference =
+          oneReceiverRatio(*beforeTracer, *afterTracer, afterScene, receivers[i], regions, lights, settings);
+      differing += !(batched[i] == reference);
+      notOne += !(reference == Rgb(1.0f));
+    }
+    EXPECT_EQ(differing, 0u) << (lamp ? "lamp" : "deleted plate");
+    EXPECT_GT(notOne, receivers.size() / 10) << "the edit should change many receivers";
+  }
 }
 
 }  // namespace

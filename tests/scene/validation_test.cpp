@@ -95,7 +95,7 @@ const Malformed kMalformed[] = {
        std::string text = readTextFile(r / "transforms_train.json");
        writeTextAtomically(r / "transforms_train.json", text.substr(0, text.rfind('}')));
      },
-     "transforms_train.json", "invalid JSON at byte", RejectedBy::Open},
+     "transforms_train.json", "is not valid JSON at byte", RejectedBy::Open},
     {"MissingCameraAngle",
      [](const fs::path& r) { editJson(r / "transforms_train.json", [](Json& j) { j.erase("camera_angle_x"); }); },
      "transforms_train.json", "camera_angle_x is missing", RejectedBy::Open},

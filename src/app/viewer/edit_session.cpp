@@ -7,13 +7,13 @@
 #include <atomic>
 #include <optional>
 
-#include "app/relight_flags.h"
 #include "app/viewer/request_json.h"
 #include "core/error.h"
 #include "edit/edit_file.h"
 #include "edit/gaussian_edits.h"
 #include "edit/gaussian_selection.h"
 #include "edit/shape.h"
+#include "edit_effects/edit_consequences.h"
 #include "scene/gaussian_ply.h"
 
 namespace glint {
@@ -102,42 +102,38 @@ void EditSession::update(const TracerUpdateContext& context) {
   relightCancel_ = std::make_shared<std::atomic<bool>>(false);  // the previous edit's is set
   // Applied to a copy first: an operation that cannot apply throws before anything shown changes.
   GaussianScene edited = *pristine_;
-  EditProvenance provenance;
-  const bool traced = relight_ || heal_;  // both need the provenance
-  if (traced) provenance = EditProvenance::identity(edited.size());
-  applyEdits(documentOfSteps(), edited, maxGaussians_, traced ? &provenance : nullptr);
-  HealReport healed;  // before relighting, so that the filled surface is relit with the rest
-  if (heal_) healed = healUncovered(*pristine_, edited, provenance, *heal_);
-  lastHealed_ = healed.added;
-
-  // A refit needs the shown tracer and its scene object to ourselves: the render thread lets
-  // go of them; a request that took them through current() just before still holds them.
-  std::unique_ptr<GaussianTracer> previous;
-  noRefitReason_ = "the Gaussian count changed";
-  if (edited.size() == shownScene_->size()) {
-    noRefitReason_ = "the shown scene was in use";
-    previous = takeShownTracer(context);
-  }
-  if (previous)
-    *shownScene_ = std::move(edited);  // the same object, which the previous tracer references
-  else
-    shownScene_ = std::make_shared<GaussianScene>(std::move(edited));
-  bool refitPossible = previous != nullptr;
-  UpdatedTracer updated = updateTracerAfterEdit(std::move(previous), *shownScene_, trace_, viewerTracer(),
-                                                refitPossible, context.probeCamera, context.workRays);
+  UpdatedTracer updated;
+  EditCallbacks callbacks;
+  callbacks.uneditedTracer = [this](const GaussianScene&) -> const GaussianTracer& { return pristineTracer(); };
+  callbacks.editedTracer = [&](GaussianScene& scene) -> TracedScenePointers {
+    // A refit needs the shown tracer and its scene object to ourselves: the render thread
+    // lets go of them; a request that took them through current() just before still holds them.
+    std::unique_ptr<GaussianTracer> previous;
+    noRefitReason_ = "the Gaussian count changed";
+    if (scene.size() == shownScene_->size()) {
+      noRefitReason_ = "the shown scene was in use";
+      previous = takeShownTracer(context);
+    }
+    if (previous)
+      *shownScene_ = std::move(scene);  // the same object, which the previous tracer references
+    else
+      shownScene_ = std::make_shared<GaussianScene>(std::move(scene));
+    bool refitPossible = previous != nullptr;
+    updated = updateTracerAfterEdit(std::move(previous), *shownScene_, trace_, viewerTracer(), refitPossible,
+                                    context.probeCamera, context.workRays);
+    return {updated.tracer.get(), shownScene_.get()};
+  };
+  EditConsequenceSettings settings{maxGaussians_, heal_, relight_, deferRelighting_};
+  EditOutcome outcome = applyEditDocument(documentOfSteps(), edited, pristine_.get(), settings, callbacks);
+  lastHealed_ = outcome.healedCount;
   pending_.reset();
-  // An edit that moves, adds and removes nothing (a material edit) has no changed region to
-  // relight around: relighting traces no ray, so it is done at once rather than deferred.
-  const bool movesSomething = !provenance.movedOrAdded().empty() || !provenance.movedOrRemoved().empty();
-  if (relight_ && deferRelighting_ && movesSomething) {
-    pending_ = PendingRelight{std::move(provenance), std::move(healed), nullptr};
+  if (outcome.pending) {
+    pending_ = PendingRelight{std::move(*outcome.pending), nullptr};
     lastRelight_ = "waiting";
     lastRelightSeconds_ = 0;
   } else if (relight_) {
-    auto started = std::chrono::steady_clock::now();
-    relightColours(*updated.tracer, *shownScene_, provenance, healed, *relight_);
-    updated.tracer->refit();  // tracers may keep copies of the colours
-    lastRelightSeconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    lastRelight_ = outcome.relightLine;
+    lastRelightSeconds_ = outcome.relightSeconds;
   }
   show(std::move(updated.tracer));
   lastUpdate_ = updated.times;
@@ -167,12 +163,6 @@ const GaussianTracer& EditSession::pristineTracer() {
   return *pristineTracer_;
 }
 
-void EditSession::relightColours(const GaussianTracer& editedTracer, GaussianScene& edited,
-                                 const EditProvenance& provenance, const HealReport& healed,
-                                 const RelightSettings& settings) {
-  lastRelight_ = relightAfterEdit(pristineTracer(), *pristine_, editedTracer, edited, provenance, healed, settings);
-}
-
 std::unique_lock<std::mutex> EditSession::lockForEdit() {
   std::unique_lock lock(mutex_);
   relightCancel_->store(true);  // a deferred relighting still running is stale from now on
@@ -186,8 +176,7 @@ std::optional<EditSession::DeferredRelight> EditSession::startDeferred(std::uniq
   DeferredRelight job;
   job.stale = relightCancel_;  // this edit's flag: set by the next edit request
   job.unrelit = pending_->unrelit ? pending_->unrelit : current_;
-  job.provenance = pending_->provenance;
-  job.healed = pending_->healed;
+  job.inputs = pending_->inputs;
   job.started = std::chrono::steady_clock::now();
   const GaussianTracer& pristine = pristineTracer();  // built under the lock, read-only after
   RelightSettings cancellable = settings;
@@ -198,8 +187,7 @@ std::optional<EditSession::DeferredRelight> EditSession::startDeferred(std::uniq
   lock.unlock();
   GaussianScene relit = *job.unrelit->scene;
   try {
-    job.line = relightAfterEdit(pristine, *pristine_, *job.unrelit->tracer, relit, job.provenance, job.healed,
-                                cancellable);
+    job.line = relightEdit(pristine, *pristine_, *job.unrelit->tracer, relit, job.inputs, cancellable);
   } catch (const RelightCancelled&) {
     lock.lock();
     return std::nullopt;  // a newer edit's status stands

@@ -21,6 +21,7 @@
 #include "app/viewer/progressive_renderer.h"
 #include "edit/edit_document.h"
 #include "edit/heal_uncovered.h"
+#include "edit_effects/edit_consequences.h"
 #include "raytrace/trace_settings.h"
 #include "render/differential_relight.h"
 #include "render/tracer_update.h"
@@ -40,7 +41,7 @@ struct TracerUpdateContext {
 class EditSession {
  public:
   // maxGaussians: the most Gaussians an edit may leave (gaussian_edits.h). With relight,
-  // every edit is followed by differential relighting (app/relight_flags.h) against the
+  // every edit is followed by differential relighting (edit_effects/edit_consequences.h) against the
   // pristine scene, whose tracer is built at the first edit. With heal, the surface an edit
   // uncovered is filled first (edit/heal_uncovered.h). With deferRelighting, apply, undo
   // and redo show an edit that moves, adds or removes Gaussians at once without relighting
@@ -124,10 +125,6 @@ class EditSession {
   void show(std::unique_ptr<GaussianTracer> tracer);
   // The pristine scene's tracer, built at the first call (mutex_ held); read-only after.
   const GaussianTracer& pristineTracer();
-  // Relights `edited` (traced by editedTracer) against the pristine scene and gives healed
-  // Gaussians their relit surroundings' colour (mutex_ held).
-  void relightColours(const GaussianTracer& editedTracer, GaussianScene& edited, const EditProvenance& provenance,
-                      const HealReport& healed, const RelightSettings& settings);
 
   mutable std::mutex mutex_;
   std::shared_ptr<const GaussianScene> pristine_;
@@ -147,8 +144,7 @@ class EditSession {
   // What a deferred relighting needs of the last update: which Gaussians the edit moved,
   // added or removed, and what healing added (its colours follow the relit surroundings).
   struct PendingRelight {
-    EditProvenance provenance;
-    HealReport healed;
+    RelightInputs inputs;
     // The edited scene with its colours not yet relit, while a preview is shown instead.
     std::shared_ptr<const TracedScene> unrelit;
   };
@@ -163,10 +159,9 @@ class EditSession {
   struct DeferredRelight {
     std::shared_ptr<std::atomic<bool>> stale;  // its edit's flag (relightCancel_)
     std::shared_ptr<const TracedScene> unrelit;
-    EditProvenance provenance;
-    HealReport healed;
+    RelightInputs inputs;
     std::chrono::steady_clock::time_point started;
-    std::string line;      // what relightAfterEdit did
+    std::string line;      // what relightEdit did
     GaussianScene relit;   // the unrelit scene with its relit colours
   };
   // Relights the pending edit's unrelit scene with `settings`, tracing with `lock` released;

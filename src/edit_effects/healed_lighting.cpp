@@ -1,6 +1,6 @@
 // The healed Gaussians' light factors: shared cosine-distributed directions from each healed
 // Gaussian and each of its ring neighbours, traced through the edited scene.
-#include "render/healed_lighting.h"
+#include "edit_effects/healed_lighting.h"
 
 #include <algorithm>
 #include <atomic>

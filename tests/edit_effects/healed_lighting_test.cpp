@@ -1,7 +1,7 @@
 // The healed Gaussians' light factors against brute-force irradiance: a healed floor under an
 // occluder takes the occluder's shadow, one lit like its ring keeps the ring's colour, and no
 // factor is non-finite or beyond the clamp.
-#include "render/healed_lighting.h"
+#include "edit_effects/healed_lighting.h"
 
 #include <gtest/gtest.h>
 
