@@ -10,6 +10,7 @@
 #include "core/parallel.h"
 #include "math/rng.h"
 #include "math/sampling.h"
+#include "render/radiance_batch.h"
 
 namespace glint {
 
@@ -36,20 +37,30 @@ std::vector<float> healedLightFactors(const GaussianTracer& after, const Gaussia
   const uint64_t stream = hashKeys({settings.seed, 2});  // one stream for every point: shared directions
   constexpr float kNoNormal = -1.0f;
   std::vector<float> irradiance(points.size(), kNoNormal);
-  std::atomic<uint64_t> traced = 0;
+  uint64_t traced = 0;
   auto cancelled = [&] { return settings.cancel && settings.cancel->load(std::memory_order_relaxed); };
-  parallelFor(int64_t(points.size()), 4, [&](int64_t i) {
-    if (cancelled()) return;
-    const uint32_t g = points[size_t(i)];
-    const float normalLength = length(afterScene.normal[g]);
-    if (!(normalLength >= settings.minNormalLength)) return;
-    const Vec3f n = afterScene.normal[g] / normalLength, p = afterScene.position[g];
-    Rgb sum(0.0f);
-    uint64_t segments = 0;
-    addCosineRadiance(after, p, n, path, stream, {settings.seed, 0, 2, 0}, 0, count, &sum, &segments);
-    irradiance[size_t(i)] = luminance(sum) * (kPi / float(count));
-    traced.fetch_add(segments, std::memory_order_relaxed);
-  });
+  // The points' rays traced as batches (a few hundred points' rays at once bound the memory).
+  constexpr size_t kBatchPoints = 256;
+  RadianceBatch batch;
+  for (size_t first = 0; first < points.size() && !cancelled(); first += kBatchPoints) {
+    const size_t pointCount = std::min(kBatchPoints, points.size() - first);
+    batch.gather(pointCount, [&](size_t k, std::vector<PendingRay>* out) {
+      const uint32_t g = points[first + k];
+      const float normalLength = length(afterScene.normal[g]);
+      if (!(normalLength >= settings.minNormalLength)) return;
+      const Vec3f n = afterScene.normal[g] / normalLength, p = afterScene.position[g];
+      const Framef frame = Framef::fromNormal(n);
+      for (int j = 0; j < count; ++j)
+        out->push_back({radianceRay(p, n, cosineDirection(frame, stream, j), path), PathKey{0, 2, uint64_t(j)}, 1.0f});
+    });
+    batch.trace(after, settings.seed, path, 0);
+    for (size_t k = 0; k < pointCount; ++k) {
+      if (batch.begin(k) == batch.end(k)) continue;  // no normal
+      Rgb sum(0.0f);
+      for (size_t j = batch.begin(k); j < batch.end(k); ++j) sum += batch.radiance(j, 0), traced += uint64_t(batch.segments(j, 0));
+      irradiance[first + k] = luminance(sum) * (kPi / float(count));
+    }
+  }
   if (cancelled()) throw RelightCancelled();
   if (rays) *rays += traced;
 

@@ -77,11 +77,12 @@ void PathBatch::trace(const GaussianTracer& tracer, std::span<const TraceRay> pr
   for (int k = 0;; ++k) {
     const size_t m = active_.size();
     results_.resize(m);
-    if (record) {
+    const bool recordHits = record && (k == 0 || !firstSegmentHitsOnly_);
+    if (recordHits) {
       if (hits_.size() < m) hits_.resize(m);
       for (size_t j = 0; j < m; ++j) hits_[j].capacity = settings.hitListCapacity;
     }
-    tracer.traceBatch(rays_, results_, record ? std::span<HitList>(hits_.data(), m) : std::span<HitList>(),
+    tracer.traceBatch(rays_, results_, recordHits ? std::span<HitList>(hits_.data(), m) : std::span<HitList>(),
                       k == 0 ? settings.primaryCoherence : RayCoherence::Scattered);
     // Each path takes its segment's light (and record); then the ones that go on draw
     // their next segment. Paths are independent, so the loop is parallel.
@@ -105,7 +106,10 @@ void PathBatch::trace(const GaussianTracer& tracer, std::span<const TraceRay> pr
           s.ray = rays_[size_t(j)];
           s.throughput = throughput_[size_t(j)];
           s.result = r;
-          std::swap(s.hits, hits_[size_t(j)]);  // the segment's list; its old memory serves the next level
+          if (recordHits)
+            std::swap(s.hits, hits_[size_t(j)]);  // the segment's list; its old memory serves the next level
+          else
+            s.hits.clear();
           counts_[i] = uint8_t(k + 1);
         }
         if (k == bounces) continue;

@@ -60,6 +60,10 @@ class PathBatch {
 
   void trace(const GaussianTracer& tracer, std::span<const TraceRay> primaries, std::span<const PathKey> keys,
              uint64_t seed, const PathSettings& settings, std::span<PathResult> results, bool record);
+  // With `record`, keep the hit lists of the first segments only (the later segments are
+  // recorded with empty lists): what the SH bake needs, without the memory traffic of every
+  // reflected segment's hits. Off by default (training replays every segment).
+  void setFirstSegmentHitsOnly(bool only) { firstSegmentHitsOnly_ = only; }
   // The recorded segments of path i of the last trace with `record`.
   std::span<const PathSegment> path(size_t i) const { return {&segments_[i * stride_], counts_[i]}; }
   // Bytes held (scratch and records, hit lists included), for benchmarks.
@@ -91,6 +95,7 @@ class PathBatch {
   size_t stride_ = 1;
   std::vector<PathSegment> segments_;
   std::vector<uint8_t> counts_;
+  bool firstSegmentHitsOnly_ = false;
 };
 
 // Specular = sum over the reflected segments k >= 1 of throughput_k x blended diffuse_k

@@ -10,6 +10,7 @@
 #include "math/owen_sobol.h"
 #include "math/rng.h"
 #include "render/gaussian_path.h"
+#include "render/radiance_batch.h"
 #include "render/relight_cones.h"
 
 namespace glint {
@@ -43,7 +44,6 @@ struct Receiver {
   bool clamped = false;
   bool active = true;     // still in play
   uint64_t rays = 0;
-  size_t begin = 0, end = 0;  // its rays in the current batch
 };
 
 // E_after / E_before per channel from E_before and the change, clamped.
@@ -63,48 +63,6 @@ Rgb irradianceRatio(const Rgb& before, const Rgb& change, float maxRatio, bool* 
   }
   return ratio;
 }
-
-// One ray of a batch: its path key and the weight its radiance takes in its receiver's sum.
-struct PendingRay {
-  TraceRay ray;
-  PathKey key;
-  float weight = 1;
-};
-
-// The rays of one step from every receiver in play, traced through one scene or two.
-class RayBatch {
- public:
-  // Gathers each receiver's rays (made in parallel by `make`, appended in receiver order).
-  template <typename Make>
-  void gather(std::vector<Receiver>& receivers, Make&& make) {
-    std::vector<std::vector<PendingRay>> made(receivers.size());
-    parallelFor(int64_t(receivers.size()), 16, [&](int64_t i) {
-      if (receivers[size_t(i)].active) make(receivers[size_t(i)], &made[size_t(i)]);
-    });
-    rays_.clear(), keys_.clear(), weights_.clear();
-    for (size_t i = 0; i < receivers.size(); ++i) {
-      receivers[i].begin = rays_.size();
-      for (const PendingRay& r : made[i]) rays_.push_back(r.ray), keys_.push_back(r.key), weights_.push_back(r.weight);
-      receivers[i].end = rays_.size();
-    }
-  }
-  // Traces the gathered rays through `tracer` into results set `which` (0 or 1).
-  void trace(const GaussianTracer& tracer, uint64_t seed, const PathSettings& path, int which) {
-    results_[which].resize(rays_.size());
-    batch_.trace(tracer, rays_, keys_, seed, path, results_[which], /*record=*/false);
-  }
-  // The radiance ray i brought in results set `which`, as incomingRadiance counts it.
-  Rgb radiance(size_t i, int which) const { return results_[which][i].first.diffuse + results_[which][i].specular; }
-  int segments(size_t i, int which) const { return results_[which][i].segments; }
-  float weight(size_t i) const { return weights_[i]; }
-
- private:
-  std::vector<TraceRay> rays_;
-  std::vector<PathKey> keys_;
-  std::vector<float> weights_;
-  std::vector<PathResult> results_[2];
-  PathBatch batch_;
-};
 
 // Change rays begin..end-1 of receiver r: by one-sample MIS over its cones (a changed
 // region's cone picked uniformly, or, where a light region shares its directions, half of
@@ -149,14 +107,15 @@ class RatioSteps {
 
   // dE over change rays begin..end-1 (or up to each receiver's count x factor).
   void addChange(std::vector<Receiver>& receivers, int factorBegin, int factorEnd) {
-    batch_.gather(receivers, [&](const Receiver& r, std::vector<PendingRay>* out) {
-      makeChangeRays(r, r.count * factorBegin, r.count * factorEnd, path_, out);
+    batch_.gather(receivers.size(), [&](size_t k, std::vector<PendingRay>* out) {
+      const Receiver& r = receivers[k];
+      if (r.active) makeChangeRays(r, r.count * factorBegin, r.count * factorEnd, path_, out);
     });
     batch_.trace(after_, settings_.seed, path_, 0);
     batch_.trace(before_, settings_.seed, path_, 1);
     parallelFor(int64_t(receivers.size()), 64, [&](int64_t i) {
       Receiver& r = receivers[size_t(i)];
-      for (size_t j = r.begin; j < r.end; ++j) {
+      for (size_t j = batch_.begin(size_t(i)); j < batch_.end(size_t(i)); ++j) {
         Rgb difference = batch_.radiance(j, 0) - batch_.radiance(j, 1);
         r.changeSum += difference * batch_.weight(j);
         r.rays += uint64_t(batch_.segments(j, 0) + batch_.segments(j, 1));
@@ -166,13 +125,13 @@ class RatioSteps {
 
   // E_before's cosine-weighted sum over hemisphere rays begin..end-1.
   void addHemisphere(std::vector<Receiver>& receivers, int begin, int end) {
-    batch_.gather(receivers, [&](const Receiver& r, std::vector<PendingRay>* out) {
-      makeHemisphereRays(r, begin, end, path_, out);
+    batch_.gather(receivers.size(), [&](size_t k, std::vector<PendingRay>* out) {
+      if (receivers[k].active) makeHemisphereRays(receivers[k], begin, end, path_, out);
     });
     batch_.trace(before_, settings_.seed, path_, 1);
     parallelFor(int64_t(receivers.size()), 64, [&](int64_t i) {
       Receiver& r = receivers[size_t(i)];
-      for (size_t j = r.begin; j < r.end; ++j) {
+      for (size_t j = batch_.begin(size_t(i)); j < batch_.end(size_t(i)); ++j) {
         r.sum += batch_.radiance(j, 1);
         r.rays += uint64_t(batch_.segments(j, 1));
       }
@@ -186,7 +145,7 @@ class RatioSteps {
   const GaussianTracer& after_;
   const RelightSettings& settings_;
   PathSettings path_;
-  RayBatch batch_;
+  RadianceBatch batch_;
 };
 
 // Each receiver's place, cones, light cones, ray count and random streams.

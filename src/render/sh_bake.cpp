@@ -82,36 +82,61 @@ SplatColour bakeReflections(const GaussianScene& scene, const GaussianTracer& tr
   for (const Camera& camera : s.cameras) worldToCamera.push_back(camera.cameraToWorld.inverse());
 
   ProgressBar progress("bake reflections", int64_t(n), "Gaussians");
-  parallelForChunks(int64_t(n), 16, [&](int64_t begin, int64_t end) {
-    std::vector<PathSegment> segments;
-    std::vector<Vec3d> rest(colour.restCount());
-    for (int64_t g = begin; g < end; ++g) {
-      const size_t i = size_t(g);
-      const Vec3f mean = scene.position[i];
+  // The rays through a few hundred Gaussians at a time go through the renderer's wavefront
+  // (so a GPU tracer receives them whole), with their first segment's hits recorded (a
+  // Gaussian's blending weight on each): a bounded batch, since every recorded ray keeps its
+  // hit list. The same SH, bit for bit, as tracing each Gaussian's paths one by one; on 2 CPU
+  // threads 4-7% slower than that (12.1-12.5 s against 11.5-12.0 s on a 49k-Gaussian run,
+  // 25 MB more; 1024 Gaussians a batch was no faster and took 120 MB more).
+  constexpr size_t kBatchGaussians = 256;
+  PathBatch batch;
+  batch.setFirstSegmentHitsOnly(true);
+  std::vector<TraceRay> rays;
+  std::vector<PathKey> keys;
+  std::vector<PathResult> results;
+  std::vector<std::vector<Vec3f>> directions(kBatchGaussians);
+  std::vector<size_t> begins(kBatchGaussians + 1);
+  for (size_t first = 0; first < n; first += kBatchGaussians) {
+    const size_t count = std::min(kBatchGaussians, n - first);
+    parallelFor(int64_t(count), 1, [&](int64_t k) {
+      directions[size_t(k)] = sampleDirections(scene.position[first + size_t(k)], first + size_t(k), s, worldToCamera);
+    });
+    rays.clear(), keys.clear();
+    for (size_t k = 0; k < count; ++k) {
+      const size_t i = first + k;
       const Vec3f sigma = scene.scale(i);
       const float start = kStartSigmas * std::max({sigma.x, sigma.y, sigma.z}) + 1e-4f;
+      begins[k] = rays.size();
+      for (size_t d = 0; d < directions[k].size(); ++d) {
+        rays.push_back(TraceRay{scene.position[i] - directions[k][d] * start, directions[k][d]});
+        keys.push_back(PathKey{i, d, 0});
+      }
+    }
+    begins[count] = rays.size();
+    results.resize(rays.size());
+    batch.trace(tracer, rays, keys, s.seed, s.path, results, /*record=*/true);
+    parallelFor(int64_t(count), 1, [&](int64_t kk) {
+      const size_t k = size_t(kk), i = first + k;
       ShFit fit(s.degree);
-      const std::vector<Vec3f> directions = sampleDirections(mean, i, s, worldToCamera);
-      for (size_t k = 0; k < directions.size(); ++k) {
-        const Vec3f d = directions[k];
-        const TraceRay ray{mean - d * start, d};
-        const PathResult path = tracePath(tracer, ray, s.path, s.seed, /*view=*/i, /*pixel=*/k, 0, &segments);
+      for (size_t j = begins[k]; j < begins[k + 1]; ++j) {
+        const PathResult& path = results[j];
         const float coverage = 1.0f - path.first.transmittance;
-        const float w = blendingWeight(segments[0].hits, uint32_t(i));
+        const float w = blendingWeight(batch.path(j)[0].hits, uint32_t(i));
         if (coverage < kMinCoverage || !(w > 0)) continue;
         const Rgb display = tonemapFilmic((path.first.diffuse + path.specular) * s.exposure) / coverage;
-        fit.add(Vec3d(d), Vec3d(display), double(w));
+        fit.add(Vec3d(rays[j].direction), Vec3d(display), double(w));
       }
+      std::vector<Vec3d> rest(colour.restCount());
       Vec3d constant;
       if (!fit.solve(s.ridge, &constant, rest.data())) {
         colour.base[i] = tonemapFilmic(scene.diffuse[i] * s.exposure);  // never seen: no data to fit
-        continue;
+        return;
       }
       colour.base[i] = Rgb(constant);
-      for (size_t k = 0; k < rest.size(); ++k) colour.sh[i * colour.restCount() + k] = Rgb(rest[k]);
-    }
-    progress.advance(end - begin);
-  });
+      for (size_t r = 0; r < rest.size(); ++r) colour.sh[i * colour.restCount() + r] = Rgb(rest[r]);
+    });
+    progress.advance(int64_t(count));
+  }
   progress.finish();
   return colour;
 }
