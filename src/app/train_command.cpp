@@ -146,7 +146,7 @@ class TrainPrinter : public TrainingObserver {
   void started(const Trainer& trainer, const Dataset& dataset, const TrainingViews& views) override {
     // The viewer gets a copy of the scene every viewEvery seconds, taken between steps, and
     // builds its tracer on its own thread: the loop pays only for the copy.
-    if (o_.view && cluster::isRoot()) {
+    if (o_.view && run_.writes()) {
       ViewerOptions options = makeViewerOptions(o_.viewer, std::optional<Dataset>(dataset), trainer.scene(),
                                                 run_.root());
       options.editable = false;
@@ -250,11 +250,10 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
   const bool folderExisted = fs::exists(run.root());
   if (o.session.resume && !run.hasConfig())
     throw Error(run.root().string(), "has no config.json: not a training run to resume");
-  if (!o.session.resume && cluster::isRoot()) run.checkCanCreate(o.force);  // before the lock file goes in
+  if (!o.session.resume) run.checkCanCreate(o.force);  // before the lock file goes in
   // One writer per run folder: a second `train` (or a viewer saving into it) is refused with
-  // the holder's PID. In an MPI job rank 0 alone writes, so it alone locks.
-  std::optional<FolderLock> lock;
-  if (cluster::isRoot()) lock.emplace(run.root(), "glint train");
+  // the holder's PID. In an MPI job the rank that writes alone locks.
+  std::unique_ptr<FolderLock> lock = run.lockForWriting("glint train");
   TrainConfig config;
   if (o.session.resume) {
     if (!run.hasConfig()) throw Error(run.root().string(), "has no config.json: not a training run to resume");
@@ -281,12 +280,11 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
     if (run.isUnfinishedStart())
       std::fprintf(stderr, "glint train: %s holds a start that never saved a checkpoint; starting afresh (its "
                    "config.json and log.csv are replaced)\n", run.root().string().c_str());
-    // In an MPI job rank 0 alone writes the run folder; the other ranks only read the dataset.
-    if (cluster::isRoot()) run.create(config, o.force);
-    undoFailedStart = undoFailedStart && cluster::isRoot();
+    run.create(config, o.force);  // by the rank that writes; the others only read the dataset
+    undoFailedStart = undoFailedStart && run.writes();
   }
 
-  if (cluster::isRoot()) printSettings(config, run);
+  if (run.writes()) printSettings(config, run);
   TrainPrinter printer(o, config, run);
   TrainingOutcome outcome;
   try {

@@ -2,6 +2,7 @@
 #include "train/run_folder.h"
 
 #include "core/atomic_file.h"
+#include "core/cluster.h"
 #include "core/error.h"
 #include "core/folder_lock.h"
 
@@ -11,7 +12,20 @@ namespace fs = std::filesystem;
 
 TrainConfig RunFolder::readConfig() const { return readTrainConfig(configFile()); }
 
+bool RunFolder::writes() const { return cluster::isRoot(); }
+
+std::unique_ptr<FolderLock> RunFolder::lockForWriting(const std::string& holder) const {
+  return writes() ? std::make_unique<FolderLock>(root_, holder) : nullptr;
+}
+
+std::ofstream RunFolder::openLog() const {
+  std::ofstream log;
+  if (writes()) log.open(logFile(), std::ios::app);
+  return log;
+}
+
 void RunFolder::checkCanCreate(bool force) const {
+  if (!writes()) return;
   if (fs::exists(root_) && !fs::is_directory(root_)) throw Error(root_.string(), "exists and is not a folder");
   if (fs::exists(root_) && !isEmptyButForLock(root_) && !force && !isUnfinishedStart())
     throw Error(root_.string(), hasConfig()
@@ -22,12 +36,14 @@ void RunFolder::checkCanCreate(bool force) const {
 }
 
 void RunFolder::create(const TrainConfig& config, bool force) const {
+  if (!writes()) return;
   checkCanCreate(force);
   fs::create_directories(root_);
   writeTextAtomically(configFile(), toJson(config).dump(2) + "\n");
 }
 
 void RunFolder::removeFailedStart(bool madeByThisStart) const {
+  if (!writes()) return;
   if (hasCheckpoint() || fs::exists(sceneFile())) return;
   std::error_code ignored;  // best effort: the error being reported matters more
   fs::remove(configFile(), ignored);

@@ -1,8 +1,15 @@
-// A training run folder (made by `glint train`): where each of its files lives, and its
-// settings, read from config.json here for every command that opens a run.
+// A training run folder (made by `glint train`): where each of its files lives, its
+// settings (read from config.json here for every command that opens a run), and who writes
+// it: in an MPI job rank 0 alone, so the writing methods here do nothing on the other ranks
+// and callers need not ask which rank they are.
 #pragma once
 
 #include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+
+#include "core/folder_lock.h"
 
 #include "train/train_config.h"
 
@@ -27,6 +34,15 @@ class RunFolder {
   // loading): config.json and perhaps log.csv, nothing worth keeping.
   bool isUnfinishedStart() const { return hasConfig() && !hasCheckpoint() && !std::filesystem::exists(sceneFile()); }
 
+  // Whether this process writes the run (rank 0 of an MPI job; the only process otherwise).
+  bool writes() const;
+  // The folder's lock for `holder` (core/folder_lock.h) where this process writes; none on
+  // the other ranks. Throws Error naming the process that holds it.
+  std::unique_ptr<FolderLock> lockForWriting(const std::string& holder) const;
+  // log.csv opened for appending where this process writes; elsewhere a stream that is not
+  // open, whose writes go nowhere.
+  std::ofstream openLog() const;
+
   // config.json: the defaults with every setting of the file applied and checked by
   // TrainConfig::validate, so every command refuses a bad file with the same message,
   // which names the file and the key. Throws Error.
@@ -34,15 +50,16 @@ class RunFolder {
 
   // Makes the folder for a new run and writes config.json. A folder that exists must be
   // empty or hold an unfinished start (which is started afresh) unless `force` (then its
-  // files are overwritten); throws Error otherwise.
+  // files are overwritten); throws Error otherwise. Only where this process writes.
   void create(const TrainConfig& config, bool force) const;
-  // create's refusal alone, for a caller that checks before it locks the folder.
+  // create's refusal alone, for a caller that checks before it locks the folder (likewise).
   void checkCanCreate(bool force) const;
 
   // Undoes a start that failed before its first step: removes the files a start writes
   // (config.json, log.csv, an empty checkpoint/) and then the folder itself if it was
   // `madeByThisStart` and is left empty. Never touches a checkpoint, a scene or any other file
-  // (the folder's lock file, core/folder_lock.h, goes when nothing else is left).
+  // (the folder's lock file, core/folder_lock.h, goes when nothing else is left). Only where
+  // this process writes.
   void removeFailedStart(bool madeByThisStart) const;
 
  private:

@@ -128,6 +128,7 @@ GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config, Tr
 }
 
 void saveRun(const RunFolder& run, const Trainer& trainer) {
+  if (!run.writes()) return;
   writeCheckpoint(run.checkpointFile(), trainer.state());
   writeGaussianPly(run.sceneFile(), trainer.scene());
 }
@@ -176,8 +177,9 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
                                             config.baseline == Baseline::Rgb ? ColourTarget::Render
                                                                              : ColourTarget::Diffuse);
   std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);
-  TestViews testViews = TestViews::load(dataset, dataset.test(), cluster::isRoot() ? session.evalViews : 0);
-  if (dataset.capture() && cluster::isRoot())
+  // The test views are scored where the run is written (into log.csv).
+  TestViews testViews = TestViews::load(dataset, dataset.test(), run.writes() ? session.evalViews : 0);
+  if (dataset.capture() && run.writes())
     for (const std::string& line : dataset.capture()->droppedDepths())
       std::fprintf(stderr, "glint train: warning: %s\n", line.c_str());
 
@@ -185,7 +187,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
   const bool checkpointAtStart = session.resume && run.hasCheckpoint();
   std::unique_ptr<Trainer> trainer;
   double wallOffset = 0;
-  if (cluster::isRoot()) {
+  if (run.writes()) {  // the others start from its state
     wallOffset = setUpTrainer(run, config, session, dataset, views, std::move(spheres), observer, &trainer);
     if (cluster::distributed()) {
       // The other ranks of an MPI job start from rank 0's state, the same bytes a
@@ -206,9 +208,8 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
   trainer->setExchangeMode(session.exchange);
   observer.started(*trainer, dataset, views);
 
-  // Rank 0 alone writes the log, checkpoints and scene, and scores the test views.
-  std::ofstream log;
-  if (cluster::isRoot()) log.open(run.logFile(), std::ios::app);
+  // Only the process that writes the run opens the log and saves (RunFolder::writes).
+  std::ofstream log = run.openLog();
   // The same figures for TensorBoard, in an event file beside log.csv, from the first step
   // (a start that fails before it leaves none).
   std::optional<TensorBoardWriter> board;
@@ -232,7 +233,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     std::optional<TestScore> score;
     if (!testViews.empty() && (r.step % config.evalEvery == 0 || r.step == config.iters))
       score = testViews.score(trainer->tracer(), session.evalSpp, config.path());
-    if (cluster::isRoot()) {
+    if (run.writes()) {
       log << logRow(r, wall, score) << std::flush;
       if (!board) board.emplace(run.root());
       writeScalars(*board, r, score);
@@ -240,7 +241,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     observer.stepped(r, score);
     saveDue = saveDue || r.step % config.saveEvery == 0 || r.step == config.iters;
     if (saveDue && (divergence.clean() || r.step == config.iters)) {
-      if (cluster::isRoot()) saveRun(run, *trainer);
+      saveRun(run, *trainer);
       saveDue = false;
       lastSaved = r.step;
       checkpointOnDisk = true;
@@ -249,12 +250,11 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     // Every rank stops at the step rank 0 heard Ctrl-C (mpirun forwards it to all, but not
     // necessarily between the same steps).
     if (cluster::broadcastFlag(observer.stopRequested())) {
-      if (cluster::isRoot()) saveRun(run, *trainer);
+      saveRun(run, *trainer);
       return {true, r.step, trainer->scene().size()};
     }
   }
-  if (cluster::isRoot() && trainer->stepCount() >= config.iters && !fs::exists(run.sceneFile()))
-    saveRun(run, *trainer);
+  if (trainer->stepCount() >= config.iters && !fs::exists(run.sceneFile())) saveRun(run, *trainer);
   return {false, trainer->stepCount(), trainer->scene().size()};
 }
 
