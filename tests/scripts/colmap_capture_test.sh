@@ -3,7 +3,10 @@
 # cameras with Debian's colmap through `glint capture` (the capture as it is: PINHOLE, the
 # priors kept; its photographs alone: OPENCV, undistorted), and opens both results with
 # `glint info` (Dataset::open and every buffer). Exits 77 (skipped) when colmap is absent.
-# Usage: colmap_capture_test.sh GLINT_BINARY WORK_FOLDER
+# The kept model is then checked as the committed fixture (tests/data/colmap_gallery) is:
+# every photograph registered, cameras close to the truth (within the wider bounds of a fresh
+# COLMAP run, whose result varies between runs; tests/scene/colmap_gallery_fixture_test.cpp).
+# Usage: colmap_capture_test.sh GLINT_BINARY WORK_FOLDER SCENE_TEST_BINARY
 set -euo pipefail
 if ! command -v colmap >/dev/null; then
   echo "SKIPPED: colmap is not installed (apt-get install colmap, or scripts/install-deps.sh --colmap)"
@@ -11,6 +14,7 @@ if ! command -v colmap >/dev/null; then
 fi
 glint="$1"
 work="$2"
+scene_tests="$3"
 rm -rf "$work"
 mkdir -p "$work"
 
@@ -39,6 +43,8 @@ expect_registered "$work/capture.log" "capture with priors"
 grep -q "cameras: PINHOLE$" "$work/capture.log" || { echo "FAILED: expected a PINHOLE camera"; exit 1; }
 [ -d "$work/capture/priors" ] || { echo "FAILED: priors/ was not kept"; exit 1; }
 "$glint" info "$work/capture"
+GLINT_COLMAP_MODEL="$work/capture/sparse/0" GLINT_COLMAP_TRUTH="$work/synth/sparse/0" \
+  "$scene_tests" --gtest_filter='ColmapGalleryFixture.*'
 
 # The photographs alone: the OPENCV model, then COLMAP's undistortion to pinholes.
 mkdir -p "$work/photos"
