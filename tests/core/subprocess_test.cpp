@@ -6,6 +6,7 @@
 #include <pthread.h>
 #include <signal.h>
 
+#include <atomic>
 #include <chrono>
 #include <string>
 #include <thread>
@@ -76,20 +77,25 @@ TEST(RunProgram, AProgramThatCannotStartIsAnError) {
 
 TEST(RunProgram, PassesAStopSignalToTheChildAndWaitsForIt) {
   // SIGINT sent to this process alone (not to its process group) reaches a helper thread,
-  // not necessarily the one waiting: the child must be stopped all the same.
-  std::thread sender([] {
-    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  // not necessarily the one waiting: the child must be stopped all the same. It is sent once
+  // the child has said it runs, so that runProgram's handler is in place however slowly a
+  // loaded machine starts it.
+  std::atomic<bool> childRuns = false;
+  std::thread sender([&] {
+    while (!childRuns.load()) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
     kill(getpid(), SIGINT);
   });
   auto start = std::chrono::steady_clock::now();
-  ProgramExit exit;
-  linesOf(shell("sleep 20"), &exit);
+  ProgramExit exit = runProgram(shell("echo running; sleep 20"), [&](std::string_view line) {
+    if (line == "running") childRuns = true;
+  });
   double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   sender.join();
   EXPECT_TRUE(exit.interrupted);
   EXPECT_FALSE(exit.ok());
   EXPECT_EQ(exit.signal, SIGINT);
-  EXPECT_LT(seconds, 5.0);
+  EXPECT_LT(seconds, 10.0);
   EXPECT_EQ(describeExit(exit), "was interrupted");
 }
 
