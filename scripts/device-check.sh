@@ -66,6 +66,16 @@ step glint_render 100 "$bin/glint" render "$work/scene.ply" --dataset "$work/dat
 step viewer 90 "$bin/bench/viewer_bench" "$work/scene.ply" --dataset "$work/dataset" --device cuda \
   --width 1024 --height 768 --bounces 2 --threads "$cores" --seconds 4 --cameras 3 --json "$out/viewer.json"
 
+# 6. An edit's relighting (issue 43's batches) on each device: the chrome sphere of the scene
+#    moved 0.5 m, glint edit with healing and relighting, the GPU's against all CPU cores.
+cat >"$work/move.json" <<'JSON'
+{"glint_edits": 1, "selections": {"it": {"sphere": {"center": [-1.3, 0.6, 0.0], "radius": 0.65}}},
+ "operations": [{"op": "translate", "selection": "it", "offset": [0, 0, 0.5]}]}
+JSON
+step relight_gpu 120 "$bin/glint" edit "$work/scene.ply" "$work/move.json" -o "$work/edited_gpu.ply" --device cuda
+[ "$quick" = 1 ] || step relight_cpu 150 "$bin/glint" edit "$work/scene.ply" "$work/move.json" \
+  -o "$work/edited_cpu.ply" --device cpu --threads "$cores"
+
 # The table.
 python3 - "$out" "${steps[@]}" <<'EOF'
 import json, os, sys
@@ -99,4 +109,11 @@ if v:
     cams = ", ".join(f"{c['camera']}: {c['samples_per_s']:.1f}" for c in v["still"])
     print(f"viewer {v['width']}x{v['height']} {v['bounces']} bounces ({v['tracer']}): "
           f"{v['still_samples_per_s']:.1f} samples/s ({cams}); moving {v['moving_fps']:.1f} fps")
+for name in ("relight_gpu", "relight_cpu"):
+    try:
+        lines = [l.strip() for l in open(os.path.join(out, name + ".log")) if ": relit " in l]
+    except OSError:
+        continue
+    if lines:
+        print(f"{name}: {lines[-1]}")
 EOF
