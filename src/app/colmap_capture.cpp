@@ -48,16 +48,6 @@ struct PhotoFolder {
   std::vector<fs::path> photos;
 };
 
-std::vector<fs::path> photographsIn(const fs::path& folder) {
-  std::vector<fs::path> photos;
-  std::error_code error;
-  if (!fs::is_directory(folder, error)) return photos;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
-    if (entry.is_regular_file(error) && isDisplayReferred(entry.path())) photos.push_back(entry.path());
-  std::sort(photos.begin(), photos.end());
-  return photos;
-}
-
 PhotoFolder findPhotographs(const fs::path& root) {
   std::error_code ignored;
   if (!fs::exists(root, ignored)) throw Error(root.string(), "no such folder");

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/cluster.h"
 #include "core/error.h"
 #include "core/parallel.h"
 #include "core/progress.h"
@@ -14,7 +15,6 @@
 #include "math/owen_sobol.h"
 #include "math/rng.h"
 #include "math/sampling.h"
-#include "core/cluster.h"
 #include "render/light_regions.h"
 #include "render/relight_batch.h"
 #include "render/relight_cones.h"

@@ -126,7 +126,8 @@ SplatColour bakeReflections(const GaussianScene& scene, const GaussianTracer& tr
         const Rgb display = tonemapFilmic((path.first.diffuse + path.specular) * s.exposure) / coverage;
         fit.add(Vec3d(rays[j].direction), Vec3d(display), double(w));
       }
-      std::vector<Vec3d> rest(colour.restCount());
+      thread_local std::vector<Vec3d> rest;  // per thread, not per Gaussian
+      rest.resize(colour.restCount());
       Vec3d constant;
       if (!fit.solve(s.ridge, &constant, rest.data())) {
         colour.base[i] = tonemapFilmic(scene.diffuse[i] * s.exposure);  // never seen: no data to fit

@@ -216,6 +216,16 @@ bool isDisplayReferred(const fs::path& path) {
   return e == ".png" || e == ".jpg" || e == ".jpeg";
 }
 
+std::vector<fs::path> photographsIn(const fs::path& folder) {
+  std::vector<fs::path> photos;
+  std::error_code error;
+  if (!fs::is_directory(folder, error)) return photos;
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
+    if (entry.is_regular_file(error) && isDisplayReferred(entry.path())) photos.push_back(entry.path());
+  std::sort(photos.begin(), photos.end());
+  return photos;
+}
+
 void CaptureSource::recordDepthFit(const std::string& view, const DepthFit& fit) const {
   std::lock_guard<std::mutex> lock(fitsMutex_);
   fits_[view] = fit;

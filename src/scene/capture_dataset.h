@@ -72,6 +72,9 @@ struct CaptureSource {
 // Files of integer codes (PNG, JPEG), which readImage scales to [0, 1]: display-referred
 // radiance and n/2 + 1/2 normals, unlike the stored values of EXR and TIFF.
 bool isDisplayReferred(const std::filesystem::path& path);
+// The photographs (display-referred images, isDisplayReferred) directly inside `folder`,
+// sorted by name; none when it is not a folder.
+std::vector<std::filesystem::path> photographsIn(const std::filesystem::path& folder);
 
 // True when root holds a capture: a COLMAP model (sparse/0/ or sparse/) or a nerfstudio
 // transforms.json, and no transforms_train.json.

@@ -61,19 +61,6 @@ Dataset Dataset::open(const fs::path& root, bool requireBuffers, int holdout) {
   return open(root, reading);
 }
 
-namespace {
-
-// Whether `folder` holds photographs (8-bit display-referred images) directly.
-bool holdsPhotographs(const fs::path& folder) {
-  std::error_code error;
-  if (!fs::is_directory(folder, error)) return false;
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder, error))
-    if (isDisplayReferred(entry.path())) return true;
-  return false;
-}
-
-}  // namespace
-
 Dataset Dataset::open(const fs::path& root, const DatasetReading& reading) {
   Dataset dataset;
   dataset.root_ = root;
@@ -97,7 +84,7 @@ void Dataset::openLayout(const DatasetReading& reading) {
   if (!fs::exists(transformsPath(root, "train")) && !fs::exists(transformsPath(root, "test")) &&
       !fs::exists(transformsPath(root, "val"))) {
     // Photographs without cameras are what most people start from: say how to get cameras.
-    if (holdsPhotographs(root) || holdsPhotographs(root / "images"))
+    if (!photographsIn(root).empty() || !photographsIn(root / "images").empty())
       throw Error(root.string(),
                   "holds photographs but no cameras; get them with COLMAP: glint capture " + root.string() +
                       " -o CAPTURE, then train on CAPTURE (README, \"Train on your own photos\")");
