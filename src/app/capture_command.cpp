@@ -30,7 +30,7 @@ void printSummary(const CaptureRequest& request, const CaptureResult& result) {
   std::printf("glint capture: wrote %s (images/, %ssparse/0 in COLMAP's binary form, colmap/ with its database "
               "and log)\n",
               out.c_str(), result.priorsKept ? "priors/, " : "");
-  std::printf("next:\n  glint info %s\n  glint train %s -o %s-run --config scripts/real-capture-train.json\n",
+  std::printf("next:\n  glint info %s\n  glint train %s -o %s-run\n",
               out.c_str(), out.c_str(), out.c_str());
 }
 

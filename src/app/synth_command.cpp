@@ -155,14 +155,16 @@ void runSynth(const SynthOptions& o) {
   if (capture) {
     CaptureSynthSettings captureSettings;
     captureSettings.holdout = o.holdout;
-    captureSettings.networkLikePriors = o.degrade == "network";
+    captureSettings.priorErrors = o.degrade == "network"     ? PriorErrors::Network
+                                  : o.degrade == "monocular" ? PriorErrors::Monocular
+                                                             : PriorErrors::None;
     captureSettings.sparsePoints = o.points;
     const int testViews = o.holdout > 1 ? (o.train + o.holdout - 1) / o.holdout : 0;
     std::fprintf(stderr,
                  "glint synth: %s -> %s (capture): %d views, %d held out (every %d-th) at %d spp, the rest at %d "
                  "spp, %dx%d, %d bounces, %s priors, %d threads\n",
                  o.scene.c_str(), o.output.c_str(), o.train, testViews, o.holdout, settings.testSamplesPerPixel(),
-                 o.spp, res.x, res.y, o.bounces, captureSettings.networkLikePriors ? "network-like" : "exact",
+                 o.spp, res.x, res.y, o.bounces, o.degrade == "none" ? "exact" : (o.degrade + "-like").c_str(),
                  maxThreads());
     generateCapture(scene, settings, captureSettings, o.output);
   } else {
@@ -249,8 +251,11 @@ void addSynthCommand(CLI::App& app) {
                   "Capture layout: none writes the exact buffers as priors; network degrades them like a predictor's "
                   "(blur 1 px, per-view depth scale 0.95-1.05 and offset +-0.1 m, depth noise 0.01 m, 4 degree "
                   "normal tilt, roughness 0.8 (r + noise 0.03) + 0.1; per 320 px of width, see README). The "
-                  "photographs stay exact")
-      ->check(CLI::IsMember({"none", "network"}))
+                  "photographs stay exact. monocular is a second kind (docs/captures.md): blur 0.7 px and 8-bit noise on "
+                  "diffuse and specular, a non-affine per-view depth warp (power 0.85-1.15, a smooth 4% scale field, "
+                  "edges blurred, 0.5% noise), 3 degrees of per-pixel normal noise plus a 1.5 degree tilt per view, "
+                  "roughness + 0.05 + noise 0.05, and metalness instead of F0 (per 160 px of width)")
+      ->check(CLI::IsMember({"none", "network", "monocular"}))
       ->capture_default_str();
   cmd->add_option("--points", options->points, "Capture layout: sparse points in points3D.txt")
       ->check(CLI::Range(1, 10000000))

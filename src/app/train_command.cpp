@@ -86,13 +86,24 @@ void useRgbBaseline(TrainConfig* config) {
 // (the NeRF-synthetic layout): no diffuse, specular or G-buffers for the method to train on.
 // A real capture's photographs train the method, with its sparse points for the geometry
 // (docs/capture-format.md).
-bool hasFinalImagesOnly(const TrainConfig& config) {
+// What decides a new run's defaults about its dataset.
+struct DatasetTraits {
+  bool finalImagesOnly = false;   // no diffuse, specular or G-buffers: the RGB-only baseline
+  bool predictedBuffers = false;  // a capture whose buffers a network predicted
+};
+
+DatasetTraits datasetTraits(const TrainConfig& config) {
   const Dataset dataset = Dataset::open(config.dataset, config.datasetReading(/*requireBuffers=*/true));
   const DatasetSplit& train = dataset.split("train");
-  if (dataset.capture() && !dataset.capture()->alphaBackground && !dataset.capture()->priorTransforms) return false;
+  bool anyBuffer = false;
   for (Buffer b : kAllBuffers)
-    if (b != Buffer::Render && dataset.findBufferFile(train.views[0], b)) return false;
-  return true;
+    if (b != Buffer::Render && dataset.findBufferFile(train.views[0], b)) anyBuffer = true;
+  const CaptureSource* capture = dataset.capture();
+  DatasetTraits traits;
+  traits.predictedBuffers = capture && capture->decoding.predictedPriors && anyBuffer;
+  traits.finalImagesOnly =
+      !anyBuffer && !(capture && !capture->alphaBackground && !capture->priorTransforms);
+  return traits;
 }
 
 // The config of a new run: the defaults, then --config, then the flags given.
@@ -114,8 +125,15 @@ TrainConfig newRunConfig(const TrainOptions& o, const CLI::App& cmd) {
   // Opening the dataset here refuses a broken one before the run folder is made. One with
   // final images only trains the RGB-only baseline unless --baseline says otherwise: the
   // method has nothing to separate reflections with.
-  const bool finalImagesOnly = hasFinalImagesOnly(config);
-  const bool autoRgb = !given("--baseline") && config.baseline == Baseline::None && finalImagesOnly;
+  const DatasetTraits traits = datasetTraits(config);
+  if (traits.predictedBuffers && o.configFile.empty()) {
+    usePredictedBufferSetting(&config);
+    if (given("--bounces")) config.bounces = o.config.bounces;
+    std::fprintf(stderr, "glint train: %s holds predicted buffers (capture.json \"priors\"): training with the "
+                 "real-capture setting (no depth loss, specular weight 0.01); --config overrides it\n",
+                 o.dataset.c_str());
+  }
+  const bool autoRgb = !given("--baseline") && config.baseline == Baseline::None && traits.finalImagesOnly;
   if (autoRgb || (given("--baseline") && choiceFromName<Baseline>(o.baseline) == Baseline::Rgb)) {
     if (given("--bounces") && o.config.bounces != 0)
       throw Error("command line", autoRgb ? o.dataset + " has final images only, which train the RGB-only baseline "
@@ -335,8 +353,10 @@ void addTrainCommand(CLI::App& app) {
       ->default_val(defaults.holdout);
   cmd->add_option("--config", o->configFile,
                   "JSON file of hyper-parameters (the layout of RUN/config.json); flags given explicitly override it. "
-                  "For a capture with predicted buffers use scripts/real-capture-train.json (the paper's setting: no "
-                  "depth loss, specular weight 0.01), which measured 2.7 dB better than the defaults on COLMAP cameras")
+                  "A capture with predicted buffers (capture.json \"priors\": \"predicted\", the default) "
+                  "trains without a config file with the paper's setting for them (no depth loss, specular weight "
+                  "0.01; scripts/real-capture-train.json), which measured 2.7 dB better than the defaults on "
+                  "COLMAP cameras; a --config replaces it")
       ->check(CLI::ExistingFile);
   o->reading.add(cmd, /*withBackground=*/true);
   cmd->add_option("--seed", o->config.seed, "Seed of the ray batches")->default_val(defaults.seed);

@@ -49,8 +49,31 @@ Image blurPass(const Image& image, const std::vector<double>& kernel, bool along
   return out;
 }
 
-// The blur of `image` using only pixels where depth has a surface; other pixels keep their
-// values, so "no surface" never bleeds into surfaces nor surfaces into the background.
+// A standard normal deviate for (seed, pixel, channel), by the Box-Muller transform.
+double gaussianDeviate(uint64_t seed, size_t pixel, int channel) {
+  Rng rng = Rng::forKeys({seed, uint64_t(pixel), uint64_t(channel)});
+  double u1 = 1.0 - rng.uniformDouble();  // (0, 1], so the log is finite
+  double u2 = rng.uniformDouble();
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
+}
+
+}  // namespace
+
+Image smoothGaussianField(int width, int height, int channels, uint64_t seed, double correlation) {
+  Image field(width, height, channels);
+  for (size_t p = 0; p < size_t(width) * height; ++p)
+    for (int c = 0; c < channels; ++c) field.pixels[p * channels + c] = float(gaussianDeviate(seed, p, c));
+  if (correlation <= 0) return field;
+  // Blurring white noise with weights w along x and then y scales its variance by
+  // (sum w^2)^2; dividing by sum w^2 restores unit variance (away from the borders).
+  std::vector<double> kernel = gaussianKernel(correlation);
+  double sumSquares = 0;
+  for (double w : kernel) sumSquares += w * w;
+  Image smooth = gaussianBlur(field, correlation);
+  for (float& v : smooth.pixels) v = float(v / sumSquares);
+  return smooth;
+}
+
 Image blurSurfaces(const Image& image, const Image& depth, double sigma) {
   if (sigma <= 0) return image;
   Image mask(depth.width, depth.height, 1);
@@ -65,32 +88,6 @@ Image blurSurfaces(const Image& image, const Image& depth, double sigma) {
         for (int c = 0; c < image.channels; ++c) blurred.at(i, j, c) = image.at(i, j, c);
   return blurred;
 }
-
-// A standard normal deviate for (seed, pixel, channel), by the Box-Muller transform.
-double gaussianDeviate(uint64_t seed, size_t pixel, int channel) {
-  Rng rng = Rng::forKeys({seed, uint64_t(pixel), uint64_t(channel)});
-  double u1 = 1.0 - rng.uniformDouble();  // (0, 1], so the log is finite
-  double u2 = rng.uniformDouble();
-  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
-}
-
-// A 3-channel field of unit-variance Gaussian values, white or blurred with `correlation`.
-Image tiltField(int width, int height, uint64_t seed, double correlation) {
-  Image field(width, height, 3);
-  for (size_t p = 0; p < size_t(width) * height; ++p)
-    for (int c = 0; c < 3; ++c) field.pixels[p * 3 + c] = float(gaussianDeviate(seed, p, c));
-  if (correlation <= 0) return field;
-  // Blurring white noise with weights w along x and then y scales its variance by
-  // (sum w^2)^2; dividing by sum w^2 restores unit variance (away from the borders).
-  std::vector<double> kernel = gaussianKernel(correlation);
-  double sumSquares = 0;
-  for (double w : kernel) sumSquares += w * w;
-  Image smooth = gaussianBlur(field, correlation);
-  for (float& v : smooth.pixels) v = float(v / sumSquares);
-  return smooth;
-}
-
-}  // namespace
 
 Image gaussianBlur(const Image& image, double sigma) {
   if (sigma <= 0) return image;
@@ -118,7 +115,7 @@ Image perturbNormals(const Image& normals, double meanAngle, uint64_t seed, doub
   GLINT_CHECK(normals.channels == 3, "normal maps have three channels");
   Image out = normals;
   if (meanAngle <= 0) return out;
-  Image field = tiltField(normals.width, normals.height, seed, correlationPixels);
+  Image field = smoothGaussianField(normals.width, normals.height, 3, seed, correlationPixels);
   // The tangent part t of a unit 3D Gaussian has |t| Rayleigh distributed with mean
   // sqrt(pi/2), so this scale makes the mean tilt angle meanAngle.
   double anglePerLength = meanAngle / std::sqrt(std::numbers::pi / 2.0);

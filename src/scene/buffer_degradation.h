@@ -14,9 +14,19 @@ namespace glint {
 // The kernel reaches 3 sigma; borders repeat the edge pixel.
 Image gaussianBlur(const Image& image, double sigma);
 
+// The blur of `image` using only pixels where depth has a surface; other pixels keep their
+// values, so "no surface" never bleeds into surfaces nor surfaces into the background (but
+// nearer and farther surfaces mix across depth edges).
+Image blurSurfaces(const Image& image, const Image& depth, double sigma);
+
 // Adds independent zero-mean Gaussian noise of standard deviation sigma to every value; the
 // noise of value (pixel, channel) depends only on (seed, pixel, channel).
 Image addGaussianNoise(const Image& image, double sigma, uint64_t seed);
+
+// A field of unit-variance Gaussian values per pixel and channel, depending only on (seed,
+// pixel, channel): white for correlation 0, else blurred with that sigma in pixels and
+// rescaled to unit variance (away from the borders).
+Image smoothGaussianField(int width, int height, int channels, uint64_t seed, double correlation);
 
 // A per-view affine depth error, d' = scale d + offset, on surface pixels only ("no
 // surface" values are kept; a result <= 0 becomes 0, no surface).

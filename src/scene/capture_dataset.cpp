@@ -211,6 +211,8 @@ Image decodeRadiance(Image image, Transfer transfer, float clampMax) {
 
 }  // namespace
 
+bool isMetalnessPrior(const fs::path& path) { return path.filename().string().rfind("metalness_", 0) == 0; }
+
 bool isDisplayReferred(const fs::path& path) {
   const std::string e = lowerExtension(path);
   return e == ".png" || e == ".jpg" || e == ".jpeg";
@@ -262,7 +264,7 @@ CaptureDecoding readCaptureDecoding(const fs::path& file) {
   nlohmann::json j = readJsonFile(file);
   if (!j.is_object()) throw Error(file.string(), "must hold a JSON object");
   static const char* known[] = {"photo_transfer", "prior_transfer", "clamp_max", "normal_space",
-                                "normal_axes",    "depth",          "roughness"};
+                                "normal_axes",    "depth",          "roughness",    "priors"};
   for (const auto& [key, value] : j.items())
     if (std::find_if(std::begin(known), std::end(known), [&](const char* k) { return key == k; }) == std::end(known))
       throw Error(file.string(), "unknown key \"" + printableText(key) + "\" (docs/capture-format.md lists the keys)");
@@ -286,6 +288,7 @@ CaptureDecoding readCaptureDecoding(const fs::path& file) {
                         {"relative", CaptureDecoding::Depth::Relative},
                         {"relative_disparity", CaptureDecoding::Depth::RelativeDisparity}},
                        d.depth, file);
+  d.predictedPriors = readChoice(j, "priors", {{"predicted", true}, {"exact", false}}, d.predictedPriors, file);
   d.roughness = readChoice(j, "roughness", {{"perceptual", RoughnessKind::Perceptual}, {"alpha", RoughnessKind::Alpha}},
                            d.roughness, file);
   return d;
@@ -354,9 +357,7 @@ void openCapture(const fs::path& root, int holdout, DatasetSplit* train, Dataset
 namespace {
 
 // F0 given as a predictor's metalness (priors/metalness/metalness_*): one channel.
-bool isMetalnessFile(const fs::path& path, Buffer buffer) {
-  return buffer == Buffer::F0 && path.filename().string().rfind("metalness_", 0) == 0;
-}
+bool isMetalnessFile(const fs::path& path, Buffer buffer) { return buffer == Buffer::F0 && isMetalnessPrior(path); }
 
 // A normal prior's vectors in its file's own axes: n = 2v - 1 from integer codes, the stored
 // values of EXR and TIFF, each renormalised (0: no surface).

@@ -33,6 +33,10 @@ struct CaptureDecoding {
   enum class Depth { Distance, ZDepth, Relative, RelativeDisparity };
   Depth depth = Depth::Relative;                        // "depth": "distance", "z", "relative" or "relative_disparity"
   RoughnessKind roughness = RoughnessKind::Perceptual;  // "roughness": "perceptual" or "alpha"
+  // "priors": "predicted" (a network's buffers, what the layout is for) or "exact"
+  // (rendered, as `glint synth --layout capture --degrade none` writes them). Predicted
+  // ones train with the real-capture setting unless a config is given (train_config.h).
+  bool predictedPriors = true;
 };
 // capture.json's keys; throws Error naming the file and the key for an unknown key or value.
 CaptureDecoding readCaptureDecoding(const std::filesystem::path& file);
@@ -69,6 +73,8 @@ struct CaptureSource {
   mutable std::set<Buffer> withAlpha_;
 };
 
+// A capture's F0 file that holds a predictor's metalness (priors/metalness/metalness_*).
+bool isMetalnessPrior(const std::filesystem::path& path);
 // Files of integer codes (PNG, JPEG), which readImage scales to [0, 1]: display-referred
 // radiance and n/2 + 1/2 normals, unlike the stored values of EXR and TIFF.
 bool isDisplayReferred(const std::filesystem::path& path);

@@ -64,7 +64,10 @@ void writeCapture(const fs::path& root, const std::vector<CaptureWriteView>& vie
     else  // metric distance along the ray, as float
       writeImage(root / "priors" / "depth" / ("depth_" + stem + ".exr"), v.buffers[Buffer::Depth]);
     writeImage(prior("roughness"), v.buffers[Buffer::Roughness], sixteenBits);
-    writeImage(prior("f0"), v.buffers[Buffer::F0]);
+    if (settings.metalnessInsteadOfF0)
+      writeImage(prior("metalness"), metalnessFromF0(v.buffers[Buffer::F0]), sixteenBits);
+    else
+      writeImage(prior("f0"), v.buffers[Buffer::F0]);
   }
   for (size_t i = 0; i < points.size(); ++i) {
     ColmapPoint p;
@@ -81,7 +84,8 @@ void writeCapture(const fs::path& root, const std::vector<CaptureWriteView>& vie
   writeTextAtomically(root / "capture.json",
                       std::string("{\n  \"photo_transfer\": \"filmic\",\n  \"prior_transfer\": \"filmic\",\n") +
                           "  \"normal_space\": \"camera\",\n  \"normal_axes\": \"paper\",\n  \"depth\": \"" +
-                          (settings.relativeDepth ? "relative" : "distance") + "\"\n}\n");
+                          (settings.relativeDepth ? "relative" : "distance") + "\",\n  \"priors\": \"" +
+                          (settings.predictedPriors ? "predicted" : "exact") + "\"\n}\n");
 }
 
 }  // namespace glint

@@ -24,6 +24,11 @@ struct CaptureWriteSettings {
   // Relative depth as a predictor gives it: z-depth mapped to [0.05, 0.95] by an affine
   // map of the view's own (so only a per-view fit to the sparse points recovers metres).
   bool relativeDepth = true;
+  // priors/metalness (metalnessFromF0) instead of priors/f0, as predictors that give
+  // metalness write; the loader then reads F0 as grey (f0FromMetalness).
+  bool metalnessInsteadOfF0 = false;
+  // capture.json's "priors": "predicted" for degraded buffers, "exact" for rendered ones.
+  bool predictedPriors = false;
 };
 
 // Writes images/, priors/ (paper encodings: 8-bit filmic radiance, 8-bit normals in the

@@ -115,6 +115,19 @@ Image f0FromMetalness(const Image& baseColour, const Image& metalness, float spe
   return f0;
 }
 
+Image metalnessFromF0(const Image& f0) {
+  GLINT_CHECK(f0.channels == 3, "F0 has three channels");
+  constexpr float kDielectric = 0.04f;  // f0FromMetalness's dielectric at specular level 0.5
+  Image metalness(f0.width, f0.height, 1);
+  for (int j = 0; j < f0.height; ++j)
+    for (int i = 0; i < f0.width; ++i) {
+      const Rgb c = f0.rgb(i, j);
+      const float brightest = std::max({c.x, c.y, c.z});
+      metalness.at(i, j) = std::clamp((brightest - kDielectric) / (1.0f - kDielectric), 0.0f, 1.0f);
+    }
+  return metalness;
+}
+
 Rgb diffuseAlbedoFromMetalness(const Rgb& baseColour, float metalness) { return baseColour * (1.0f - metalness); }
 
 float perceptualFromAlpha(float alpha) { return std::sqrt(std::clamp(alpha, 0.0f, 1.0f)); }

@@ -68,6 +68,10 @@ Rgb f0FromMetalness(const Rgb& baseColour, float metalness, float specularLevel 
 // Per pixel; an empty baseColour means white, the paper's rule for captures with only a
 // metalness prediction (F0 = 0.04 (1 - m) + m, grey). Metalness is clamped to [0, 1].
 Image f0FromMetalness(const Image& baseColour, const Image& metalness, float specularLevel = 0.5f);
+// The metalness a predictor without F0 would give: the inverse of the grey rule above on F0's
+// brightest channel, m = (max(F0) - 0.04) / 0.96 clamped to [0, 1], so a tinted metal
+// (gold's F0 of about (1, 0.78, 0.34)) reads fully metallic and loses its tint.
+Image metalnessFromF0(const Image& f0);
 // glTF's diffuse albedo baseColour (1 - metallic). Glint's diffuse buffer is radiance, not
 // albedo: this serves predictors that give albedo, e.g. to initialise Gaussian colours.
 Rgb diffuseAlbedoFromMetalness(const Rgb& baseColour, float metalness);

@@ -11,6 +11,7 @@
 #include "scene/view_sharing.h"
 #include "synth/camera_paths.h"
 #include "synth/light_sampler.h"
+#include "synth/monocular_degradation.h"
 #include "synth/network_degradation.h"
 #include "synth/path_tracer.h"
 #include "synth/ray_caster.h"
@@ -66,7 +67,9 @@ void generateCapture(const MeshScene& scene, const SynthSettings& settings, cons
     if (!cluster::isRoot()) continue;
     const Camera& camera = cameras[size_t(i)];
     if (!isTest(i)) depthViews.push_back({exact[Buffer::Depth], exact[Buffer::Diffuse], camera});
-    ViewBuffers priors = capture.networkLikePriors ? networkLikePriors(exact, settings.seed, uint64_t(i)) : exact;
+    ViewBuffers priors = capture.priorErrors == PriorErrors::Network     ? networkLikePriors(exact, settings.seed, uint64_t(i))
+                         : capture.priorErrors == PriorErrors::Monocular ? monocularPriors(exact, settings.seed, uint64_t(i))
+                                                                         : exact;
     views.push_back({viewImageName(i), camera, std::move(priors)});
   }
   if (!cluster::isRoot()) return;
@@ -80,7 +83,10 @@ void generateCapture(const MeshScene& scene, const SynthSettings& settings, cons
     const Rgb& c = cloud.colors[p];
     colours.push_back({toLinear(Transfer::Srgb, c.x), toLinear(Transfer::Srgb, c.y), toLinear(Transfer::Srgb, c.z)});
   }
-  writeCapture(outDir, views, points, colours);
+  CaptureWriteSettings write;
+  write.metalnessInsteadOfF0 = capture.priorErrors == PriorErrors::Monocular;
+  write.predictedPriors = capture.priorErrors != PriorErrors::None;
+  writeCapture(outDir, views, points, colours, write);
 }
 
 }  // namespace glint

@@ -11,11 +11,18 @@
 
 namespace glint {
 
+// What the priors get wrong: nothing, or one of the documented predictor-like errors.
+enum class PriorErrors {
+  None,       // the exact buffers
+  Network,    // networkLikePriors (network_degradation.h): smooth, affine depth error
+  Monocular,  // monocularPriors (monocular_degradation.h): non-affine depth, metalness only
+};
+
 struct CaptureSynthSettings {
   // Every holdout-th view, from the first, is a test view of `glint train --holdout`
   // (LLFF's convention): those are rendered at SynthSettings::testSpp.
   int holdout = Dataset::kDefaultHoldout;
-  bool networkLikePriors = false;  // priors through networkLikePriors (network_degradation.h)
+  PriorErrors priorErrors = PriorErrors::None;
   int sparsePoints = 4000;         // points3D: sampled from the training views' exact depth
 };
 

@@ -11,6 +11,7 @@
 #include "core/parallel.h"
 #include "io/point_cloud.h"
 #include "scene/buffers.h"
+#include "scene/capture_dataset.h"
 #include "train/camera_volume_init.h"
 #include "train/nearest_neighbours.h"
 #include "train/scene_extent.h"
@@ -30,6 +31,8 @@ void checkSettings(const DenseInitSettings& s) {
   if (!(s.voxelFraction > 0.0f) || !std::isfinite(s.voxelFraction))
     throw Error(where, "the voxel size fraction must be a positive number");
   if (s.minSamplesPerVoxel < 1) throw Error(where, "the minimum samples per voxel must be >= 1");
+  if (!(s.depthResidualVoxels >= 0.0f) || !std::isfinite(s.depthResidualVoxels))
+    throw Error(where, "the voxel size in depth-fit residuals must be a number >= 0");
   if (s.neighbours < 1) throw Error(where, "the neighbour count for scales must be >= 1");
   if (!(s.opacity > 0.0f && s.opacity < 1.0f)) throw Error(where, "the initial opacity must lie in (0, 1)");
   if (!(s.roughness >= 0.0f && s.roughness <= 1.0f)) throw Error(where, "the initial roughness must lie in [0, 1]");
@@ -52,6 +55,18 @@ float referenceLength(float extent, const std::vector<Vec3f>& points) {
   if (extent > 0.0f) return extent;
   float diagonal = boundsDiagonal(points);
   return diagonal > 0.0f ? diagonal : 1.0f;
+}
+
+// The median over a capture's aligned views of their fits' median residual; 0 when no view
+// of the dataset was aligned (metric depth, or not a capture).
+float medianDepthFitResidual(const Dataset& dataset) {
+  if (!dataset.capture()) return 0.0f;
+  std::vector<double> residuals;
+  for (const auto& [view, fit] : dataset.capture()->depthFits())
+    if (fit.ok) residuals.push_back(fit.medianAbsResidualAfter);
+  if (residuals.empty()) return 0.0f;
+  std::nth_element(residuals.begin(), residuals.begin() + residuals.size() / 2, residuals.end());
+  return float(residuals[residuals.size() / 2]);
 }
 
 }  // namespace
@@ -187,7 +202,11 @@ DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& 
     throw Error(depthFolder, "no sampled pixel of the training depth buffers has a surface (depth 0 or >= 1e9 "
                              "everywhere): nothing to initialise the scene from");
 
-  const float voxelSize = settings.voxelFraction * referenceLength(result.stats.sceneExtent, samples.positions);
+  float voxelSize = settings.voxelFraction * referenceLength(result.stats.sceneExtent, samples.positions);
+  // Loading the depth buffers aligned a capture's relative depth: its voxels are no finer
+  // than the alignment is accurate.
+  result.stats.depthResidual = medianDepthFitResidual(dataset);
+  voxelSize = std::max(voxelSize, settings.depthResidualVoxels * result.stats.depthResidual);
   result.stats.voxelSize = voxelSize;
   ColouredPoints kept = mergeInVoxels(samples, voxelSize, settings.minSamplesPerVoxel, &result.stats.voxelsOccupied);
   result.stats.voxelsKept = int64_t(kept.positions.size());

@@ -11,6 +11,25 @@ float sign(float x) { return x > 0 ? 1.0f : x < 0 ? -1.0f : 0.0f; }
 Vec3f sign(const Vec3f& v) { return {sign(v.x), sign(v.y), sign(v.z)}; }
 double absSum(const Vec3f& v) { return double(std::abs(v.x)) + std::abs(v.y) + std::abs(v.z); }
 
+// The channel holding the largest value (the first of equals).
+int brightestChannel(const Rgb& c) { return c.y > c.x ? (c.z > c.y ? 2 : 1) : (c.z > c.x ? 2 : 0); }
+
+// The F0 term of one ray: the mean absolute error of its channels, or of the brightest
+// channels alone with target.f0BrightnessOnly (one value, so not divided by 3: a grey
+// error scores the same either way).
+double f0Error(const Rgb& f0, const PixelTarget& t) {
+  if (!t.f0BrightnessOnly) return absSum(f0 - t.f0) / 3;
+  return std::abs(double(f0[brightestChannel(f0)]) - t.f0[brightestChannel(t.f0)]);
+}
+
+Rgb f0Error_vjp(const Rgb& f0, const PixelTarget& t) {
+  if (!t.f0BrightnessOnly) return sign(f0 - t.f0) * (1.0f / 3.0f);
+  Rgb v(0.0f);
+  const int c = brightestChannel(f0);
+  v[c] = sign(f0[c] - t.f0[brightestChannel(t.f0)]);
+  return v;
+}
+
 // The colour the colour term compares with its target: the first diffuse, or the final image.
 Rgb fittedColour(const RayResult& r, const PixelTarget& t, const Rgb& pathSpecular) {
   return t.finalColour ? r.diffuse + pathSpecular : r.diffuse;
@@ -25,7 +44,7 @@ LossTerms rayLoss(const RayResult& r, const PixelTarget& t, const LossNormalisat
     if (t.hasDepth) terms.depth = std::abs(double(r.depth) - t.depth) / n.surfaceRays;
     if (t.hasNormal) terms.normal = absSum(r.normal - t.normal) / (3 * n.surfaceRays);
     if (t.hasRoughness) terms.roughness = std::abs(double(r.roughness) - t.roughness) / n.surfaceRays;
-    if (t.hasF0) terms.f0 = absSum(r.f0 - t.f0) / (3 * n.surfaceRays);
+    if (t.hasF0) terms.f0 = f0Error(r.f0, t) / n.surfaceRays;
   }
   return terms;
 }
@@ -38,7 +57,7 @@ RayResultAdjoint rayLoss_vjp(const RayResult& r, const PixelTarget& t, const Los
     if (t.hasDepth) v.v_depth = sign(r.depth - t.depth) * float(w.depth / n.surfaceRays);
     if (t.hasNormal) v.v_normal = sign(r.normal - t.normal) * float(w.normal / (3 * n.surfaceRays));
     if (t.hasRoughness) v.v_roughness = sign(r.roughness - t.roughness) * float(w.roughness / n.surfaceRays);
-    if (t.hasF0) v.v_f0 = sign(r.f0 - t.f0) * float(w.f0 / (3 * n.surfaceRays));
+    if (t.hasF0) v.v_f0 = f0Error_vjp(r.f0, t) * float(w.f0 / n.surfaceRays);
   }
   return v;
 }

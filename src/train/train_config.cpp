@@ -66,6 +66,7 @@ void forEachField(Config& c, F&& f) {
   f("", "render_bounces", c.renderBounces);
   f("", "baseline", c.baseline);
   f("", "reflection_warmup", c.reflectionWarmup);
+  f("", "f0_tint_from_reflections", c.f0TintFromReflections);
   f("", "invalid_normal_length", c.invalidNormalLength);
   f("", "backface_skip", c.backfaceSkip);
   f("", "batch_rays", c.batchRays);
@@ -105,6 +106,7 @@ void forEachField(Config& c, F&& f) {
   f("init", "max_pixel_samples", c.init.maxPixelSamples);
   f("init", "voxel_fraction", c.init.voxelFraction);
   f("init", "min_samples_per_voxel", c.init.minSamplesPerVoxel);
+  f("init", "depth_residual_voxels", c.init.depthResidualVoxels);
   f("init", "neighbours", c.init.neighbours);
   f("init", "opacity", c.init.opacity);
   f("init", "roughness", c.init.roughness);
@@ -310,6 +312,12 @@ void TrainConfig::validate(const std::string& source) const {
   require(trace.alphaMin > 0 && trace.alphaMin < 0.5f, source, "trace.alpha_min must be in (0, 0.5)");
   require(trace.minTransmittance > 0 && trace.minTransmittance < 1, source,
           "trace.min_transmittance must be in (0, 1)");
+}
+
+void usePredictedBufferSetting(TrainConfig* config) {
+  config->bounces = 2;
+  config->loss.depth = 0.0f;
+  config->loss.specular = 0.01f;
 }
 
 TrainConfig readTrainConfig(const std::filesystem::path& path) {

@@ -102,6 +102,10 @@ struct TrainConfig {
   // segment's colour is fitted to the render buffer alone (no G-buffers, no reflections).
   Baseline baseline = Baseline::None;
   int reflectionWarmup = 750;  // steps of first-segment training before reflections start
+  // A capture whose F0 is a predicted metalness (grey: a tinted metal's colour is lost)
+  // trains only F0's brightest channel against it, and leaves its tint to L_r (an option
+  // beyond the paper; docs/captures.md measures it).
+  bool f0TintFromReflections = true;
   float invalidNormalLength = 0.7f;  // paths end at shorter blended normals
   float backfaceSkip = 0.1f;         // reflection rays ignore back faces this close
   int batchRays = 16384;
@@ -158,5 +162,11 @@ nlohmann::json toJson(const TrainConfig& config);
 // a choice are errors naming `source` (a file name) and the key; then validates.
 void applyJson(const nlohmann::json& json, TrainConfig* config, const std::string& source);
 TrainConfig readTrainConfig(const std::filesystem::path& path);  // defaults + the file
+
+// The setting for a capture whose buffers a network predicted (the paper's, for its real
+// scenes): no depth loss, the specular weight 0.01, 2 trained bounces. `glint train`
+// applies it to such captures unless --config is given; scripts/real-capture-train.json
+// holds the same values for other tools.
+void usePredictedBufferSetting(TrainConfig* config);
 
 }  // namespace glint

@@ -105,7 +105,11 @@ GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config, Tr
   DenseInit init = config.initSource == InitChoice::PointCloud ? initFromPointCloud(dataset, settings)
                                                                 : denseInitialisation(dataset, settings);
   const DenseInitStats& st = init.stats;
-  char message[320];
+  char voxelNote[96] = "";
+  if (st.depthResidual > 0.0f && st.voxelSize <= settings.depthResidualVoxels * st.depthResidual)
+    std::snprintf(voxelNote, sizeof(voxelNote), " = %gx the depth fits' median residual",
+                  double(settings.depthResidualVoxels));
+  char message[400];
   if (st.source == InitSource::CameraVolume)
     std::snprintf(message, sizeof(message),
                   "initialised %zu Gaussians at random in the volume the cameras look at (no depth buffers or points)"
@@ -119,9 +123,10 @@ GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config, Tr
                   init.scene.size(), (long long)st.pointsUnprojected);
   else
     std::snprintf(message, sizeof(message),
-                  "initialised %zu Gaussians from the depth buffers (stride %d, %lld samples, voxel %.4g, %lld of "
+                  "initialised %zu Gaussians from the depth buffers (stride %d, %lld samples, voxel %.4g%s, %lld of "
                   "%lld voxels kept)",
                   init.scene.size(), st.pixelStride, (long long)st.pointsUnprojected, st.voxelSize,
+                  voxelNote,
                   (long long)st.voxelsKept, (long long)st.voxelsOccupied);
   observer.note(message);
   return std::move(init.scene);
@@ -175,7 +180,8 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
   }
   TrainingViews views = TrainingViews::load(dataset, dataset.split("train"),  // split(): names a missing file
                                             config.baseline == Baseline::Rgb ? ColourTarget::Render
-                                                                             : ColourTarget::Diffuse);
+                                                                             : ColourTarget::Diffuse,
+                                            config.f0TintFromReflections);
   std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);
   // The test views are scored where the run is written (into log.csv).
   TestViews testViews = TestViews::load(dataset, dataset.test(), run.writes() ? session.evalViews : 0);

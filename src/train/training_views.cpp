@@ -9,6 +9,7 @@
 #include "core/progress.h"
 #include "math/rng.h"
 #include "scene/buffer_codec.h"
+#include "scene/capture_dataset.h"
 
 namespace glint {
 
@@ -26,7 +27,8 @@ std::string SupervisedBuffers::list(bool present) const {
   return out;
 }
 
-TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& split, ColourTarget colour) {
+TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& split, ColourTarget colour,
+                                  bool metalnessTrainsBrightness) {
   if (split.views.empty()) throw Error(dataset.root().string(), "has no " + split.name + " views to train on");
   TrainingViews tv;
   // The first view decides which buffer kinds are trained; every other view must have them.
@@ -45,6 +47,7 @@ TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& sp
   s.normal = present(Buffer::Normal);
   s.roughness = present(Buffer::Roughness);
   s.f0 = present(Buffer::F0);
+  s.f0BrightnessOnly = s.f0 && metalnessTrainsBrightness && isMetalnessPrior(*dataset.findBufferFile(first, Buffer::F0));
 
   // Sizes come from each view's camera; a view's buffers must match it.
   tv.cameras_.resize(split.views.size());
@@ -121,6 +124,7 @@ PixelTarget TrainingViews::target(size_t view, size_t pixel) const {
   t.hasRoughness = supervised_.roughness;
   t.hasF0 = supervised_.f0;
   t.finalColour = supervised_.finalColour;
+  t.f0BrightnessOnly = supervised_.f0BrightnessOnly;
   return t;
 }
 

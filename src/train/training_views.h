@@ -32,6 +32,9 @@ enum class ColourTarget { Diffuse, Render };
 struct SupervisedBuffers {
   bool specular = false, depth = false, normal = false, roughness = false, f0 = false;
   bool finalColour = false;  // the colour target is the render buffer (ColourTarget::Render or no diffuse)
+  // F0 is a capture's predicted metalness (priors/metalness), grey by the white-base rule,
+  // and only its brightness is trained (PixelTarget::f0BrightnessOnly).
+  bool f0BrightnessOnly = false;
   // The names ("specular, depth, ...") of the buffer kinds present, or of those missing.
   std::string list(bool present) const;
 };
@@ -45,8 +48,10 @@ class TrainingViews {
   // render images as final colours. Views may differ in size. Throws Error naming the file
   // for missing buffers of a kind the first view has, sizes that differ from the view's
   // camera, or non-finite values (Dataset::loadBuffer's checks).
+  // metalnessTrainsBrightness: a capture's F0 given as metalness trains its brightness only
+  // (TrainConfig::f0TintFromReflections).
   static TrainingViews load(const Dataset& dataset, const DatasetSplit& split,
-                            ColourTarget colour = ColourTarget::Diffuse);
+                            ColourTarget colour = ColourTarget::Diffuse, bool metalnessTrainsBrightness = false);
 
   size_t viewCount() const { return cameras_.size(); }
   const Camera& camera(size_t view) const { return cameras_[view]; }

@@ -6,6 +6,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include <nlohmann/json.hpp>
 
@@ -61,6 +62,38 @@ TEST_F(CaptureCliTest, TrainsEvaluatesAndRendersACapture) {
   ASSERT_EQ(render.status, 0) << render.output;
   EXPECT_EQ(readImage(out / "render" / "render_view_0009.exr").width, 40);
   EXPECT_EQ(readImage(out / "render" / "render_view_0001.exr").width, 48);
+}
+
+// A capture's buffers are predicted unless capture.json says "priors": "exact": predicted
+// ones train with the real-capture setting, said in one line, unless --config is given.
+TEST_F(CaptureCliTest, PredictedBuffersTrainWithTheRealCaptureSetting) {
+  const fs::path capture = root_ / "C";
+  nlohmann::json decoding = readJsonFile(capture / "capture.json");
+  EXPECT_EQ(decoding["priors"], "exact");  // writeCapture's buffers are rendered
+  const std::string flags = " --holdout 4 --iters 2 --batch-rays 256 --eval-views 0 --threads 1";
+  auto trainedConfig = [&](const std::string& name, const std::string& extra, Outcome* outcome) {
+    *outcome = runGlint("train " + capture.string() + " -o " + (root_ / name).string() + flags + extra);
+    EXPECT_EQ(outcome->status, 0) << outcome->output;
+    return readJsonFile(root_ / name / "config.json");
+  };
+  Outcome outcome;
+  nlohmann::json config = trainedConfig("EXACT", "", &outcome);
+  EXPECT_EQ(config["loss"]["depth"], 2.5);
+  EXPECT_EQ(outcome.output.find("predicted buffers"), std::string::npos) << outcome.output;
+
+  decoding.erase("priors");  // a predictor's capture does not say so: predicted is the default
+  std::ofstream(capture / "capture.json") << decoding.dump();
+  config = trainedConfig("PREDICTED", " --bounces 1", &outcome);
+  EXPECT_EQ(config["loss"]["depth"], 0.0);
+  EXPECT_FLOAT_EQ(config["loss"]["specular"].get<float>(), 0.01f);
+  EXPECT_EQ(config["bounces"], 1);  // a flag given still wins
+  EXPECT_NE(outcome.output.find("holds predicted buffers"), std::string::npos) << outcome.output;
+
+  std::ofstream(root_ / "mine.json") << R"({"loss": {"depth": 1.5}})";
+  config = trainedConfig("CONFIGURED", " --config " + (root_ / "mine.json").string(), &outcome);
+  EXPECT_EQ(config["loss"]["depth"], 1.5);
+  EXPECT_EQ(config["loss"]["specular"], 3.0);
+  EXPECT_EQ(outcome.output.find("predicted buffers"), std::string::npos) << outcome.output;
 }
 
 TEST_F(CaptureCliTest, BrokenCapturesAreRefusedNamingTheFile) {

@@ -169,5 +169,19 @@ TEST(Roughness, AlphaAndPerceptualConvert) {
   EXPECT_FLOAT_EQ(toPerceptualRoughness(alpha, RoughnessKind::Perceptual).at(0, 0), 0.09f);
 }
 
+TEST(MetalnessFromF0, InvertsTheGreyRuleAndCallsTintedMetalsMetallic) {
+  Image f0(3, 1, 3);
+  f0.setRgb(0, 0, Rgb(0.04f));                // a dielectric
+  f0.setRgb(1, 0, Rgb(1.0f, 0.78f, 0.34f));   // gold
+  f0.setRgb(2, 0, Rgb(0.52f));                // a half-metallic grey
+  const Image m = metalnessFromF0(f0);
+  ASSERT_EQ(m.channels, 1);
+  EXPECT_NEAR(m.at(0, 0), 0.0f, 1e-6f);
+  EXPECT_NEAR(m.at(1, 0), 1.0f, 1e-6f);
+  EXPECT_NEAR(m.at(2, 0), 0.5f, 1e-6f);
+  const Image back = f0FromMetalness(Image(), m);
+  EXPECT_NEAR(back.at(2, 0, 1), 0.52f, 1e-6f);
+}
+
 }  // namespace
 }  // namespace glint

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <numbers>
@@ -65,16 +66,22 @@ TEST(CaptureGenerator, GalleryCaptureOpensWithHoldoutAndTrueCameras) {
   }
 }
 
-TEST(CaptureGenerator, NetworkLikePriorsDifferFromExactOnesButPhotosDoNot) {
-  test::TempFolder temp;
+// Three views of the gallery (two training views) with exact priors, and the same views
+// with the given errors.
+void writeExactAndDegraded(PriorErrors errors, const fs::path& exact, const fs::path& degraded) {
   MeshScene scene = makeBuiltinScene("gallery");
   SynthSettings settings = tinySettings();
   settings.trainViews = 3;
   CaptureSynthSettings capture;
   capture.sparsePoints = 300;
-  generateCapture(scene, settings, capture, temp / "exact");
-  capture.networkLikePriors = true;
-  generateCapture(scene, settings, capture, temp / "network");
+  generateCapture(scene, settings, capture, exact);
+  capture.priorErrors = errors;
+  generateCapture(scene, settings, capture, degraded);
+}
+
+TEST(CaptureGenerator, NetworkLikePriorsDifferFromExactOnesButPhotosDoNot) {
+  test::TempFolder temp;
+  writeExactAndDegraded(PriorErrors::Network, temp / "exact", temp / "network");
   Dataset exact = Dataset::open(temp / "exact", true, 8), network = Dataset::open(temp / "network", true, 8);
   ASSERT_EQ(exact.train().views.size(), 2u);
   ViewBuffers a = exact.loadView(exact.train(), 0), b = network.loadView(network.train(), 0);
@@ -93,6 +100,26 @@ TEST(CaptureGenerator, NetworkLikePriorsDifferFromExactOnesButPhotosDoNot) {
   for (size_t p = 0; p < a[Buffer::Roughness].pixels.size(); ++p)
     roughnessShift += b[Buffer::Roughness].pixels[p] - (0.8 * a[Buffer::Roughness].pixels[p] + 0.1);
   EXPECT_NEAR(roughnessShift / (40 * 30), 0.0, 0.02);
+}
+
+// The monocular kind stores metalness instead of F0, as predictors without F0 do: the loader
+// reads it back as the grey F0 of the white-base rule, so the gallery's tinted metals lose
+// their tint and its dielectrics keep 0.04.
+TEST(CaptureGenerator, MonocularPriorsGiveMetalnessInsteadOfF0) {
+  test::TempFolder temp;
+  writeExactAndDegraded(PriorErrors::Monocular, temp / "exact", temp / "monocular");
+  EXPECT_FALSE(fs::exists(temp / "monocular" / "priors" / "f0"));
+  EXPECT_TRUE(fs::exists(temp / "monocular" / "priors" / "metalness" / "metalness_view_0001.png"));
+  Dataset exact = Dataset::open(temp / "exact", true, 8), monocular = Dataset::open(temp / "monocular", true, 8);
+  ViewBuffers a = exact.loadView(exact.train(), 0), b = monocular.loadView(monocular.train(), 0);
+  EXPECT_EQ(a[Buffer::Render].pixels, b[Buffer::Render].pixels);
+  for (size_t p = 0; p < b[Buffer::F0].pixels.size(); p += 3) {
+    const Rgb f(b[Buffer::F0].pixels[p], b[Buffer::F0].pixels[p + 1], b[Buffer::F0].pixels[p + 2]);
+    EXPECT_EQ(f.x, f.y);
+    EXPECT_EQ(f.y, f.z);
+    const float brightest = std::max({a[Buffer::F0].pixels[p], a[Buffer::F0].pixels[p + 1], a[Buffer::F0].pixels[p + 2]});
+    EXPECT_NEAR(f.x, brightest, 0.01f) << "pixel " << p / 3;
+  }
 }
 
 }  // namespace

@@ -6,24 +6,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "synth/uniform_surface_view.h"
+
 namespace glint {
 namespace {
 
-// A view of one flat, uniform surface: the blur changes nothing, so every difference left
-// is the stated noise and bias.
 ViewBuffers flatView(int width, int height) {
-  ViewBuffers v = ViewBuffers::allocate(width, height);
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x) {
-      v[Buffer::Render].setRgb(x, y, Rgb(0.5f, 0.4f, 0.3f));
-      v[Buffer::Diffuse].setRgb(x, y, Rgb(0.4f, 0.3f, 0.2f));
-      v[Buffer::Specular].setRgb(x, y, Rgb(0.1f));
-      v[Buffer::Depth].at(x, y) = 3.0f;
-      v[Buffer::Normal].setRgb(x, y, normalize(Rgb(0.3f, 0.8f, 0.5f)));
-      v[Buffer::Roughness].at(x, y) = 0.5f;
-      v[Buffer::F0].setRgb(x, y, Rgb(0.04f));
-    }
-  return v;
+  return test::uniformSurfaceView(width, height, normalize(Rgb(0.3f, 0.8f, 0.5f)));
 }
 
 TEST(NetworkDegradation, ParametersScaleWithWidthAndVaryPerView) {

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "common/expect_error.h"
@@ -14,6 +15,8 @@
 #include "train/nearest_neighbours.h"
 #include "train/plane_dataset.h"
 #include "train/scene_extent.h"
+#include "synth/builtin_scenes.h"
+#include "synth/capture_generator.h"
 
 namespace glint {
 namespace {
@@ -253,6 +256,42 @@ TEST_F(DenseInitDataset, NoSurfaceAnywhereIsAnError) {
   test::writePlaneDataset(folder.path(), {Vec3d(0, -1, 3)}, 0);
   Dataset dataset = Dataset::open(folder.path());
   test::expectErrorNaming([&] { initFromDepthBuffers(dataset); }, folder / "train" / "depth", "no sampled pixel");
+}
+
+// A capture's relative depth aligned to its sparse points is only as accurate as the fit:
+// the voxels follow the fits' median residual, so that the views' depths of one surface
+// meet in one voxel; a synthetic dataset's metric depth keeps the extent's fraction.
+TEST(DenseInitCapture, VoxelsAreNoFinerThanTheDepthFitsAreAccurate) {
+  test::TempFolder temp;
+  SynthSettings settings;
+  settings.trainViews = 9;
+  settings.width = 64, settings.height = 48;
+  settings.spp = 1, settings.testSpp = 1, settings.bounces = 1;
+  CaptureSynthSettings capture;
+  capture.sparsePoints = 2000;
+  capture.priorErrors = PriorErrors::Monocular;
+  generateCapture(makeBuiltinScene("room"), settings, capture, temp / "capture");
+  const Dataset dataset = Dataset::open(temp / "capture", true, 8);
+
+  DenseInitSettings fine;
+  fine.depthResidualVoxels = 0;
+  const DenseInit a = initFromDepthBuffers(dataset, fine);
+  const DenseInit b = initFromDepthBuffers(dataset, DenseInitSettings{});
+  ASSERT_GT(b.stats.depthResidual, 0.0f);
+  EXPECT_EQ(a.stats.depthResidual, b.stats.depthResidual);
+  EXPECT_FLOAT_EQ(b.stats.voxelSize, std::max(a.stats.voxelSize, 2.0f * b.stats.depthResidual));
+  EXPECT_GT(b.stats.voxelSize, a.stats.voxelSize);  // the monocular depth is centimetres off
+  // A larger share of the occupied voxels holds two samples or more.
+  EXPECT_GT(double(b.stats.voxelsKept) / double(b.stats.voxelsOccupied),
+            2.0 * double(a.stats.voxelsKept) / double(a.stats.voxelsOccupied));
+}
+
+TEST_F(DenseInitDataset, MetricDepthHasNoFitResidual) {
+  test::writePlaneDataset(folder.path(), test::ringOfEyes(6));
+  DenseInitSettings settings;
+  settings.voxelFraction = 1.0f / 8.0f;  // the plane's sample spacing, as above
+  const DenseInit init = initFromDepthBuffers(Dataset::open(folder.path()), settings);
+  EXPECT_EQ(init.stats.depthResidual, 0.0f);
 }
 
 }  // namespace

@@ -56,11 +56,36 @@ TEST(RayLoss, NoSurfaceMasksTheGBufferTerms) {
   EXPECT_NE(v.v_diffuse, Rgb(0.0f));
 }
 
-TEST(RayLoss, VjpMatchesFiniteDifferences) {
+// From a metalness prior the target is grey and only the brightest channels meet: a gold
+// F0 against the grey 1 of a full metalness costs nothing, whatever its tint.
+TEST(RayLoss, F0FromMetalnessComparesTheBrightestChannels) {
+  PixelTarget t = surfaceTarget();
+  t.f0 = Rgb(1.0f);
+  t.f0BrightnessOnly = true;
+  RayResult r;
+  r.f0 = Rgb(1.0f, 0.78f, 0.34f);
+  LossNormalisation n{4, 2};
+  EXPECT_EQ(rayLoss(r, t, n).f0, 0.0);
+  EXPECT_EQ(rayLoss_vjp(r, t, n, LossWeights()).v_f0, Rgb(0.0f));
+  r.f0 = Rgb(0.5f, 0.8f, 0.2f);
+  EXPECT_NEAR(rayLoss(r, t, n).f0, 0.2 / 2, 1e-7);
+  const Rgb v = rayLoss_vjp(r, t, n, LossWeights()).v_f0;
+  EXPECT_EQ(v.x, 0.0f);
+  EXPECT_FLOAT_EQ(v.y, -1.0f / 2);  // only the brightest channel is pushed, up
+  EXPECT_EQ(v.z, 0.0f);
+  t.f0BrightnessOnly = false;  // the default compares every channel
+  EXPECT_NEAR(rayLoss(r, t, n).f0, (0.5 + 0.2 + 0.8) / 3 / 2, 1e-7);
+}
+
+class RayLossVjp : public ::testing::TestWithParam<bool> {};
+
+TEST_P(RayLossVjp, MatchesFiniteDifferences) {
   Rng rng(41);
   LossWeights w;
   LossNormalisation n{8, 5};
   PixelTarget target = surfaceTarget();
+  target.f0BrightnessOnly = GetParam();
+  if (GetParam()) target.f0 = Rgb(0.6f);
   for (int trial = 0; trial < 20; ++trial) {
     std::vector<double> x(11);
     for (double& v : x) v = rng.uniformDouble() * 4 - 1;
@@ -82,6 +107,9 @@ TEST(RayLoss, VjpMatchesFiniteDifferences) {
     test::expectGradientNear(analytic, test::centralGradient(loss, x, 1e-3), 1e-3, "ray loss");
   }
 }
+
+INSTANTIATE_TEST_SUITE_P(F0Channels, RayLossVjp, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "BrightestChannel" : "EveryChannel"; });
 
 }  // namespace
 }  // namespace glint

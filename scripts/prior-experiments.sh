@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Issue 44's experiments: how much of a capture's quality its predicted buffers cost, and
+# which training levers win it back. builtin:room rendered as three captures of the same
+# photographs and true cameras (exact priors, --degrade network, --degrade monocular),
+# each prior set scored against the exact one (bench/prior_accuracy), then Glint trained
+# on each with the levers below and scored by `glint eval --breakdown` on the held-out
+# views against the exact buffers (8-bit tonemapped PSNR of diffuse, specular, final).
+#
+# Usage: scripts/prior-experiments.sh [OUT]   (default out/prior-experiments)
+# Environment: GLINT (build/glint), BENCH (build/bench), ITERS (8000), RES (160x120),
+# VIEWS (120, every 6th held out), SPP (32), TEST_SPP (64), EVAL_SPP (16), RUNS (which runs,
+# default all: see `runs` below).
+set -euo pipefail
+
+glint="${GLINT:-build/glint}"
+bench="${BENCH:-build/bench}"
+out="${1:-out/prior-experiments}"
+iters="${ITERS:-8000}"
+res="${RES:-160x120}"
+views="${VIEWS:-120}"
+here="$(cd "$(dirname "$0")" && pwd)"
+[ -x "$glint" ] || { echo "prior-experiments: $glint not found (make build first)" >&2; exit 1; }
+mkdir -p "$out/runs" "$out/configs"
+
+# 1. The captures (the same photographs: same seed) and their priors' own accuracy.
+for kind in exact network monocular; do
+  degrade=$kind
+  [ "$kind" = exact ] && degrade=none
+  [ -f "$out/$kind/capture.json" ] || "$glint" synth builtin:room -o "$out/$kind" --layout capture --res "$res" \
+    --train "$views" --holdout 6 --spp "${SPP:-32}" --test-spp "${TEST_SPP:-64}" --degrade "$degrade" --force
+done
+for kind in network monocular; do
+  "$bench/prior_accuracy" "$out/$kind" "$out/exact" --holdout 6 --json "$out/priors_$kind.json"
+done
+
+# 2. The levers, as config files (each a complete setting; none means Glint's defaults).
+echo '{}' > "$out/configs/defaults.json"
+cp "$here/real-capture-train.json" "$out/configs/preset.json"
+echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 0.01}, "init": {"depth_residual_voxels": 0}}' \
+  > "$out/configs/preset_fine_voxels.json"
+echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 3.0}}' > "$out/configs/specular3.json"
+echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 3.0}, "f0_tint_from_reflections": false}' \
+  > "$out/configs/specular3_grey_f0.json"
+
+train_and_eval() {  # train_and_eval RUN CAPTURE CONFIG
+  local run="$out/runs/$1"
+  if [ ! -f "$run/eval/metrics.json" ]; then
+    "$glint" train "$out/$2" -o "$run" --holdout 6 --iters "$iters" --config "$out/configs/$3.json" --force
+    "$glint" eval "$run" --dataset "$out/exact" --spp "${EVAL_SPP:-16}" --bounces 4 --breakdown
+  fi
+}
+runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_preset network_defaults
+  network_specular3 monocular_preset_fine_voxels monocular_preset monocular_specular3 monocular_specular3_grey_f0}"
+for name in $runs; do
+  capture="${name%%_*}"
+  train_and_eval "$name" "$capture" "${name#*_}"
+done
+
+# 3. The table.
+echo
+printf "%-32s %8s %8s %8s %10s %8s\n" run diffuse specular final "depth RMSE" normal
+for metrics in "$out"/runs/*/eval/metrics.json; do
+  python3 - "$metrics" <<'EOF'
+import json, os, sys
+m = json.load(open(sys.argv[1]))["mean"]
+f = lambda v: "-" if v is None else "%.2f" % v
+run = os.path.basename(os.path.dirname(os.path.dirname(sys.argv[1])))
+print("%-32s %8s %8s %8s %10s %8s" % (run, f(m["diffuse"]["psnr_tonemapped"]), f(m["specular"]["psnr_tonemapped"]),
+      f(m["final"]["psnr_tonemapped"]), f(m.get("depth_rmse")), f(m.get("normal_angle_deg"))))
+EOF
+done
