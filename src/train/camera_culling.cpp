@@ -9,6 +9,7 @@
 #include "core/parallel.h"
 #include "math/mat4.h"
 #include "scene/buffers.h"
+#include "scene/capture_dataset.h"
 
 namespace glint {
 
@@ -21,6 +22,15 @@ std::optional<CameraSphere> cameraSphere(const Image& depth, const Camera& camer
   return CameraSphere{camera, double(factor) * double(nearest)};
 }
 
+double nearestPointInView(const Camera& camera, const std::vector<Vec3d>& points) {
+  const Mat4 worldToCamera = camera.cameraToWorld.inverse();
+  double nearest = std::numeric_limits<double>::infinity();
+  Vec2d pixel;
+  for (const Vec3d& p : points)
+    if (camera.project(worldToCamera, p, &pixel)) nearest = std::min(nearest, length(p - camera.position()));
+  return nearest;
+}
+
 std::vector<CameraSphere> cameraSpheres(const Dataset& dataset, const DatasetSplit& split, float factor) {
   if (!(factor > 0.0f)) throw Error("camera culling settings", "the sphere radius factor must be positive");
   std::vector<std::optional<CameraSphere>> perView(split.views.size());
@@ -29,6 +39,9 @@ std::vector<CameraSphere> cameraSpheres(const Dataset& dataset, const DatasetSpl
     if (!dataset.findBufferFile(split.views[size_t(i)], Buffer::Depth)) return;
     Image depth = dataset.loadBuffer(split, size_t(i), Buffer::Depth);
     perView[size_t(i)] = cameraSphere(depth, split.camera(size_t(i)), factor);
+    if (perView[size_t(i)] && dataset.capture())
+      perView[size_t(i)]->radius = std::min(
+          perView[size_t(i)]->radius, double(factor) * nearestPointInView(split.camera(size_t(i)), dataset.capture()->points));
   });
   std::vector<CameraSphere> spheres;
   for (const std::optional<CameraSphere>& sphere : perView)

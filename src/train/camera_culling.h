@@ -41,8 +41,18 @@ enum class CullRegion {
 std::optional<CameraSphere> cameraSphere(const Image& depth, const Camera& camera,
                                          float factor = kCameraSphereDepthFactor);
 
+// The distance from the camera centre to the nearest of `points` that lies in front of the
+// camera and projects into its image; infinity when none does. Every such point is at
+// least as far as the surface its pixel sees, so this undercuts the true nearest surface's
+// depth by no more than the pixel grid does (the nearest surface lies between pixel
+// centres), while a depth buffer aligned with the wrong scale can overstate it.
+double nearestPointInView(const Camera& camera, const std::vector<Vec3d>& points);
+
 // The spheres of every view of a split, in view order (views without surface pixels have
-// none). Reads each view's depth buffer once.
+// none). Reads each view's depth buffer once. For a capture with sparse points the radius
+// is factor x the nearer of the depth buffer's nearest surface and nearestPointInView: a
+// relative depth aligned wrongly (a monocular predictor's: up to 5x too far, measured)
+// would otherwise cull real surfaces near the camera.
 std::vector<CameraSphere> cameraSpheres(const Dataset& dataset, const DatasetSplit& split,
                                         float factor = kCameraSphereDepthFactor);
 
