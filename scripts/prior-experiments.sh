@@ -39,8 +39,16 @@ cp "$here/real-capture-train.json" "$out/configs/preset.json"
 echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 0.01}, "init": {"depth_residual_voxels": 0}}' \
   > "$out/configs/preset_fine_voxels.json"
 echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 3.0}}' > "$out/configs/specular3.json"
-echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 3.0}, "f0_tint_from_reflections": false}' \
-  > "$out/configs/specular3_grey_f0.json"
+echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 3.0}, "f0_tint_from_reflections": true}' \
+  > "$out/configs/specular3_f0_tint.json"
+echo '{"loss": {"roughness": 0.1}}' > "$out/configs/roughness01.json"
+echo '{"loss": {"normal": 2.5}}' > "$out/configs/normal25.json"
+# The monocular capture without its depth: initialised from the sparse points instead.
+if [ ! -d "$out/monodepthless" ]; then
+  mkdir -p "$out/monodepthless/priors"
+  cp -al "$out/monocular/images" "$out/monocular/sparse" "$out/monocular/capture.json" "$out/monodepthless/"
+  for kind in diffuse specular normal roughness metalness; do cp -al "$out/monocular/priors/$kind" "$out/monodepthless/priors/"; done
+fi
 
 train_and_eval() {  # train_and_eval RUN CAPTURE CONFIG
   local run="$out/runs/$1"
@@ -50,7 +58,8 @@ train_and_eval() {  # train_and_eval RUN CAPTURE CONFIG
   fi
 }
 runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_preset network_defaults
-  network_specular3 monocular_preset_fine_voxels monocular_preset monocular_specular3 monocular_specular3_grey_f0}"
+  network_specular3 network_roughness01 network_normal25 monocular_preset_fine_voxels monocular_preset
+  monocular_defaults monocular_specular3 monocular_specular3_f0_tint monodepthless_preset}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"

@@ -160,6 +160,9 @@ std::string describeCapture(const fs::path& root, int holdout, bool* clean) {
       << transferName(d.priorTransfer) << ", clamp_max " << d.clampMax << ", normals "
       << (d.worldNormals ? "world" : std::string("camera (") + cameraAxesName(d.normalAxes) + " axes)") << ", depth "
       << depthName(d.depth) << ", roughness " << (d.roughness == RoughnessKind::Alpha ? "alpha" : "perceptual")
+      << ", priors "
+      << (d.predictedPriors ? "predicted (glint train uses the real-capture setting unless --config is given)"
+                            : "exact")
       << "\n\n";
 
   // Which buffers the views have.
