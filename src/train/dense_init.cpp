@@ -263,7 +263,9 @@ DenseInit initFromSparsePoints(const Dataset& dataset, const DenseInitSettings& 
     points.positions.push_back(Vec3f(capture->points[i]));
     points.colours.push_back(capture->pointColours[i]);
   }
-  return initFromPoints(dataset, std::move(points), settings);
+  DenseInit init = initFromPoints(dataset, std::move(points), settings);
+  init.stats.source = InitSource::SparsePoints;
+  return init;
 }
 
 DenseInit denseInitialisation(const Dataset& dataset, const DenseInitSettings& settings) {

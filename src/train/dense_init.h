@@ -46,7 +46,8 @@ struct DenseInitSettings {
 };
 
 // CameraVolume: random points where the cameras look (train/camera_volume_init.h).
-enum class InitSource { DepthBuffers, PointCloud, CameraVolume };
+// SparsePoints: a capture's points3D, for captures without depth.
+enum class InitSource { DepthBuffers, PointCloud, SparsePoints, CameraVolume };
 
 struct DenseInitStats {
   InitSource source = InitSource::DepthBuffers;

@@ -118,6 +118,9 @@ GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config, Tr
                   st.shellGaussians > 0 ? (", " + std::to_string(st.shellGaussians) + " of them a shell in the "
                                            "background colour").c_str()
                                         : "");
+  else if (st.source == InitSource::SparsePoints)
+    std::snprintf(message, sizeof(message), "initialised %zu Gaussians from the capture's sparse points (%lld points)",
+                  init.scene.size(), (long long)st.pointsUnprojected);
   else if (st.source == InitSource::PointCloud)
     std::snprintf(message, sizeof(message), "initialised %zu Gaussians from point_cloud_dense.ply (%lld points)",
                   init.scene.size(), (long long)st.pointsUnprojected);

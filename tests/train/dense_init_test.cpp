@@ -294,5 +294,23 @@ TEST_F(DenseInitDataset, MetricDepthHasNoFitResidual) {
   EXPECT_EQ(init.stats.depthResidual, 0.0f);
 }
 
+// A capture without depth starts from its sparse points, and says so (not a point cloud file).
+TEST(DenseInitCapture, WithoutDepthStartsFromTheSparsePoints) {
+  test::TempFolder temp;
+  SynthSettings settings;
+  settings.trainViews = 9;
+  settings.width = 32, settings.height = 24;
+  settings.spp = 1, settings.testSpp = 1, settings.bounces = 1;
+  CaptureSynthSettings capture;
+  capture.sparsePoints = 500;
+  generateCapture(makeBuiltinScene("room"), settings, capture, temp / "capture");
+  std::filesystem::remove_all(temp / "capture" / "priors" / "depth");
+  const Dataset dataset = Dataset::open(temp / "capture", true, 8);
+  const DenseInit init = denseInitialisation(dataset);
+  EXPECT_EQ(init.stats.source, InitSource::SparsePoints);
+  ASSERT_GT(dataset.capture()->points.size(), 400u);  // points3D.txt, one Gaussian each
+  EXPECT_EQ(init.scene.size(), dataset.capture()->points.size());
+}
+
 }  // namespace
 }  // namespace glint
