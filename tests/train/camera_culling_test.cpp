@@ -12,9 +12,8 @@
 #include "io/temp_folder.h"
 #include "math/rng.h"
 #include "scene/capture_dataset.h"
-#include "synth/builtin_scenes.h"
-#include "synth/capture_generator.h"
 #include "train/plane_dataset.h"
+#include "train/room_capture.h"
 
 namespace glint {
 namespace {
@@ -68,16 +67,8 @@ TEST(NearestPointInView, CountsOnlyPointsTheImageShows) {
 // predictor's relative depth, aligned up to several times too far, the points bound it.
 TEST(CameraSpheres, ACapturesSparsePointsBoundTheRadius) {
   test::TempFolder folder;
-  SynthSettings settings;
-  settings.trainViews = 9;
-  settings.width = 64, settings.height = 48;
-  settings.spp = 1, settings.testSpp = 1, settings.bounces = 1;
-  CaptureSynthSettings capture;
-  capture.sparsePoints = 2000;
-  const MeshScene scene = makeBuiltinScene("room");
-  generateCapture(scene, settings, capture, folder / "exact");
-  capture.priorErrors = PriorErrors::Monocular;
-  generateCapture(scene, settings, capture, folder / "monocular");
+  test::writeRoomCapture(folder / "exact", PriorErrors::None);
+  test::writeRoomCapture(folder / "monocular", PriorErrors::Monocular);
   for (const char* name : {"exact", "monocular"}) {
     const Dataset dataset = Dataset::open(folder / name, true, 8);
     const std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train());

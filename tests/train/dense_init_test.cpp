@@ -14,9 +14,8 @@
 #include "io/temp_folder.h"
 #include "train/nearest_neighbours.h"
 #include "train/plane_dataset.h"
+#include "train/room_capture.h"
 #include "train/scene_extent.h"
-#include "synth/builtin_scenes.h"
-#include "synth/capture_generator.h"
 
 namespace glint {
 namespace {
@@ -263,14 +262,7 @@ TEST_F(DenseInitDataset, NoSurfaceAnywhereIsAnError) {
 // meet in one voxel; a synthetic dataset's metric depth keeps the extent's fraction.
 TEST(DenseInitCapture, VoxelsAreNoFinerThanTheDepthFitsAreAccurate) {
   test::TempFolder temp;
-  SynthSettings settings;
-  settings.trainViews = 9;
-  settings.width = 64, settings.height = 48;
-  settings.spp = 1, settings.testSpp = 1, settings.bounces = 1;
-  CaptureSynthSettings capture;
-  capture.sparsePoints = 2000;
-  capture.priorErrors = PriorErrors::Monocular;
-  generateCapture(makeBuiltinScene("room"), settings, capture, temp / "capture");
+  test::writeRoomCapture(temp / "capture", PriorErrors::Monocular);
   const Dataset dataset = Dataset::open(temp / "capture", true, 8);
 
   DenseInitSettings fine;
@@ -297,13 +289,7 @@ TEST_F(DenseInitDataset, MetricDepthHasNoFitResidual) {
 // A capture without depth starts from its sparse points, and says so (not a point cloud file).
 TEST(DenseInitCapture, WithoutDepthStartsFromTheSparsePoints) {
   test::TempFolder temp;
-  SynthSettings settings;
-  settings.trainViews = 9;
-  settings.width = 32, settings.height = 24;
-  settings.spp = 1, settings.testSpp = 1, settings.bounces = 1;
-  CaptureSynthSettings capture;
-  capture.sparsePoints = 500;
-  generateCapture(makeBuiltinScene("room"), settings, capture, temp / "capture");
+  test::writeRoomCapture(temp / "capture", PriorErrors::None, 32, 24, 500);
   std::filesystem::remove_all(temp / "capture" / "priors" / "depth");
   const Dataset dataset = Dataset::open(temp / "capture", true, 8);
   const DenseInit init = denseInitialisation(dataset);
