@@ -207,5 +207,14 @@ TEST(TrainConfig, ValidateRefusesNonFiniteNumbersOfEveryField) {
   }
 }
 
+// The real-capture setting exists twice, in code (applied to predicted captures) and as
+// scripts/real-capture-train.json (for --config and other tools): they must not drift.
+TEST(TrainConfig, PredictedBufferSettingIsTheScriptsFile) {
+  TrainConfig inCode;
+  usePredictedBufferSetting(&inCode);
+  const TrainConfig fromFile = readTrainConfig(std::string(GLINT_TEST_DATA) + "/../../scripts/real-capture-train.json");
+  EXPECT_EQ(toJson(fromFile), toJson(inCode));
+}
+
 }  // namespace
 }  // namespace glint
