@@ -53,7 +53,8 @@ void addCaptureCommand(CLI::App& app) {
       ->required();
   cmd->add_option("--camera-model", request->cameraModel,
                   "COLMAP camera model to estimate (PINHOLE, SIMPLE_RADIAL, OPENCV, ...). auto: OPENCV, then "
-                  "undistorted to pinholes, unless PHOTOS has priors/ (PINHOLE, so the priors stay aligned)")
+                  "undistorted to pinholes, unless PHOTOS has priors/ (no distortion, so the priors stay aligned: "
+                  "SIMPLE_PINHOLE, or PINHOLE when sparse/0's pixels are not square)")
       ->default_val("auto");
   cmd->add_flag("--camera-per-image", request->cameraPerImage,
                 "Estimate intrinsics per photograph (photos from several cameras or zoom settings); default: one "

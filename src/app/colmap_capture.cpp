@@ -193,8 +193,33 @@ class ColmapRunner {
   WorkFolder* work_;
 };
 
+// PHOTOS/sparse/0's pinhole camera, shared by all its images (a synthesized capture's true
+// intrinsics), or nothing when there is none to start from.
+std::optional<PinholeIntrinsics> knownCamera(const PhotoFolder& photos) {
+  fs::path folder = photos.root / "sparse" / "0";
+  std::error_code ignored;
+  if (!fs::is_directory(folder, ignored)) return std::nullopt;
+  ColmapModel known;
+  try {
+    known = readColmapModel(folder);
+  } catch (const Error& e) {
+    say("not starting from the cameras of " + folder.string() + ": " + e.what());
+    return std::nullopt;
+  }
+  if (known.cameras.empty()) return std::nullopt;
+  const ColmapCamera& camera = known.cameras.front();
+  for (const ColmapCamera& other : known.cameras)
+    if (other.params != camera.params || other.width != camera.width || other.height != camera.height)
+      return std::nullopt;
+  return colmapPinholeIntrinsics(camera, folder.string(), "", folder);
+}
+
+// Whether a camera's pixels are square: fx and fy within 0.1% of each other.
+bool squarePixels(const PinholeIntrinsics& k) { return std::abs(k.fx - k.fy) <= 1e-3 * std::max(k.fx, k.fy); }
+
 // The camera model to estimate, and why.
-std::string chooseCameraModel(const CaptureRequest& request, bool hasPriors) {
+std::string chooseCameraModel(const CaptureRequest& request, bool hasPriors,
+                              const std::optional<PinholeIntrinsics>& known) {
   if (request.cameraModel != "auto") {
     if (!findColmapCameraModel(request.cameraModel))
       throw Error("--camera-model " + request.cameraModel +
@@ -203,32 +228,28 @@ std::string chooseCameraModel(const CaptureRequest& request, bool hasPriors) {
     say("camera model: " + request.cameraModel + " (--camera-model)");
     return request.cameraModel;
   }
-  if (hasPriors) {
-    say("camera model: PINHOLE (the photographs come with priors/, which undistortion would leave misaligned)");
+  if (hasPriors && known && !squarePixels(*known)) {
+    say("camera model: PINHOLE (the photographs come with priors/, which undistortion would leave misaligned; "
+        "sparse/0's pixels are not square)");
     return "PINHOLE";
+  }
+  if (hasPriors) {
+    // One focal length: with fx and fy free, COLMAP 3.8's bundle adjustment let fy drift up
+    // to 7% from fx on a ring of views (the gallery's 24), against 0.5% with one.
+    say("camera model: SIMPLE_PINHOLE (square pixels, no distortion: the photographs come with priors/, which "
+        "undistortion would leave misaligned)");
+    return "SIMPLE_PINHOLE";
   }
   say("camera model: OPENCV (focal lengths, principal point and lens distortion; undistorted after mapping)");
   return "OPENCV";
 }
 
-// PHOTOS/sparse/0's pinhole intrinsics in the parameter order of `model`, as COLMAP's
+// The known camera's intrinsics in the parameter order of `model`, as COLMAP's
 // --ImageReader.camera_params wants them, or "" when there are none to use.
-std::string knownIntrinsics(const PhotoFolder& photos, const std::string& model) {
-  fs::path folder = photos.root / "sparse" / "0";
-  std::error_code ignored;
-  if (!fs::is_directory(folder, ignored)) return "";
-  ColmapModel known;
-  try {
-    known = readColmapModel(folder);
-  } catch (const Error& e) {
-    say("not starting from the cameras of " + folder.string() + ": " + e.what());
-    return "";
-  }
-  if (known.cameras.empty()) return "";
-  const ColmapCamera& camera = known.cameras.front();
-  for (const ColmapCamera& other : known.cameras)
-    if (other.params != camera.params || other.width != camera.width || other.height != camera.height) return "";
-  PinholeIntrinsics k = colmapPinholeIntrinsics(camera, folder.string(), "", folder);
+std::string knownIntrinsics(const std::optional<PinholeIntrinsics>& known, const PhotoFolder& photos,
+                            const std::string& model) {
+  if (!known) return "";
+  const PinholeIntrinsics& k = *known;
   std::ostringstream s;
   s.precision(17);
   double f = 0.5 * (k.fx + k.fy);
@@ -238,7 +259,8 @@ std::string knownIntrinsics(const PhotoFolder& photos, const std::string& model)
   else if (model == "PINHOLE") s << k.fx << ',' << k.fy << ',' << k.cx << ',' << k.cy;
   else if (model == "OPENCV") s << k.fx << ',' << k.fy << ',' << k.cx << ',' << k.cy << ",0,0,0,0";
   else return "";
-  say("starting from the intrinsics of " + folder.string() + " (" + s.str() + "); the mapper refines them");
+  say("starting from the intrinsics of " + (photos.root / "sparse" / "0").string() + " (" + s.str() +
+      "); the mapper refines them");
   return s.str();
 }
 
@@ -394,8 +416,9 @@ CaptureResult reconstructCapture(const CaptureRequest& request) {
   if (!program) throw Error(request.colmap, colmapInstallAdvice());
   std::error_code ignored;
   bool hasPriors = photos.images != photos.root && fs::is_directory(photos.root / "priors", ignored);
-  std::string model = chooseCameraModel(request, hasPriors);
-  std::string intrinsics = request.useKnownIntrinsics ? knownIntrinsics(photos, model) : "";
+  std::optional<PinholeIntrinsics> known = request.useKnownIntrinsics ? knownCamera(photos) : std::nullopt;
+  std::string model = chooseCameraModel(request, hasPriors, known);
+  std::string intrinsics = knownIntrinsics(known, photos, model);
 
   WorkFolder work(request.output);
   ColmapPaths paths(work.path());

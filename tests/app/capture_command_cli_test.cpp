@@ -135,9 +135,10 @@ TEST_F(CaptureCommandTest, KeepsTheLargestModelWithThePhotographsAndPriors) {
   EXPECT_TRUE(fs::exists(out / "colmap" / "database.db"));
   EXPECT_NE(fileText(out / "colmap" / "log.txt").find("Processed file [4/4]"), std::string::npos);
   EXPECT_FALSE(fs::exists(root_ / ".out.glint-capture-partial"));
-  // With priors the camera is a pinhole, so the priors stay aligned with the photographs.
+  // With priors the camera is a pinhole with square pixels, so the priors stay aligned with
+  // the photographs and fy cannot drift from fx.
   std::string calls = fileText(root_ / "fake" / "calls.txt");
-  EXPECT_NE(calls.find("--ImageReader.camera_model PINHOLE"), std::string::npos) << calls;
+  EXPECT_NE(calls.find("--ImageReader.camera_model SIMPLE_PINHOLE"), std::string::npos) << calls;
   EXPECT_EQ(calls.find("image_undistorter"), std::string::npos) << calls;
   EXPECT_NE(calls.find("--SiftExtraction.use_gpu 0"), std::string::npos) << calls;
   // What it registered, the reprojection error, what was left out and what to run next.
@@ -184,11 +185,19 @@ TEST_F(CaptureCommandTest, PhotographsAloneGetTheOpenCvModelAndKnownIntrinsicsSt
   EXPECT_FALSE(fs::exists(root_ / "out" / "colmap" / "images" / "notes.txt"));
   EXPECT_NE(run.output.find("4 photographs in " + path("loose")), std::string::npos) << run.output;
 
-  // A capture's own pinhole camera starts the estimate unless --no-intrinsics.
-  glint::writeColmapModelBinary(root_ / "photos" / "sparse" / "0", model("PINHOLE", {31, 32, 20, 10}, 40, {"a.png"}));
+  // A capture's own pinhole camera starts the estimate unless --no-intrinsics: square pixels
+  // as one focal length, others with both (and then a PINHOLE camera).
+  glint::writeColmapModelBinary(root_ / "photos" / "sparse" / "0", model("PINHOLE", {31, 31, 20, 10}, 40, {"a.png"}));
   fs::remove(root_ / "fake" / "calls.txt");
   ASSERT_EQ(captureWith("", path("photos") + " -o " + path("out2")).status, 0);
   calls = fileText(root_ / "fake" / "calls.txt");
+  EXPECT_NE(calls.find("--ImageReader.camera_model SIMPLE_PINHOLE"), std::string::npos) << calls;
+  EXPECT_NE(calls.find("--ImageReader.camera_params 31,20,10"), std::string::npos) << calls;
+  glint::writeColmapModelBinary(root_ / "photos" / "sparse" / "0", model("PINHOLE", {31, 32, 20, 10}, 40, {"a.png"}));
+  fs::remove(root_ / "fake" / "calls.txt");
+  ASSERT_EQ(captureWith("", path("photos") + " -o " + path("out4")).status, 0);
+  calls = fileText(root_ / "fake" / "calls.txt");
+  EXPECT_NE(calls.find("--ImageReader.camera_model PINHOLE"), std::string::npos) << calls;
   EXPECT_NE(calls.find("--ImageReader.camera_params 31,32,20,10"), std::string::npos) << calls;
   fs::remove(root_ / "fake" / "calls.txt");
   ASSERT_EQ(captureWith("", path("photos") + " -o " + path("out3") + " --no-intrinsics").status, 0);

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # CTest colmap_capture: synthesizes a small capture of builtin:gallery, reconstructs its
-# cameras with Debian's colmap through `glint capture` (the capture as it is: PINHOLE, the
+# cameras with Debian's colmap through `glint capture` (the capture as it is: SIMPLE_PINHOLE, the
 # priors kept; its photographs alone: OPENCV, undistorted), and opens both results with
 # `glint info` (Dataset::open and every buffer). Exits 77 (skipped) when colmap is absent.
 # The kept model is then checked as the committed fixture (tests/data/colmap_gallery) is:
@@ -40,7 +40,7 @@ expect_registered() {  # expect_registered LOG WHAT
 # The capture as glint synth wrote it: priors/ kept, so a pinhole camera.
 "$glint" capture "$work/synth" -o "$work/capture" 2>&1 | tee "$work/capture.log"
 expect_registered "$work/capture.log" "capture with priors"
-grep -q "cameras: PINHOLE$" "$work/capture.log" || { echo "FAILED: expected a PINHOLE camera"; exit 1; }
+grep -q "cameras: SIMPLE_PINHOLE$" "$work/capture.log" || { echo "FAILED: expected a SIMPLE_PINHOLE camera"; exit 1; }
 [ -d "$work/capture/priors" ] || { echo "FAILED: priors/ was not kept"; exit 1; }
 "$glint" info "$work/capture"
 GLINT_COLMAP_MODEL="$work/capture/sparse/0" GLINT_COLMAP_TRUTH="$work/synth/sparse/0" \
