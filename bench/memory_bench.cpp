@@ -68,7 +68,7 @@ DatasetSplit ringSplit(const std::string& name, int views, int width, int height
     char file[64];
     std::snprintf(file, sizeof(file), "%s/render/render_%04d", name.c_str(), i);
     split.views.push_back(
-        {file, Camera::fromFieldOfView(Mat4::lookAt(eye, Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, width, height)});
+        {file, Camera::fromFieldOfView(Mat4::lookAt(eye, Vec3d(0, 0, 0), Vec3d(0, 0, 1)), 0.9, width, height), {}});
   }
   return split;
 }

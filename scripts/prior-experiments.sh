@@ -22,13 +22,20 @@ here="$(cd "$(dirname "$0")" && pwd)"
 [ -x "$glint" ] || { echo "prior-experiments: $glint not found (make build first)" >&2; exit 1; }
 mkdir -p "$out/runs" "$out/configs"
 
-# 1. The captures (the same photographs: same seed) and their priors' own accuracy.
-for kind in exact network monocular; do
-  degrade=$kind
-  [ "$kind" = exact ] && degrade=none
+# 1. The captures (the same photographs: same seed) and their priors' own accuracy. The
+# net<buffer> captures have the network kind's errors on one kind of prior only
+# (--degrade-only), to tell which prior's error costs what; they are made when a run needs them.
+make_capture() {  # make_capture KIND
+  local kind="$1" degrade=(--degrade "$1")
+  case "$kind" in
+    exact) degrade=(--degrade none) ;;
+    netradiance) degrade=(--degrade network --degrade-only diffuse,specular) ;;
+    net*) degrade=(--degrade network --degrade-only "${kind#net}") ;;
+  esac
   [ -f "$out/$kind/capture.json" ] || "$glint" synth builtin:room -o "$out/$kind" --layout capture --res "$res" \
-    --train "$views" --holdout 6 --spp "${SPP:-32}" --test-spp "${TEST_SPP:-64}" --degrade "$degrade" --force
-done
+    --train "$views" --holdout 6 --spp "${SPP:-32}" --test-spp "${TEST_SPP:-64}" "${degrade[@]}" --force
+}
+for kind in exact network monocular; do make_capture "$kind"; done
 for kind in network monocular; do
   "$bench/prior_accuracy" "$out/$kind" "$out/exact" --holdout 6 --json "$out/priors_$kind.json"
 done
@@ -53,13 +60,15 @@ fi
 train_and_eval() {  # train_and_eval RUN CAPTURE CONFIG
   local run="$out/runs/$1"
   if [ ! -f "$run/eval/metrics.json" ]; then
+    make_capture "$2"
     "$glint" train "$out/$2" -o "$run" --holdout 6 --iters "$iters" --config "$out/configs/$3.json" --force
     "$glint" eval "$run" --dataset "$out/exact" --spp "${EVAL_SPP:-16}" --bounces 4 --breakdown
   fi
 }
 runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_preset network_defaults
   network_specular3 network_roughness01 network_normal25 monocular_preset_fine_voxels monocular_preset
-  monocular_defaults monocular_specular3 monocular_specular3_f0_tint monodepthless_preset}"
+  monocular_defaults monocular_specular3 monocular_specular3_f0_tint monodepthless_preset
+  netnormal_defaults netroughness_defaults netradiance_defaults netdepth_defaults netf0_defaults}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"

@@ -47,6 +47,7 @@ struct SynthOptions {
   std::string layout = "transforms";
   int holdout = Dataset::kDefaultHoldout;
   std::string degrade = "none";
+  std::vector<std::string> degradeOnly;
   int points = 4000;
 };
 
@@ -146,6 +147,8 @@ void runSynth(const SynthOptions& o) {
   const bool capture = o.layout == "capture";
   if (!capture && o.degrade != "none")
     throw Error("--degrade", "degraded priors are written in the capture layout only (add --layout capture)");
+  if (!o.degradeOnly.empty() && o.degrade == "none")
+    throw Error("--degrade-only", "names the priors that --degrade degrades: give --degrade network or monocular too");
   // Rank 0 alone looks at the folder; the generators make their folders on rank 0 and wait
   // for it before any rank writes.
   if (cluster::isRoot()) checkOutputFolder(o.output, o.force, capture);
@@ -159,13 +162,16 @@ void runSynth(const SynthOptions& o) {
                                   : o.degrade == "monocular" ? PriorErrors::Monocular
                                                              : PriorErrors::None;
     captureSettings.sparsePoints = o.points;
+    for (const std::string& name : o.degradeOnly) captureSettings.degradedPriors.push_back(*bufferFromName(name));
     const int testViews = o.holdout > 1 ? (o.train + o.holdout - 1) / o.holdout : 0;
+    std::string priors = o.degrade == "none" ? "exact" : o.degrade + "-like";
+    for (size_t k = 0; k < o.degradeOnly.size(); ++k)
+      priors += (k == 0 ? " (only " : ", ") + o.degradeOnly[k] + (k + 1 == o.degradeOnly.size() ? ")" : "");
     std::fprintf(stderr,
                  "glint synth: %s -> %s (capture): %d views, %d held out (every %d-th) at %d spp, the rest at %d "
                  "spp, %dx%d, %d bounces, %s priors, %d threads\n",
                  o.scene.c_str(), o.output.c_str(), o.train, testViews, o.holdout, settings.testSamplesPerPixel(),
-                 o.spp, res.x, res.y, o.bounces, o.degrade == "none" ? "exact" : (o.degrade + "-like").c_str(),
-                 maxThreads());
+                 o.spp, res.x, res.y, o.bounces, priors.c_str(), maxThreads());
     generateCapture(scene, settings, captureSettings, o.output);
   } else {
     std::fprintf(stderr,
@@ -257,6 +263,11 @@ void addSynthCommand(CLI::App& app) {
                   "roughness + 0.05 + noise 0.05, and metalness instead of F0 (per 160 px of width)")
       ->check(CLI::IsMember({"none", "network", "monocular"}))
       ->capture_default_str();
+  cmd->add_option("--degrade-only", options->degradeOnly,
+                  "Capture layout: degrade only these priors (diffuse, specular, depth, normal, roughness, f0; "
+                  "default all) and write the others exact, to measure what each one's error costs")
+      ->check(CLI::IsMember({"diffuse", "specular", "depth", "normal", "roughness", "f0"}))
+      ->delimiter(',');
   cmd->add_option("--points", options->points, "Capture layout: sparse points in points3D.txt")
       ->check(CLI::Range(1, 10000000))
       ->capture_default_str();

@@ -35,7 +35,7 @@ DatasetSplit openSplit(const fs::path& root, const std::string& name, bool requi
                                      "\" does not name a render image (expected SPLIT/render/render_NAME)");
     // 1x1 until the image size is known (Dataset::open sets it).
     split.views.push_back(
-        {std::move(frame.filePath), Camera::fromFieldOfView(frame.transformMatrix, transforms.cameraAngleX, 1, 1)});
+        {std::move(frame.filePath), Camera::fromFieldOfView(frame.transformMatrix, transforms.cameraAngleX, 1, 1), {}});
   }
   return split;
 }

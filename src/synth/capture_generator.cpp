@@ -1,6 +1,8 @@
 // Capture generation: the training path rendered view by view, priors, points from depth.
 #include "synth/capture_generator.h"
 
+#include <algorithm>
+
 #include <cstdio>
 
 #include "core/cluster.h"
@@ -24,6 +26,12 @@ std::string viewImageName(int index) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "view_%04d.jpg", index);
   return buffer;
+}
+
+// Whether prior b gets the capture's degradation (the photograph, Render, never does).
+bool degrades(const CaptureSynthSettings& capture, Buffer b) {
+  const auto& only = capture.degradedPriors;
+  return b != Buffer::Render && (only.empty() || std::find(only.begin(), only.end(), b) != only.end());
 }
 
 }  // namespace
@@ -70,6 +78,8 @@ void generateCapture(const MeshScene& scene, const SynthSettings& settings, cons
     ViewBuffers priors = capture.priorErrors == PriorErrors::Network     ? networkLikePriors(exact, settings.seed, uint64_t(i))
                          : capture.priorErrors == PriorErrors::Monocular ? monocularPriors(exact, settings.seed, uint64_t(i))
                                                                          : exact;
+    for (Buffer b : kAllBuffers)
+      if (!degrades(capture, b)) priors[b] = exact[b];
     views.push_back({viewImageName(i), camera, std::move(priors)});
   }
   if (!cluster::isRoot()) return;
@@ -84,7 +94,7 @@ void generateCapture(const MeshScene& scene, const SynthSettings& settings, cons
     colours.push_back({toLinear(Transfer::Srgb, c.x), toLinear(Transfer::Srgb, c.y), toLinear(Transfer::Srgb, c.z)});
   }
   CaptureWriteSettings write;
-  write.metalnessInsteadOfF0 = capture.priorErrors == PriorErrors::Monocular;
+  write.metalnessInsteadOfF0 = capture.priorErrors == PriorErrors::Monocular && degrades(capture, Buffer::F0);
   write.predictedPriors = capture.priorErrors != PriorErrors::None;
   writeCapture(outDir, views, points, colours, write);
 }

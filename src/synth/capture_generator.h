@@ -4,6 +4,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "scene/dataset.h"
 #include "synth/dataset_generator.h"
@@ -23,6 +24,10 @@ struct CaptureSynthSettings {
   // (LLFF's convention): those are rendered at SynthSettings::testSpp.
   int holdout = Dataset::kDefaultHoldout;
   PriorErrors priorErrors = PriorErrors::None;
+  // The priors that get priorErrors' degradation; the others are written exact (empty: all).
+  // For experiments that tell which buffer's error costs what. Leaving F0 out also keeps
+  // the monocular kind's F0 file (no metalness in its place).
+  std::vector<Buffer> degradedPriors;
   int sparsePoints = 4000;         // points3D: sampled from the training views' exact depth
 };
 

@@ -219,7 +219,9 @@ TEST_F(ExportCliTest, TheDefault3dgsExportIsInriasLayoutAndWarnsAboutUnbakedMirr
   std::getline(in, line);
   ASSERT_EQ(line, "ply");
   while (std::getline(in, line) && line != "end_header") {
-    if (line.rfind("format ", 0) == 0) EXPECT_EQ(line, "format binary_little_endian 1.0");
+    if (line.rfind("format ", 0) == 0) {
+      EXPECT_EQ(line, "format binary_little_endian 1.0");
+    }
     if (line.rfind("element vertex ", 0) == 0) vertices = std::stoul(line.substr(15));
     if (line.rfind("property ", 0) == 0) {
       EXPECT_EQ(line.rfind("property float ", 0), 0u) << line;

@@ -60,4 +60,19 @@ TEST_F(SynthCaptureCli, DegradingNeedsTheCaptureLayout) {
   EXPECT_FALSE(fs::exists(root_ / "T"));
 }
 
+// --degrade-only names which priors the degradation reaches, so it means nothing alone, and
+// it is said on the progress line.
+TEST_F(SynthCaptureCli, DegradeOnlyNeedsADegradationAndIsReported) {
+  Outcome alone = runGlint("synth builtin:gallery -o " + path("A") + kTiny + " --degrade-only normal");
+  EXPECT_NE(alone.status, 0);
+  EXPECT_NE(alone.output.find("--degrade network or monocular"), std::string::npos) << alone.output;
+  EXPECT_FALSE(fs::exists(root_ / "A"));
+  Outcome unknown = runGlint("synth builtin:gallery -o " + path("U") + kTiny + " --degrade network --degrade-only albedo");
+  EXPECT_NE(unknown.status, 0);
+  EXPECT_FALSE(fs::exists(root_ / "U"));
+  Outcome two = runGlint("synth builtin:gallery -o " + path("N") + kTiny + " --degrade network --degrade-only normal,roughness");
+  ASSERT_EQ(two.status, 0) << two.output;
+  EXPECT_NE(two.output.find("network-like (only normal, roughness) priors"), std::string::npos) << two.output;
+}
+
 }  // namespace

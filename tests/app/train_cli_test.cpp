@@ -9,13 +9,13 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <thread>
 
 #include <nlohmann/json.hpp>
 
 #include "app/run_glint.h"
 #include "common/tfrecord_reader.h"
+#include "io/temp_folder.h"
 
 namespace glint {
 namespace {
@@ -24,12 +24,7 @@ namespace fs = std::filesystem;
 using test::Outcome;
 using test::runGlint;
 
-std::string readBytes(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using test::readBytes;
 
 class TrainCliTest : public ::testing::Test {
  protected:

@@ -20,12 +20,12 @@ using test::randomUpperDirection;
 
 
 const LambertLobe kLobe{Rgb(0.8f, 0.5f, 0.2f)};
-const Vec3f kViews[] = {Vec3f(0, 0, 1), direction(0.05, 1.0)};
+const Vec3f kLambertViews[] = {Vec3f(0, 0, 1), direction(0.05, 1.0)};
 
 TEST(LambertChiSquare, SampleMatchesPdf) {
   const double significance = test::sidakSignificance(0.01, 2);
   uint64_t seed = 300;
-  for (const Vec3f& wo : kViews) {
+  for (const Vec3f& wo : kLambertViews) {
     auto result = test::testDirectionSampler(
         test::DirectionGrid::hemisphere(),
         [&](Vec2f u) -> std::optional<Vec3f> {
@@ -53,7 +53,7 @@ TEST(Lambert, SampleWeightIsEvalOverPdf) {
 }
 
 TEST(Lambert, PdfIntegratesToOneAndEvalToTheAlbedo) {
-  for (const Vec3f& wo : kViews) {
+  for (const Vec3f& wo : kLambertViews) {
     auto grid = test::DirectionGrid::hemisphere();
     EXPECT_NEAR(grid.integrate([&](const Vec3f& wi) { return double(kLobe.pdf(wo, wi)); }, 1e-6), 1.0, 1e-4);
     // White furnace: a Lambertian surface reflects exactly its albedo.

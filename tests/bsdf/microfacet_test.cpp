@@ -24,9 +24,9 @@ using test::randomUpperDirection;
 
 
 
-const float kAlphas[] = {0.05f, 0.2f, 0.5f, 1.0f};
+const float kMicrofacetAlphas[] = {0.05f, 0.2f, 0.5f, 1.0f};
 // Normal, oblique, steep and grazing (87 degrees) views; azimuths avoid the grid's axes.
-const Vec3f kViews[] = {Vec3f(0, 0, 1), direction(0.7, 0.4), direction(0.3, 2.0), direction(0.05, -2.5)};
+const Vec3f kMicrofacetViews[] = {Vec3f(0, 0, 1), direction(0.7, 0.4), direction(0.3, 2.0), direction(0.05, -2.5)};
 
 TEST(Microfacet, DMatchesWaltersClosedForm) {
   // D = alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2), Walter et al. 2007, evaluated in double.
@@ -55,7 +55,7 @@ TEST(Microfacet, LambdaMatchesClosedForm) {
 
 TEST(Microfacet, MaskingLimitsAndBounds) {
   Rng rng(11);
-  for (float alpha : kAlphas) {
+  for (float alpha : kMicrofacetAlphas) {
     EXPECT_FLOAT_EQ(smithG1(Vec3f(0, 0, 1), alpha), 1.0f);  // nothing is masked at normal view
     EXPECT_EQ(smithG1(Vec3f(1, 0, 0), alpha), 0.0f);        // everything is masked at the horizon
     EXPECT_EQ(smithG1(Vec3f(0, 0.6f, -0.8f), alpha), 0.0f);
@@ -99,8 +99,8 @@ TEST(Microfacet, WeakWhiteFurnace) {
   // with G1 in place of G2 and F = 1, the microfacet BRDF times cos(theta_i) integrates to
   // exactly 1 over the whole sphere of wi (reflections below the horizon included), for
   // any wo. Integrand: D(wm) G1(wo) / (4 wo.z) with wm = normalize(wo + wi).
-  for (float alpha : kAlphas) {
-    for (const Vec3f& wo : kViews) {
+  for (float alpha : kMicrofacetAlphas) {
+    for (const Vec3f& wo : kMicrofacetViews) {
       auto integrand = [&](const Vec3f& wi) {
         Vec3f wm = normalize(wo + wi);
         return double(D_GGX(wm, alpha)) * smithG1(wo, alpha) / (4.0 * wo.z);
@@ -120,8 +120,8 @@ test::DirectionGrid normalGrid(float alpha) {
 }
 
 TEST(Microfacet, VisibleNormalPdfIntegratesToOne) {
-  for (float alpha : kAlphas) {
-    for (const Vec3f& wo : kViews) {
+  for (float alpha : kMicrofacetAlphas) {
+    for (const Vec3f& wo : kMicrofacetViews) {
       auto pdf = [&](const Vec3f& wm) { return double(visibleNormalPdfGGX(wo, wm, alpha)); };
       double integral = normalGrid(alpha).integrate(pdf, 1e-4);
       EXPECT_NEAR(integral, 1.0, 1e-3) << "alpha = " << alpha << ", wo.z = " << wo.z;
@@ -135,7 +135,7 @@ TEST(Microfacet, NoVisibleNormalsBelowTheHorizon) {
   EXPECT_EQ(visibleNormalPdfGGX(Vec3f(0.6f, 0, -0.8f), Vec3f(0, 0, 1), 0.3f), 0.0f);
   // Corners of the unit square still give valid normals (or none), never NaN.
   for (Vec2f u : {Vec2f(0, 0), Vec2f(0, 0x1.fffffep-1f), Vec2f(0x1.fffffep-1f, 0), Vec2f(0.5f, 0x1.fffffep-1f)}) {
-    for (const Vec3f& wo : kViews) {
+    for (const Vec3f& wo : kMicrofacetViews) {
       std::optional<Vec3f> wm = sampleVisibleNormalGGX(wo, kMinGgxAlpha, u);
       if (wm) {
         EXPECT_TRUE(isFinite(*wm));
@@ -148,8 +148,8 @@ TEST(Microfacet, NoVisibleNormalsBelowTheHorizon) {
 TEST(MicrofacetChiSquare, VisibleNormalSampling) {
   const double significance = test::sidakSignificance(0.01, 16);
   uint64_t seed = 100;
-  for (float alpha : kAlphas) {
-    for (const Vec3f& wo : kViews) {
+  for (float alpha : kMicrofacetAlphas) {
+    for (const Vec3f& wo : kMicrofacetViews) {
       auto result = test::testDirectionSampler(
           normalGrid(alpha), [&](Vec2f u) { return sampleVisibleNormalGGX(wo, alpha, u); },
           [&](const Vec3f& wm) { return double(visibleNormalPdfGGX(wo, wm, alpha)); }, 500000, seed++, significance);

@@ -9,7 +9,12 @@
 #include <string>
 #include <vector>
 
+#include "math/rng.h"
+
 namespace glint::test {
+
+// A random input in [-1, 1): where the gradients are checked.
+inline double symmetric(Rng& rng) { return 2 * rng.uniformDouble() - 1; }
 
 // The gradient of the scalar f at x, dimension by dimension: (f(x + h e_k) - f(x - h e_k))
 // / (2 h) with h = relStep * max(|x_k|, 1). With relStep ~1e-6 the truncation error

@@ -20,8 +20,15 @@ inline void makeTinyDataset(const std::filesystem::path& folder) {
 // `iters` steps of 256 rays on 2 threads, one reflected segment from step 3, scored every
 // 4 steps and saved every 2.
 inline TrainConfig tinyTrainConfig(const std::filesystem::path& dataset, int iters) {
-  TrainConfig c{.dataset = dataset.string(), .iters = iters, .threads = 2, .bounces = 1, .reflectionWarmup = 2,
-                .batchRays = 256, .evalEvery = 4, .saveEvery = 2};
+  TrainConfig c;
+  c.dataset = dataset.string();
+  c.iters = iters;
+  c.threads = 2;
+  c.bounces = 1;
+  c.reflectionWarmup = 2;
+  c.batchRays = 256;
+  c.evalEvery = 4;
+  c.saveEvery = 2;
   c.farField.count = 300;  // the paper's 75,000 is for scenes of millions of pixels
   return c;
 }

@@ -19,8 +19,8 @@ namespace {
 const Rgb kFloorColour(0.5f, 0.4f, 0.3f), kShadowColour(0.05f, 0.04f, 0.03f), kBallColour(0.8f, 0.1f, 0.1f);
 constexpr float kFloorRoughness = 0.6f, kBallRoughness = 0.1f;
 const Rgb kFloorF0(0.04f), kBallF0(0.9f);
-constexpr float kSpacing = 0.05f, kSigma = 0.04f, kOpacity = 0.9f;
-constexpr float kHoleRadius = 0.12f, kShadowRadius = 0.25f;
+constexpr float kHealSpacing = 0.05f, kSigma = 0.04f, kOpacity = 0.9f;
+constexpr float kHealHoleRadius = 0.12f, kShadowRadius = 0.25f;
 
 void addGaussian(GaussianScene& s, const Vec3f& p, const Vec3f& n, const Rgb& diffuse, float roughness, const Rgb& f0,
                  const Vec3f& logScale) {
@@ -55,9 +55,9 @@ GaussianScene floorAndBall(const Vec3f& ballCentre, float bareBelow = 0, Rgb (*f
   const Vec3f flat(std::log(kSigma), std::log(0.004f), std::log(kSigma));
   for (int x = -20; x <= 20; ++x)
     for (int z = -20; z <= 20; ++z) {
-      const Vec3f p(float(x) * kSpacing, 0, float(z) * kSpacing);
+      const Vec3f p(float(x) * kHealSpacing, 0, float(z) * kHealSpacing);
       const float r = length(p);
-      if (r < kHoleRadius) continue;
+      if (r < kHealHoleRadius) continue;
       addGaussian(s, p, {0, 1, 0}, floorColour(p), kFloorRoughness, kFloorF0, flat);
     }
   const Vec3f round(std::log(0.03f));

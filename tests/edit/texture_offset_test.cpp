@@ -12,7 +12,7 @@
 namespace glint {
 namespace {
 
-constexpr float kSpacing = 0.05f, kSquare = 0.2f, kHoleRadius = 0.17f;
+constexpr float kTextureSpacing = 0.05f, kSquare = 0.2f, kTextureHoleRadius = 0.17f;
 const Rgb kLight(0.8f, 0.8f, 0.75f), kDark(0.12f, 0.12f, 0.14f);
 
 bool lightSquare(float x, float z) {
@@ -27,9 +27,9 @@ GaussianScene floor(Colour colour) {
   Rng rng(7);
   for (int x = -30; x <= 30; ++x)
     for (int z = -30; z <= 30; ++z) {
-      const Vec3f p(float(x) * kSpacing + 0.01f * (rng.uniform() - 0.5f), 0,
-                    float(z) * kSpacing + 0.01f * (rng.uniform() - 0.5f));
-      if (length(p - Vec3f(0.05f, 0, 0.05f)) < kHoleRadius) continue;
+      const Vec3f p(float(x) * kTextureSpacing + 0.01f * (rng.uniform() - 0.5f), 0,
+                    float(z) * kTextureSpacing + 0.01f * (rng.uniform() - 0.5f));
+      if (length(p - Vec3f(0.05f, 0, 0.05f)) < kTextureHoleRadius) continue;
       const size_t i = s.size();
       s.resize(i + 1);
       s.position[i] = p;
@@ -45,8 +45,8 @@ std::vector<Vec3f> holePoints() {
   std::vector<Vec3f> hole;
   for (int x = -4; x <= 4; ++x)
     for (int z = -4; z <= 4; ++z) {
-      const Vec3f p(0.05f + float(x) * kSpacing, 0, 0.05f + float(z) * kSpacing);
-      if (length(p - Vec3f(0.05f, 0, 0.05f)) < kHoleRadius) hole.push_back(p);
+      const Vec3f p(0.05f + float(x) * kTextureSpacing, 0, 0.05f + float(z) * kTextureSpacing);
+      if (length(p - Vec3f(0.05f, 0, 0.05f)) < kTextureHoleRadius) hole.push_back(p);
     }
   return hole;
 }
@@ -60,7 +60,7 @@ std::vector<uint32_t> all(const GaussianScene& s) {
 TEST(TextureOffset, ContinuesACheckerWithASquareOfTheSameColour) {
   const GaussianScene s = floor([](float x, float z) { return lightSquare(x, z) ? kLight : kDark; });
   const std::vector<Vec3f> hole = holePoints();
-  const auto found = findTextureOffset(s, all(s), hole, {0, 1, 0}, kSpacing, 2 * kSpacing);
+  const auto found = findTextureOffset(s, all(s), hole, {0, 1, 0}, kTextureSpacing, 2 * kTextureSpacing);
   ASSERT_TRUE(found.has_value());
   EXPECT_GT(found->correlation, 0.8f);
   EXPECT_NEAR(found->offset.y, 0.0f, 1e-5f);
@@ -72,28 +72,28 @@ TEST(TextureOffset, ContinuesACheckerWithASquareOfTheSameColour) {
     same += lightSquare(p.x, p.z) == lightSquare(q.x, q.z);
   }
   EXPECT_GE(same, int(0.9 * double(hole.size()))) << found->offset.x << " " << found->offset.z;
-  EXPECT_GE(length(found->offset), 2 * kHoleRadius);  // off the hole itself
+  EXPECT_GE(length(found->offset), 2 * kTextureHoleRadius);  // off the hole itself
 }
 
 TEST(TextureOffset, GivesUpOnASearchBeyondItsBudget) {
   const GaussianScene s = floor([](float x, float z) { return lightSquare(x, z) ? kLight : kDark; });
   TextureOffsetSettings settings;
   settings.maxWork = 1e5;  // the checker's search visits about 8e5 cells
-  EXPECT_FALSE(findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing, settings).has_value());
+  EXPECT_FALSE(findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kTextureSpacing, 2 * kTextureSpacing, settings).has_value());
   settings.maxWork = 1e8;
-  EXPECT_TRUE(findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing, settings).has_value());
+  EXPECT_TRUE(findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kTextureSpacing, 2 * kTextureSpacing, settings).has_value());
 }
 
 TEST(TextureOffset, SearchesNoOffsetShorterThanAsked) {
   const GaussianScene s = floor([](float x, float z) { return lightSquare(x, z) ? kLight : kDark; });
   TextureOffsetSettings settings;
   settings.minOffsetWidths = 3;  // the checker's period is under 3 hole widths
-  const auto found = findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing, settings);
+  const auto found = findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kTextureSpacing, 2 * kTextureSpacing, settings);
   if (found) {
-    EXPECT_GE(length(found->offset), 3 * 7 * kSpacing - 1e-4f);  // the hole is 7 cells wide
+    EXPECT_GE(length(found->offset), 3 * 7 * kTextureSpacing - 1e-4f);  // the hole is 7 cells wide
   }
   settings.minOffsetWidths = 10;  // beyond the search (2 widths): nothing to find
-  EXPECT_FALSE(findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing, settings).has_value());
+  EXPECT_FALSE(findTextureOffset(s, all(s), holePoints(), {0, 1, 0}, kTextureSpacing, 2 * kTextureSpacing, settings).has_value());
 }
 
 TEST(TextureOffset, FindsNoneOnAUniformOrNoisySurface) {
@@ -101,9 +101,9 @@ TEST(TextureOffset, FindsNoneOnAUniformOrNoisySurface) {
   const GaussianScene noisy =
       floor([&](float, float) { return Rgb(0.5f) * (1.0f + 0.05f * (rng.uniform() - 0.5f)); });
   // The best pair of opposite offsets correlates at 0.26 on this noise (the checker: 0.86).
-  EXPECT_FALSE(findTextureOffset(noisy, all(noisy), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing).has_value());
+  EXPECT_FALSE(findTextureOffset(noisy, all(noisy), holePoints(), {0, 1, 0}, kTextureSpacing, 2 * kTextureSpacing).has_value());
   const GaussianScene uniform = floor([](float, float) { return Rgb(0.5f); });
-  EXPECT_FALSE(findTextureOffset(uniform, all(uniform), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing).has_value());
+  EXPECT_FALSE(findTextureOffset(uniform, all(uniform), holePoints(), {0, 1, 0}, kTextureSpacing, 2 * kTextureSpacing).has_value());
 }
 
 TEST(TextureOffset, IgnoresGaussiansOffThePlaneOrFacingAway) {
@@ -112,8 +112,8 @@ TEST(TextureOffset, IgnoresGaussiansOffThePlaneOrFacingAway) {
   GaussianScene s = floor([](float x, float z) { return lightSquare(x, z) ? kLight : kDark; });
   GaussianScene lifted = s, turned = s;
   for (size_t i = 0; i < s.size(); ++i) lifted.position[i].y += 0.5f, turned.normal[i] = {1, 0, 0};
-  EXPECT_FALSE(findTextureOffset(lifted, all(lifted), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing).has_value());
-  EXPECT_FALSE(findTextureOffset(turned, all(turned), holePoints(), {0, 1, 0}, kSpacing, 2 * kSpacing).has_value());
+  EXPECT_FALSE(findTextureOffset(lifted, all(lifted), holePoints(), {0, 1, 0}, kTextureSpacing, 2 * kTextureSpacing).has_value());
+  EXPECT_FALSE(findTextureOffset(turned, all(turned), holePoints(), {0, 1, 0}, kTextureSpacing, 2 * kTextureSpacing).has_value());
 }
 
 }  // namespace

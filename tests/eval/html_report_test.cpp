@@ -42,7 +42,7 @@ HtmlReportContent sampleContent(int views) {
   for (int v = 0; v < views; ++v) {
     std::string name = "test/render/render_000" + std::to_string(v);
     c.perView.emplace_back(name, c.mean);
-    ReportView view{name, {}};
+    ReportView view{name, {}, {}};
     for (const char* pass : {"diffuse", "specular", "final"})
       view.passes.push_back({pass, ramp(0.5f * float(v)), ramp(0.5f * float(v) + 0.05f), c.mean.diffuse});
     for (const char* g : {"normal", "depth", "roughness", "f0"})

@@ -12,18 +12,18 @@
 namespace glint {
 namespace {
 
-const char* kIdentityRows = "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]";
+const char* kBlenderIdentityRows = "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]";
 
-std::string frameJson(const std::string& filePath, const std::string& matrix = kIdentityRows) {
+std::string blenderFrameJson(const std::string& filePath, const std::string& matrix = kBlenderIdentityRows) {
   return R"({"file_path": ")" + filePath + R"(", "transform_matrix": )" + matrix + "}";
 }
 
-std::string fileJson(const std::string& frames, const std::string& angle = "0.69") {
+std::string blenderFileJson(const std::string& frames, const std::string& angle = "0.69") {
   return R"({"camera_angle_x": )" + angle + R"(, "frames": [)" + frames + "]}";
 }
 
 // The message of the Error parsing text throws, or "" if it parses.
-std::string parseError(const std::string& text) {
+std::string blenderParseError(const std::string& text) {
   try {
     parseTransformsJson(text, "transforms_train.json");
   } catch (const Error& e) {
@@ -57,22 +57,22 @@ TEST(TransformsJson, ParsesBlenderStyleFiles) {
 TEST(TransformsJson, AcceptsSlightlyImpreciseRotationsAndAnEmptyFrameList) {
   // Six printed digits leave rotations off by ~1e-6.
   std::string rows = "[[0.707107,-0.707107,0,0],[0.707107,0.707107,0,0],[0,0,1,0],[0,0,0,1.00001]]";
-  EXPECT_EQ(parseError(fileJson(frameJson("a/render/render_0", rows))), "");
-  EXPECT_TRUE(parseTransformsJson(fileJson(""), "x.json").frames.empty());
+  EXPECT_EQ(blenderParseError(blenderFileJson(blenderFrameJson("a/render/render_0", rows))), "");
+  EXPECT_TRUE(parseTransformsJson(blenderFileJson(""), "x.json").frames.empty());
 }
 
-struct BadFile {
+struct BadBlenderFile {
   const char* name;
   std::string text;
   const char* expected;  // part of the message
 };
 
-void PrintTo(const BadFile& file, std::ostream* out) { *out << file.name; }
+void PrintTo(const BadBlenderFile& file, std::ostream* out) { *out << file.name; }
 
-class TransformsJsonErrors : public testing::TestWithParam<BadFile> {};
+class TransformsJsonErrors : public testing::TestWithParam<BadBlenderFile> {};
 
 TEST_P(TransformsJsonErrors, NameTheFileFrameAndKey) {
-  std::string message = parseError(GetParam().text);
+  std::string message = blenderParseError(GetParam().text);
   EXPECT_NE(message.find("transforms_train.json: "), std::string::npos) << message;
   EXPECT_NE(message.find(GetParam().expected), std::string::npos) << message;
 }
@@ -80,47 +80,47 @@ TEST_P(TransformsJsonErrors, NameTheFileFrameAndKey) {
 INSTANTIATE_TEST_SUITE_P(
     Mistakes, TransformsJsonErrors,
     testing::Values(
-        BadFile{"Syntax", R"({"camera_angle_x": 0.7, "frames": [})", "is not valid JSON at byte 36"},
-        BadFile{"NaN", fileJson(frameJson("r", "[[NaN,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")), "must be finite"},
-        BadFile{"Overflow", fileJson(frameJson("r", "[[1e999,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
+        BadBlenderFile{"Syntax", R"({"camera_angle_x": 0.7, "frames": [})", "is not valid JSON at byte 36"},
+        BadBlenderFile{"NaN", blenderFileJson(blenderFrameJson("r", "[[NaN,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")), "must be finite"},
+        BadBlenderFile{"Overflow", blenderFileJson(blenderFrameJson("r", "[[1e999,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
                 "must be finite"},
-        BadFile{"NotAnObject", "[1, 2]", "must hold a JSON object"},
-        BadFile{"MissingAngle", R"({"frames": []})", "camera_angle_x is missing"},
-        BadFile{"AngleNotANumber", fileJson("", "\"wide\""), "camera_angle_x must be a number"},
-        BadFile{"AngleZero", fileJson("", "0"), "camera_angle_x is 0, but must lie in [0.000175, pi) radians"},
-        BadFile{"AngleTiny", fileJson("", "1e-300"), "camera_angle_x is 1e-300, but must lie in [0.000175, pi)"},
-        BadFile{"AngleTooWide", fileJson("", "3.2"), "must lie in [0.000175, pi)"},
-        BadFile{"MissingFrames", R"({"camera_angle_x": 0.7})", "frames is missing"},
-        BadFile{"FramesNotArray", R"({"camera_angle_x": 0.7, "frames": {}})", "frames must be an array"},
-        BadFile{"FrameNotObject", fileJson(frameJson("a") + ", 3"), "frame 1: must be an object"},
-        BadFile{"MissingFilePath", fileJson(R"({"transform_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})"),
+        BadBlenderFile{"NotAnObject", "[1, 2]", "must hold a JSON object"},
+        BadBlenderFile{"MissingAngle", R"({"frames": []})", "camera_angle_x is missing"},
+        BadBlenderFile{"AngleNotANumber", blenderFileJson("", "\"wide\""), "camera_angle_x must be a number"},
+        BadBlenderFile{"AngleZero", blenderFileJson("", "0"), "camera_angle_x is 0, but must lie in [0.000175, pi) radians"},
+        BadBlenderFile{"AngleTiny", blenderFileJson("", "1e-300"), "camera_angle_x is 1e-300, but must lie in [0.000175, pi)"},
+        BadBlenderFile{"AngleTooWide", blenderFileJson("", "3.2"), "must lie in [0.000175, pi)"},
+        BadBlenderFile{"MissingFrames", R"({"camera_angle_x": 0.7})", "frames is missing"},
+        BadBlenderFile{"FramesNotArray", R"({"camera_angle_x": 0.7, "frames": {}})", "frames must be an array"},
+        BadBlenderFile{"FrameNotObject", blenderFileJson(blenderFrameJson("a") + ", 3"), "frame 1: must be an object"},
+        BadBlenderFile{"MissingFilePath", blenderFileJson(R"({"transform_matrix": [[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]})"),
                 "frame 0: file_path is missing"},
-        BadFile{"FilePathNotString", fileJson(R"({"file_path": 7, "transform_matrix": []})"),
+        BadBlenderFile{"FilePathNotString", blenderFileJson(R"({"file_path": 7, "transform_matrix": []})"),
                 "frame 0: file_path must be a string"},
-        BadFile{"EmptyFilePath", fileJson(frameJson("./")), "frame 0: file_path is empty"},
-        BadFile{"AbsoluteFilePath", fileJson(frameJson("/data/r_0")), "must be relative to the dataset folder"},
-        BadFile{"ParentFilePath", fileJson(frameJson("../other/train/render/render_0")),
+        BadBlenderFile{"EmptyFilePath", blenderFileJson(blenderFrameJson("./")), "frame 0: file_path is empty"},
+        BadBlenderFile{"AbsoluteFilePath", blenderFileJson(blenderFrameJson("/data/r_0")), "must be relative to the dataset folder"},
+        BadBlenderFile{"ParentFilePath", blenderFileJson(blenderFrameJson("../other/train/render/render_0")),
                 "frame 0: file_path \"../other/train/render/render_0\" leaves the dataset folder"},
-        BadFile{"InnerParentFilePath", fileJson(frameJson("train/render/../../../x/render/render_0")),
+        BadBlenderFile{"InnerParentFilePath", blenderFileJson(blenderFrameJson("train/render/../../../x/render/render_0")),
                 "leaves the dataset folder"},
-        BadFile{"MissingMatrix", fileJson(frameJson("a") + R"(, {"file_path": "b"})"),
+        BadBlenderFile{"MissingMatrix", blenderFileJson(blenderFrameJson("a") + R"(, {"file_path": "b"})"),
                 "frame 1: transform_matrix is missing"},
-        BadFile{"ThreeRows", fileJson(frameJson("a") + "," + frameJson("b") + "," +
-                                      frameJson("c", "[[1,0,0,0],[0,1,0,0],[0,0,1,0]]")),
+        BadBlenderFile{"ThreeRows", blenderFileJson(blenderFrameJson("a") + "," + blenderFrameJson("b") + "," +
+                                      blenderFrameJson("c", "[[1,0,0,0],[0,1,0,0],[0,0,1,0]]")),
                 "frame 2: transform_matrix must be 4 rows of 4 numbers"},
-        BadFile{"ShortRow", fileJson(frameJson("a", "[[1,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
+        BadBlenderFile{"ShortRow", blenderFileJson(blenderFrameJson("a", "[[1,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
                 "frame 0: transform_matrix must be 4 rows of 4 numbers"},
-        BadFile{"StringEntry", fileJson(frameJson("a", "[[1,0,0,\"0\"],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
+        BadBlenderFile{"StringEntry", blenderFileJson(blenderFrameJson("a", "[[1,0,0,\"0\"],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
                 "must be 4 rows of 4 numbers"},
-        BadFile{"NotAffine", fileJson(frameJson("a", "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0.1,1]]")),
+        BadBlenderFile{"NotAffine", blenderFileJson(blenderFrameJson("a", "[[1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0.1,1]]")),
                 "frame 0: transform_matrix must be affine: its last row must be 0 0 0 1"},
-        BadFile{"Scaled", fileJson(frameJson("a", "[[2,0,0,0],[0,2,0,0],[0,0,2,0],[0,0,0,1]]")),
+        BadBlenderFile{"Scaled", blenderFileJson(blenderFrameJson("a", "[[2,0,0,0],[0,2,0,0],[0,0,2,0],[0,0,0,1]]")),
                 "frame 0: transform_matrix must be a rigid camera pose"},
-        BadFile{"Sheared", fileJson(frameJson("a", "[[1,0.1,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
+        BadBlenderFile{"Sheared", blenderFileJson(blenderFrameJson("a", "[[1,0.1,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
                 "not a rotation"},
-        BadFile{"Mirrored", fileJson(frameJson("a", "[[-1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
+        BadBlenderFile{"Mirrored", blenderFileJson(blenderFrameJson("a", "[[-1,0,0,0],[0,1,0,0],[0,0,1,0],[0,0,0,1]]")),
                 "reflection (determinant -1)"},
-        BadFile{"DuplicatePath", fileJson(frameJson("./x/render/render_0.png") + "," + frameJson("x/render/render_0")),
+        BadBlenderFile{"DuplicatePath", blenderFileJson(blenderFrameJson("./x/render/render_0.png") + "," + blenderFrameJson("x/render/render_0")),
                 "two frames have the same file_path \"x/render/render_0\""}),
     [](const auto& info) { return std::string(info.param.name); });
 

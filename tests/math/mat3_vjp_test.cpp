@@ -11,7 +11,7 @@
 namespace glint {
 namespace {
 
-double symmetric(Rng& rng) { return 2 * rng.uniformDouble() - 1; }
+using test::symmetric;
 
 TEST(Mat3Vjp, MatVecMatchesFiniteDifferences) {
   Rng rng(411);

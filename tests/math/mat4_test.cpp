@@ -45,7 +45,7 @@ Vec3d randomVector(Rng& rng, double scale) {
 }
 
 // Rotation from a random quaternion, uniform over rotations: rejection sampling in the 4-ball.
-Mat4 randomRotation(Rng& rng) {
+Mat4 randomRotationMatrix(Rng& rng) {
   while (true) {
     double q[4];
     double n2 = 0;
@@ -61,7 +61,7 @@ Mat4 randomRotation(Rng& rng) {
 Mat4 randomAffine(Rng& rng) {
   Vec3d s;
   for (int i = 0; i < 3; ++i) s[i] = (0.2 + 2.8 * rng.uniformDouble()) * (rng.uniform() < 0.5f ? -1 : 1);
-  return Mat4::translation(randomVector(rng, 10)) * randomRotation(rng) * Mat4::scale(s);
+  return Mat4::translation(randomVector(rng, 10)) * randomRotationMatrix(rng) * Mat4::scale(s);
 }
 
 TEST(Mat4, IdentityAndProducts) {
@@ -124,7 +124,7 @@ TEST(Mat4, InverseOfSingularMatrixIsZero) {
 TEST(Mat4, RotationFromQuaternionIsProperOrthonormal) {
   Rng rng(13);
   for (int k = 0; k < 500; ++k) {
-    Mat4 r = randomRotation(rng);
+    Mat4 r = randomRotationMatrix(rng);
     expectOrthonormal(r, 1e-12);
     EXPECT_NEAR(determinant3(r), 1.0, 1e-12);
     EXPECT_TRUE(r.isAffine());
@@ -152,7 +152,7 @@ TEST(Mat4, RotationMatchesKnownQuarterTurns) {
 TEST(Mat4, TransformNormalStaysPerpendicularUnderNonUniformScale) {
   Rng rng(14);
   for (int k = 0; k < 300; ++k) {
-    Mat4 m = Mat4::translation(randomVector(rng, 3)) * randomRotation(rng) * Mat4::scale({0.3, 2.5, 7.0});
+    Mat4 m = Mat4::translation(randomVector(rng, 3)) * randomRotationMatrix(rng) * Mat4::scale({0.3, 2.5, 7.0});
     // A surface point's normal and two tangents spanning its plane.
     Vec3d n = normalize(randomVector(rng, 1) + Vec3d(0, 0, 1e-3));
     Vec3d helper = std::abs(n.x) < 0.9 ? Vec3d(1, 0, 0) : Vec3d(0, 1, 0);

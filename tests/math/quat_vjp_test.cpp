@@ -16,7 +16,7 @@ namespace {
 Quatd quatFrom(const std::vector<double>& x) { return Quatd{x[0], x[1], x[2], x[3]}; }
 std::vector<double> componentsOf(const Quatd& q) { return {q.w, q.x, q.y, q.z}; }
 
-double symmetric(Rng& rng) { return 2 * rng.uniformDouble() - 1; }
+using test::symmetric;
 
 // A random quaternion whose norm lies between 0.3 and 3.
 Quatd randomQuat(Rng& rng) {

@@ -16,8 +16,8 @@ namespace glint {
 namespace {
 
 // Every chi-square test in this file shares one overall significance of 1% (Sidak).
-constexpr int kChiSquareTests = 5;
-const double kSignificance = test::sidakSignificance(0.01, kChiSquareTests);
+constexpr int kRngChiSquareTests = 5;
+const double kRngSignificance = test::sidakSignificance(0.01, kRngChiSquareTests);
 
 std::vector<uint32_t> firstValues(Rng rng, int count) {
   std::vector<uint32_t> values(count);
@@ -30,7 +30,7 @@ test::ChiSquareResult uniformCells(const std::vector<uint32_t>& cells, uint32_t 
   std::vector<double> observed(cellCount, 0.0);
   for (uint32_t c : cells) observed[c] += 1;
   std::vector<double> expected(cellCount, double(cells.size()) / cellCount);
-  return test::pearsonChiSquare(observed, expected, kSignificance);
+  return test::pearsonChiSquare(observed, expected, kRngSignificance);
 }
 
 TEST(Rng, SameKeysGiveTheSameSequence) {

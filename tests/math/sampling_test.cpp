@@ -15,21 +15,21 @@ namespace glint {
 namespace {
 
 // Every chi-square test in this file shares one overall significance of 1% (Sidak).
-constexpr int kChiSquareTests = 10;
-const double kSignificance = test::sidakSignificance(0.01, kChiSquareTests);
+constexpr int kSamplingChiSquareTests = 10;
+const double kSamplingSignificance = test::sidakSignificance(0.01, kSamplingChiSquareTests);
 constexpr int kSamples = 200000;
 
 TEST(SamplingChiSquare, CosineHemisphere) {
   auto result = test::testDirectionSampler(
       test::DirectionGrid::hemisphere(), [](Vec2f u) { return std::optional(sampleCosineHemisphere(u)); },
-      [](const Vec3f& w) { return double(cosineHemispherePdf(w.z)); }, kSamples, 1, kSignificance);
+      [](const Vec3f& w) { return double(cosineHemispherePdf(w.z)); }, kSamples, 1, kSamplingSignificance);
   EXPECT_TRUE(result.passed) << result.message;
 }
 
 TEST(SamplingChiSquare, UniformSphere) {
   auto result = test::testDirectionSampler(
       test::DirectionGrid::sphere(), [](Vec2f u) { return std::optional(sampleUniformSphere(u)); },
-      [](const Vec3f&) { return double(uniformSpherePdf()); }, kSamples, 2, kSignificance);
+      [](const Vec3f&) { return double(uniformSpherePdf()); }, kSamples, 2, kSamplingSignificance);
   EXPECT_TRUE(result.passed) << result.message;
 }
 
@@ -41,7 +41,7 @@ TEST(SamplingChiSquare, UniformCone) {
     auto pdf = [&](const Vec3f& w) { return w.z >= cosThetaMax ? double(uniformConePdf(cosThetaMax)) : 0.0; };
     auto result = test::testDirectionSampler(
         grid, [&](Vec2f u) { return std::optional(sampleUniformCone(u, cosThetaMax)); }, pdf, kSamples, 3,
-        kSignificance);
+        kSamplingSignificance);
     EXPECT_TRUE(result.passed) << "cos(theta max) = " << cosThetaMax << ": " << result.message;
   }
 }
@@ -62,7 +62,7 @@ TEST(SamplingChiSquare, ConcentricDiskIsUniform) {
     observed[ring * kSectors + sector] += 1;
   }
   std::vector<double> expected(observed.size(), double(kSamples) / observed.size());
-  auto result = test::pearsonChiSquare(observed, expected, kSignificance);
+  auto result = test::pearsonChiSquare(observed, expected, kSamplingSignificance);
   EXPECT_TRUE(result.passed) << result.message;
 }
 
@@ -94,7 +94,7 @@ TEST(SamplingChiSquare, UniformTriangle) {
   // The centroid is the mean of uniform barycentrics.
   EXPECT_NEAR(sum0 / kSamples, 1.0 / 3.0, 3e-3);
   EXPECT_NEAR(sum1 / kSamples, 1.0 / 3.0, 3e-3);
-  auto result = test::pearsonChiSquare(observed, expected, kSignificance);
+  auto result = test::pearsonChiSquare(observed, expected, kSamplingSignificance);
   EXPECT_TRUE(result.passed) << result.message;
 }
 
@@ -120,7 +120,7 @@ TEST(Distribution1D, FrequenciesMatchWeights) {
     }
     EXPECT_NEAR(dist.probability(i), kWeights[i] / 10.75f, 1e-6f);
   }
-  auto result = test::pearsonChiSquare(observed, expected, kSignificance);
+  auto result = test::pearsonChiSquare(observed, expected, kSamplingSignificance);
   EXPECT_TRUE(result.passed) << result.message;
 }
 
@@ -157,7 +157,7 @@ TEST(Distribution1D, RemappedSampleIsUniform) {
     ASSERT_LT(remapped, 1.0f);
     observed[std::min(int(remapped * kBins), kBins - 1)] += 1;
   }
-  auto result = test::pearsonChiSquare(observed, expected, kSignificance);
+  auto result = test::pearsonChiSquare(observed, expected, kSamplingSignificance);
   EXPECT_TRUE(result.passed) << result.message;
 }
 
@@ -207,7 +207,7 @@ TEST(Distribution2D, SampleHistogramMatchesPdf) {
     EXPECT_NEAR(pdf, dist.pdf(p), 1e-4f * pdf);
     observed[std::min(int(p.y * kCellsY), kCellsY - 1) * kCellsX + std::min(int(p.x * kCellsX), kCellsX - 1)] += 1;
   }
-  auto result = test::pearsonChiSquare(observed, expected, kSignificance);
+  auto result = test::pearsonChiSquare(observed, expected, kSamplingSignificance);
   EXPECT_TRUE(result.passed) << result.message;
 }
 

@@ -14,7 +14,7 @@ namespace glint {
 namespace {
 
 Vec3d randomDirection(Rng& rng) { return Vec3d(sampleUniformSphere(rng.uniform2())); }
-double uniform(Rng& rng, double a, double b) { return a + (b - a) * rng.uniformDouble(); }
+double uniformIn(Rng& rng, double a, double b) { return a + (b - a) * rng.uniformDouble(); }
 
 Vec3d colourAt(const Vec3d& g, const std::vector<Vec3d>& rest, int degree, const Vec3d& d) {
   double b[kMaxShCoefficients];
@@ -55,11 +55,11 @@ TEST(ShFit, RecoversAKnownViewDependentColourExactly) {
   for (int degree = 0; degree <= 3; ++degree) {
     const Vec3d g(0.3, 0.5, 0.7);
     std::vector<Vec3d> rest(size_t(shCoefficientCount(degree) - 1));
-    for (Vec3d& f : rest) f = Vec3d(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+    for (Vec3d& f : rest) f = Vec3d(uniformIn(rng, -1, 1), uniformIn(rng, -1, 1), uniformIn(rng, -1, 1));
     ShFit fit(degree);
     for (int s = 0; s < 100; ++s) {
       const Vec3d d = randomDirection(rng);
-      fit.add(d, colourAt(g, rest, degree, d), uniform(rng, 0.1, 2.0));
+      fit.add(d, colourAt(g, rest, degree, d), uniformIn(rng, 0.1, 2.0));
     }
     Vec3d constant, solved[15];
     ASSERT_TRUE(fit.solve(0.0, &constant, solved));
@@ -80,7 +80,7 @@ TEST(ShFit, NoiseAveragesOutAsLeastSquaresPredicts) {
   int terms = 0;
   for (int trial = 0; trial < 20; ++trial) {
     std::vector<Vec3d> rest(15);
-    for (Vec3d& f : rest) f = Vec3d(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+    for (Vec3d& f : rest) f = Vec3d(uniformIn(rng, -1, 1), uniformIn(rng, -1, 1), uniformIn(rng, -1, 1));
     ShFit fit(degree);
     for (int s = 0; s < K; ++s) {
       const Vec3d d = randomDirection(rng);

@@ -14,7 +14,7 @@
 namespace glint {
 namespace {
 
-double symmetric(Rng& rng) { return 2 * rng.uniformDouble() - 1; }
+using test::symmetric;
 Vec3d randomVec(Rng& rng) { return {symmetric(rng), symmetric(rng), symmetric(rng)}; }
 Vec3d randomUnit(Rng& rng) {
   for (;;) {

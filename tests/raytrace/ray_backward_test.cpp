@@ -36,11 +36,11 @@ double lossOf(const Outputs& out, const RayResultAdjoint& v) {
          v.v_f0.x * out[8] + v.v_f0.y * out[9] + v.v_f0.z * out[10];
 }
 
-double symmetric(Rng& rng) { return 2 * rng.uniformDouble() - 1; }
+using test::symmetric;
 
 // Gaussians spread along the z axis in front of a ray origin at z = -3, parameters rounded
 // to float (so that the float scene and the double forward agree exactly).
-std::vector<double> randomScene(Rng& rng, size_t n) {
+std::vector<double> randomSceneParams(Rng& rng, size_t n) {
   std::vector<double> x(n * kParams);
   for (size_t i = 0; i < n; ++i) {
     double* p = x.data() + i * kParams;
@@ -97,7 +97,7 @@ struct Case {
 Case drawCase(Rng& rng, const TraceSettings& s, size_t minHits, bool wantTruncated, bool startInside) {
   for (int attempt = 0; attempt < 5000; ++attempt) {
     Case c;
-    c.x = randomScene(rng, 8);
+    c.x = randomSceneParams(rng, 8);
     Vec3f target(float(0.3 * symmetric(rng)), float(0.3 * symmetric(rng)), 4.0f);
     c.ray.origin = Vec3f(float(0.3 * symmetric(rng)), float(0.3 * symmetric(rng)), -3.0f);
     if (startInside) c.ray.origin = Vec3f(unpack(c.x, 0).kernel.mean) + Vec3f(0.02f, -0.03f, -0.05f);

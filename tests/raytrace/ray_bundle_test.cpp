@@ -22,9 +22,9 @@ namespace {
 
 using test::cameraRays;
 
-bool near(float a, float b, float tolerance) { return std::abs(a - b) <= tolerance * std::max(1.0f, std::abs(b)); }
-bool near(const Vec3f& a, const Vec3f& b, float tolerance) {
-  return near(a.x, b.x, tolerance) && near(a.y, b.y, tolerance) && near(a.z, b.z, tolerance);
+bool nearBundle(float a, float b, float tolerance) { return std::abs(a - b) <= tolerance * std::max(1.0f, std::abs(b)); }
+bool nearBundle(const Vec3f& a, const Vec3f& b, float tolerance) {
+  return nearBundle(a.x, b.x, tolerance) && nearBundle(a.y, b.y, tolerance) && nearBundle(a.z, b.z, tolerance);
 }
 
 void expectSameResults(const std::vector<RayResult>& got, const std::vector<RayResult>& want, float tolerance,
@@ -32,9 +32,9 @@ void expectSameResults(const std::vector<RayResult>& got, const std::vector<RayR
   int failures = 0;
   for (size_t i = 0; i < want.size() && failures < 5; ++i) {
     const RayResult &a = got[i], &b = want[i];
-    bool same = near(a.diffuse, b.diffuse, tolerance) && near(a.depth, b.depth, tolerance) &&
-                near(a.normal, b.normal, tolerance) && near(a.roughness, b.roughness, tolerance) &&
-                near(a.f0, b.f0, tolerance) && near(a.transmittance, b.transmittance, tolerance) &&
+    bool same = nearBundle(a.diffuse, b.diffuse, tolerance) && nearBundle(a.depth, b.depth, tolerance) &&
+                nearBundle(a.normal, b.normal, tolerance) && nearBundle(a.roughness, b.roughness, tolerance) &&
+                nearBundle(a.f0, b.f0, tolerance) && nearBundle(a.transmittance, b.transmittance, tolerance) &&
                 a.hitCount == b.hitCount && a.truncated == b.truncated;
     if (!same) {
       ++failures;

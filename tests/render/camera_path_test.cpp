@@ -10,14 +10,14 @@
 namespace glint {
 namespace {
 
-constexpr double kPi = std::numbers::pi;
+constexpr double kPiDouble = std::numbers::pi;
 
 // Cameras on a circle of radius r at height h above target (up = +y), every one looking at
 // the target, at heights h + bump_i.
 std::vector<Mat4> circleCameras(Vec3d target, double r, double h, int count, double bump = 0) {
   std::vector<Mat4> cameras;
   for (int i = 0; i < count; ++i) {
-    double a = 0.3 + 2 * kPi * i / count;
+    double a = 0.3 + 2 * kPiDouble * i / count;
     double hi = h + (i % 2 ? bump : -bump);
     cameras.push_back(Mat4::lookAt(target + Vec3d(r * std::cos(a), hi, r * std::sin(a)), target, {0, 1, 0}));
   }
@@ -68,7 +68,7 @@ TEST(CameraPath, OrbitCirclesTheTargetAtTheRingsRadiusAndHeight) {
     // Equal steps of one frame's share of a full turn.
     Vec3d next = path[(f + 1) % frames].column(3) - target;
     double step = std::atan2(offset.x * next.z - offset.z * next.x, offset.x * next.x + offset.z * next.z);
-    EXPECT_NEAR(std::abs(step), 2 * kPi / frames, 1e-9);
+    EXPECT_NEAR(std::abs(step), 2 * kPiDouble / frames, 1e-9);
   }
 }
 

@@ -100,7 +100,9 @@ TEST(GaussianPath, BounceLightsAreTheTermsOfTheSpecularSum) {
     Rgb sum(0.0f);
     for (int k = 0; k < kSeparateBounces; ++k) {
       sum += path.bounceLight[size_t(k)];
-      if (k + 1 >= path.segments) EXPECT_EQ(path.bounceLight[size_t(k)], Rgb(0.0f)) << "segment " << k + 1;
+      if (k + 1 >= path.segments) {
+        EXPECT_EQ(path.bounceLight[size_t(k)], Rgb(0.0f)) << "segment " << k + 1;
+      }
     }
     EXPECT_EQ(sum, path.specular);  // the same additions in the same order
     if (path.segments == 4) {

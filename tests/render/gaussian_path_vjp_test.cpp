@@ -58,9 +58,9 @@ Quatd rotationFromZ(const Vec3d& n) {
           std::sin(angle / 2) * axis.z};
 }
 
-double uniform(Rng& rng, double lo, double hi) { return lo + (hi - lo) * rng.uniformDouble(); }
+double uniformIn(Rng& rng, double lo, double hi) { return lo + (hi - lo) * rng.uniformDouble(); }
 Vec3d uniformRgb(Rng& rng, double lo, double hi) {
-  return {uniform(rng, lo, hi), uniform(rng, lo, hi), uniform(rng, lo, hi)};
+  return {uniformIn(rng, lo, hi), uniformIn(rng, lo, hi), uniformIn(rng, lo, hi)};
 }
 
 // A square reflective layer of flat, overlapping, fairly opaque Gaussians around `centre`
@@ -74,10 +74,10 @@ void addReflectiveLayer(std::vector<double>* x, Rng& rng, const Vec3d& centre, c
     for (int j = -half; j <= half; ++j) {
       GaussianSpec g;
       g.mean = centre + frame.s * (0.1 * i) + frame.t * (0.1 * j) + normal * (0.008 * ((3 * i + 5 * j + 21) % 7 - 3));
-      g.rotation = {q.w + uniform(rng, -0.03, 0.03), q.x + uniform(rng, -0.03, 0.03),
-                    q.y + uniform(rng, -0.03, 0.03), q.z + uniform(rng, -0.03, 0.03)};
+      g.rotation = {q.w + uniformIn(rng, -0.03, 0.03), q.x + uniformIn(rng, -0.03, 0.03),
+                    q.y + uniformIn(rng, -0.03, 0.03), q.z + uniformIn(rng, -0.03, 0.03)};
       g.scale = {0.06, 0.06, 0.01};
-      g.opacity = uniform(rng, 0.55, 0.75);
+      g.opacity = uniformIn(rng, 0.55, 0.75);
       g.diffuse = uniformRgb(rng, 0.1, 0.9);
       g.normal = normal;
       g.roughness = roughness;
@@ -91,13 +91,13 @@ void addCluster(std::vector<double>* x, Rng& rng, const Vec3d& o, const Vec3d& d
   Framed frame = Framed::fromNormal(d);
   for (double t : {0.5, 0.62, 0.74, 0.86, 0.98}) {
     GaussianSpec g;
-    g.mean = o + d * t + frame.s * uniform(rng, -0.05, 0.05) + frame.t * uniform(rng, -0.05, 0.05);
-    g.rotation = {uniform(rng, 0.5, 1.5), uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)};
-    g.scale = {uniform(rng, 0.08, 0.2), uniform(rng, 0.08, 0.2), uniform(rng, 0.08, 0.2)};
-    g.opacity = uniform(rng, 0.25, 0.6);
+    g.mean = o + d * t + frame.s * uniformIn(rng, -0.05, 0.05) + frame.t * uniformIn(rng, -0.05, 0.05);
+    g.rotation = {uniformIn(rng, 0.5, 1.5), uniformIn(rng, -1, 1), uniformIn(rng, -1, 1), uniformIn(rng, -1, 1)};
+    g.scale = {uniformIn(rng, 0.08, 0.2), uniformIn(rng, 0.08, 0.2), uniformIn(rng, 0.08, 0.2)};
+    g.opacity = uniformIn(rng, 0.25, 0.6);
     g.diffuse = uniformRgb(rng, 0.1, 0.9);
-    g.normal = normalize(Vec3d(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1)));
-    g.roughness = uniform(rng, 0, 1);
+    g.normal = normalize(Vec3d(uniformIn(rng, -1, 1), uniformIn(rng, -1, 1), uniformIn(rng, -1, 1)));
+    g.roughness = uniformIn(rng, 0, 1);
     g.f0 = uniformRgb(rng, 0, 1);
     addGaussian(x, g);
   }

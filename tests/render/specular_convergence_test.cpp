@@ -21,8 +21,8 @@ namespace {
 using test::addLayer;
 
 constexpr float kRoughness = 0.3f;  // the floor: GGX alpha 0.09, F0 0.5, no diffuse lobe
-constexpr float kF0 = 0.5f;
-constexpr float kCeilingHeight = 1.5f;
+constexpr float kConvergenceF0 = 0.5f;
+constexpr float kConvergenceCeilingHeight = 1.5f;
 // The ceiling spans x in [-4, 4], y in [-3, 5], and emits one colour left of x = kSplitX
 // and another right of it, so the reflection has an edge to get right.
 constexpr float kSplitX = 0.3f;
@@ -33,7 +33,7 @@ constexpr Rgb kRightRadiance{0.2f, 0.4f, 1.0f};
 MeshScene meshScene() {
   MeshScene scene;
   Material floor;
-  floor.baseColor = Rgb(kF0);  // a metal: F0 = baseColor, diffuse albedo 0
+  floor.baseColor = Rgb(kConvergenceF0);  // a metal: F0 = baseColor, diffuse albedo 0
   floor.metallic = 1.0f;
   floor.roughness = kRoughness;
   scene.materials.push_back(floor);
@@ -46,8 +46,8 @@ MeshScene meshScene() {
   }
   scene.meshes.push_back(makeQuad("floor", {-10, -10, 0}, {20, 0, 0}, {0, 20, 0}, 0));
   // Edges u = y, v = x: the ceiling faces down.
-  scene.meshes.push_back(makeQuad("left", {-4, -3, kCeilingHeight}, {0, 8, 0}, {kSplitX + 4, 0, 0}, 1));
-  scene.meshes.push_back(makeQuad("right", {kSplitX, -3, kCeilingHeight}, {0, 8, 0}, {4 - kSplitX, 0, 0}, 2));
+  scene.meshes.push_back(makeQuad("left", {-4, -3, kConvergenceCeilingHeight}, {0, 8, 0}, {kSplitX + 4, 0, 0}, 1));
+  scene.meshes.push_back(makeQuad("right", {kSplitX, -3, kConvergenceCeilingHeight}, {0, 8, 0}, {4 - kSplitX, 0, 0}, 2));
   return scene;
 }
 
@@ -56,9 +56,9 @@ MeshScene meshScene() {
 // normal, roughness and F0. The layers' nominal edges are the quads' edges.
 GaussianScene gaussianScene() {
   GaussianScene scene;
-  addLayer(&scene, 0.0f, 0.75f, 0.0f, 60, 55, 0.1f, {Rgb(0.0f), Vec3f(0, 0, 1), kRoughness, Rgb(kF0)});
-  addLayer(&scene, -1.85f, 1.0f, kCeilingHeight, 43, 80, 0.1f, {kLeftRadiance, Vec3f(0, 0, -1)});
-  addLayer(&scene, 2.15f, 1.0f, kCeilingHeight, 37, 80, 0.1f, {kRightRadiance, Vec3f(0, 0, -1)});
+  addLayer(&scene, 0.0f, 0.75f, 0.0f, 60, 55, 0.1f, {Rgb(0.0f), Vec3f(0, 0, 1), kRoughness, Rgb(kConvergenceF0)});
+  addLayer(&scene, -1.85f, 1.0f, kConvergenceCeilingHeight, 43, 80, 0.1f, {kLeftRadiance, Vec3f(0, 0, -1)});
+  addLayer(&scene, 2.15f, 1.0f, kConvergenceCeilingHeight, 37, 80, 0.1f, {kRightRadiance, Vec3f(0, 0, -1)});
   return scene;
 }
 

@@ -306,7 +306,7 @@ TEST(CaptureDataset, PaperSyntheticPriorLayoutLoadsUnchanged) {
     DatasetSplit s;
     s.name = split;
     for (int i = split == "train" ? 0 : 2; i < (split == "train" ? 2 : 3); ++i)
-      s.views.push_back({split + "/render/render_000" + std::to_string(i), views[size_t(i)].camera});
+      s.views.push_back({split + "/render/render_000" + std::to_string(i), views[size_t(i)].camera, {}});
     writeTransforms(folder.path(), s);
   }
   ASSERT_TRUE(isPriorTransformsFolder(folder.path()));

@@ -213,7 +213,7 @@ TEST(Dataset, WriteTransformsStoresTheSplitExactly) {
   split.name = "test";
   const double fovX = 0.6911112070083618;
   const Mat4 pose = Mat4::lookAt(Vec3d(0.1, -4.0, 1.0 / 3.0), Vec3d(0, 0, 0), Vec3d(0, 0, 1));
-  split.views.push_back({"test/render/render_0000", Camera::fromFieldOfView(pose, fovX, 800, 800)});
+  split.views.push_back({"test/render/render_0000", Camera::fromFieldOfView(pose, fovX, 800, 800), {}});
   writeTransforms(folder.path(), split);
   TransformsFile read = readTransformsJson(folder / "transforms_test.json");
   EXPECT_NEAR(read.cameraAngleX, fovX, 1e-15);

@@ -11,7 +11,7 @@
 namespace glint {
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPiDouble = 3.14159265358979323846;
 
 Mat3d someRotation() { return quatToRotation(quatFromAxisAngle(normalize(Vec3d(0.3, -1.0, 0.5)), 0.8)); }
 
@@ -103,7 +103,7 @@ TEST(NormalDecoding, EightBitMapsDecodeWithinQuantisationAndBackgroundIsZero) {
   Image decoded = decodeNormalMap(encoded);
   Vec3d d(decoded.rgb(0, 0));
   EXPECT_NEAR(length(d), 1.0, 1e-6);
-  EXPECT_LT(std::acos(std::min(1.0, dot(d, n))), 0.5 * kPi / 180.0);  // 8-bit steps are ~0.2 degrees
+  EXPECT_LT(std::acos(std::min(1.0, dot(d, n))), 0.5 * kPiDouble / 180.0);  // 8-bit steps are ~0.2 degrees
   EXPECT_EQ(length(decoded.rgb(1, 0)), 0.0f);
   EXPECT_EQ(length(decoded.rgb(2, 0)), 0.0f);
   EXPECT_EQ(length(decoded.rgb(3, 0)), 0.0f);
@@ -115,7 +115,7 @@ TEST(NormalDecoding, SixteenBitMapsDecodeFarMorePrecisely) {
   for (int c = 0; c < 3; ++c) encoded.at(0, 0, c) = std::round((float(n[c]) * 0.5f + 0.5f) * 65535.0f) / 65535.0f;
   Vec3d d(decodeNormalMap(encoded).rgb(0, 0));
   // 2 asin(|d - n| / 2) measures small angles without the rounding of acos near 1.
-  EXPECT_LT(2.0 * std::asin(length(d - n) / 2.0), 0.005 * kPi / 180.0);  // 16-bit steps are ~0.002 degrees
+  EXPECT_LT(2.0 * std::asin(length(d - n) / 2.0), 0.005 * kPiDouble / 180.0);  // 16-bit steps are ~0.002 degrees
 }
 
 TEST(NormalDecoding, RenormalisingKeepsZeroAndFixesLength) {

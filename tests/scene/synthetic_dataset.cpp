@@ -48,7 +48,8 @@ DatasetSplit syntheticSplit(const std::string& name, int views, int seedOffset) 
     double angle = 0.9 * (i + seedOffset);
     Vec3d eye(4.0 * std::cos(angle), 4.0 * std::sin(angle), 1.5 + 0.1 * i);
     split.views.push_back({file, Camera::fromFieldOfView(Mat4::lookAt(eye, Vec3d(0, 0, 0.5), Vec3d(0, 0, 1)), 0.7,
-                                                         kSyntheticWidth, kSyntheticHeight)});
+                                                         kSyntheticWidth, kSyntheticHeight),
+                           {}});
   }
   return split;
 }

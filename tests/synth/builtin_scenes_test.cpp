@@ -36,8 +36,9 @@ TEST(BuiltinScenes, GalleryTexturesEverySurfaceDifferentlyAndHasEachReflector) {
   EXPECT_EQ(textured, 6);
   for (size_t i = 0; i < scene.textures.size(); ++i)
     for (size_t j = i + 1; j < scene.textures.size(); ++j)
-      if (scene.textures[i].image.width == scene.textures[j].image.width)
+      if (scene.textures[i].image.width == scene.textures[j].image.width) {
         EXPECT_NE(scene.textures[i].image.pixels, scene.textures[j].image.pixels);
+      }
   bool mirror = false, chrome = false, roughMetal = false, glossyDielectric = false;
   for (const Material& m : scene.materials) {
     mirror |= m.name == "mirror" && m.metallic == 1 && m.roughness == 0;

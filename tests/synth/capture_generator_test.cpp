@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <vector>
 
 #include "io/temp_folder.h"
 #include "scene/dataset.h"
@@ -68,7 +69,8 @@ TEST(CaptureGenerator, GalleryCaptureOpensWithHoldoutAndTrueCameras) {
 
 // Three views of the gallery (two training views) with exact priors, and the same views
 // with the given errors.
-void writeExactAndDegraded(PriorErrors errors, const fs::path& exact, const fs::path& degraded) {
+void writeExactAndDegraded(PriorErrors errors, const fs::path& exact, const fs::path& degraded,
+                           std::vector<Buffer> only = {}) {
   MeshScene scene = makeBuiltinScene("gallery");
   SynthSettings settings = tinySettings();
   settings.trainViews = 3;
@@ -76,6 +78,7 @@ void writeExactAndDegraded(PriorErrors errors, const fs::path& exact, const fs::
   capture.sparsePoints = 300;
   generateCapture(scene, settings, capture, exact);
   capture.priorErrors = errors;
+  capture.degradedPriors = std::move(only);
   generateCapture(scene, settings, capture, degraded);
 }
 
@@ -120,6 +123,31 @@ TEST(CaptureGenerator, MonocularPriorsGiveMetalnessInsteadOfF0) {
     const float brightest = std::max({a[Buffer::F0].pixels[p], a[Buffer::F0].pixels[p + 1], a[Buffer::F0].pixels[p + 2]});
     EXPECT_NEAR(f.x, brightest, 0.01f) << "pixel " << p / 3;
   }
+}
+
+// --degrade-only: the named priors get the errors, the others are written as the exact
+// capture writes them (the same files), and F0 left out keeps its file on the monocular kind.
+TEST(CaptureGenerator, OnlyTheChosenPriorsAreDegraded) {
+  test::TempFolder temp;
+  writeExactAndDegraded(PriorErrors::Network, temp / "exact", temp / "roughness", {Buffer::Roughness});
+  Dataset exact = Dataset::open(temp / "exact", true, 8), rough = Dataset::open(temp / "roughness", true, 8);
+  ViewBuffers a = exact.loadView(exact.train(), 0), b = rough.loadView(rough.train(), 0);
+  for (Buffer kept : {Buffer::Render, Buffer::Diffuse, Buffer::Specular, Buffer::Depth, Buffer::Normal, Buffer::F0})
+    EXPECT_EQ(a[kept].pixels, b[kept].pixels) << bufferName(kept);
+  // The degraded prior is the one the full degradation writes.
+  writeExactAndDegraded(PriorErrors::Network, temp / "exact1", temp / "network");
+  Dataset network = Dataset::open(temp / "network", true, 8);
+  EXPECT_EQ(network.loadView(network.train(), 0)[Buffer::Roughness].pixels, b[Buffer::Roughness].pixels);
+  EXPECT_NE(a[Buffer::Roughness].pixels, b[Buffer::Roughness].pixels);
+
+  writeExactAndDegraded(PriorErrors::Monocular, temp / "exact2", temp / "normal", {Buffer::Normal});
+  EXPECT_TRUE(fs::exists(temp / "normal" / "priors" / "f0"));
+  EXPECT_FALSE(fs::exists(temp / "normal" / "priors" / "metalness"));
+  Dataset normal = Dataset::open(temp / "normal", true, 8);
+  ViewBuffers c = normal.loadView(normal.train(), 0);
+  EXPECT_EQ(a[Buffer::F0].pixels, c[Buffer::F0].pixels);
+  EXPECT_EQ(a[Buffer::Roughness].pixels, c[Buffer::Roughness].pixels);
+  EXPECT_NE(a[Buffer::Normal].pixels, c[Buffer::Normal].pixels);
 }
 
 }  // namespace

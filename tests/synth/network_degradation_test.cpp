@@ -11,7 +11,7 @@
 namespace glint {
 namespace {
 
-ViewBuffers flatView(int width, int height) {
+ViewBuffers flatNetworkView(int width, int height) {
   return test::uniformSurfaceView(width, height, normalize(Rgb(0.3f, 0.8f, 0.5f)));
 }
 
@@ -36,7 +36,7 @@ TEST(NetworkDegradation, ParametersScaleWithWidthAndVaryPerView) {
 
 TEST(NetworkDegradation, PriorsDifferByTheStatedAmountsAndThePhotoStaysExact) {
   const int width = 320, height = 240;
-  ViewBuffers exact = flatView(width, height);
+  ViewBuffers exact = flatNetworkView(width, height);
   const uint64_t seed = 4, view = 3;
   ViewBuffers priors = networkLikePriors(exact, seed, view);
   BufferDegradation g = networkLikeDegradation(width, seed, view);
@@ -63,7 +63,7 @@ TEST(NetworkDegradation, PriorsDifferByTheStatedAmountsAndThePhotoStaysExact) {
 }
 
 TEST(NetworkDegradation, BlursDiffuseEdges) {
-  ViewBuffers exact = flatView(320, 16);
+  ViewBuffers exact = flatNetworkView(320, 16);
   for (int y = 0; y < 16; ++y)
     for (int x = 160; x < 320; ++x) exact[Buffer::Diffuse].setRgb(x, y, Rgb(0.0f));
   ViewBuffers priors = networkLikePriors(exact, 0, 0);

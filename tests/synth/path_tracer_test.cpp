@@ -121,7 +121,9 @@ TEST(PathTracerFurnace, SmoothMetalSphereWithUnitF0ReflectsTheEnvironment) {
     for (int x = 1; x + 1 < diffuse.width; ++x) {
       bool interior = true;
       for (int d = -1; d <= 1; ++d) interior = interior && hasSurface(depth.at(x + d, y)) && hasSurface(depth.at(x, y + d));
-      if (interior) ASSERT_EQ(diffuse.at(x, y, 0), 0.0f) << x << "," << y;
+      if (interior) {
+        ASSERT_EQ(diffuse.at(x, y, 0), 0.0f) << x << "," << y;
+      }
     }
 }
 
@@ -175,7 +177,9 @@ TEST(PathTracerGBuffer, DepthAndNormalsMatchTheAnalyticSphere) {
       double disc = bHalf * bHalf - (dot(oc, oc) - r * r);
       float depth = b[Buffer::Depth].at(x, y);
       if (disc <= 1e-9) {
-        if (disc < -1e-6) EXPECT_EQ(depth, 0.0f) << x << "," << y;
+        if (disc < -1e-6) {
+          EXPECT_EQ(depth, 0.0f) << x << "," << y;
+        }
         continue;
       }
       double t = -bHalf - std::sqrt(disc);

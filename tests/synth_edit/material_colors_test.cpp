@@ -9,7 +9,7 @@
 namespace glint {
 namespace {
 
-void expectVec(const Vec3f& a, const Vec3f& b, float tol) {
+void expectColor(const Vec3f& a, const Vec3f& b, float tol) {
   EXPECT_NEAR(a.x, b.x, tol);
   EXPECT_NEAR(a.y, b.y, tol);
   EXPECT_NEAR(a.z, b.z, tol);
@@ -31,8 +31,8 @@ TEST(MaterialColors, AnyRequestedDiffuseAndF0IsReachedExactly) {
     float roughness = m.roughness;
     setDiffuseAndF0(m, diffuse, F0);
     SurfaceMaterial result = materialFactors(m);
-    expectVec(result.diffuse, diffuse, 1e-5f);
-    expectVec(result.F0, F0, 1e-5f);
+    expectColor(result.diffuse, diffuse, 1e-5f);
+    expectColor(result.F0, F0, 1e-5f);
     EXPECT_EQ(result.roughness, roughness);
     EXPECT_LE(maxComponent(m.specularTint), 1.0f);
   }
@@ -59,12 +59,12 @@ TEST(MaterialColors, TheMappingKeepsWhatItCan) {
   half.metallic = 0.5f;
   setDiffuseAndF0(half, Rgb(0.2f), Rgb(0.5f));  // baseColor 0.4, metal part 0.2, rest 0.3
   EXPECT_EQ(half.metallic, 0.5f);
-  expectVec(half.baseColor, Rgb(0.4f), 1e-6f);
+  expectColor(half.baseColor, Rgb(0.4f), 1e-6f);
   EXPECT_NEAR(half.specularLevel, 0.3f / 0.5f / 0.08f, 1e-5f);
   // ...and becomes a dielectric when its metal part alone would exceed F0.
   setDiffuseAndF0(half, Rgb(0.4f), Rgb(0.1f));  // baseColor 0.8 -> metal part 0.4 > 0.1
   EXPECT_EQ(half.metallic, 0.0f);
-  expectVec(half.baseColor, Rgb(0.4f), 1e-6f);
+  expectColor(half.baseColor, Rgb(0.4f), 1e-6f);
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ struct SceneShape {
   float noProxyFraction = 0.03f;      // Gaussians too faint to ever reach alphaMin
 };
 
-Quatf randomRotation(Rng& rng) {
+Quatf randomOrientation(Rng& rng) {
   // Uniform rotation (Shoemake, "Uniform random rotations", Graphics Gems III), stored
   // unnormalised to check that every path normalises it.
   float u1 = rng.uniform(), u2 = rng.uniform(), u3 = rng.uniform();
@@ -46,7 +46,7 @@ GaussianScene randomScene(size_t n, uint64_t seed, const SceneShape& shape = {})
   float logMin = std::log(shape.minScale), logMax = std::log(shape.maxScale);
   for (size_t i = 0; i < n; ++i) {
     scene.position[i] = inBox();
-    scene.rotation[i] = randomRotation(rng);
+    scene.rotation[i] = randomOrientation(rng);
     for (int k = 0; k < 3; ++k) scene.logScale[i][k] = logMin + (logMax - logMin) * rng.uniform();
     scene.opacityLogit[i] = shape.minLogit + (shape.maxLogit - shape.minLogit) * rng.uniform();
     if (rng.uniform() < shape.noProxyFraction) scene.opacityLogit[i] = -7.0f;  // opacity 0.0009
@@ -260,7 +260,7 @@ void moveGaussians(GaussianScene& scene, uint64_t seed) {
   Rng rng(seed);
   for (size_t i = 0; i < scene.size(); ++i) {
     scene.position[i] += Vec3f(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f) * 0.6f;
-    if (i % 2 == 0) scene.rotation[i] = randomRotation(rng);
+    if (i % 2 == 0) scene.rotation[i] = randomOrientation(rng);
     scene.logScale[i] += Vec3f(rng.uniform() - 0.5f, rng.uniform() - 0.5f, rng.uniform() - 0.5f) * 0.4f;
     if (scene.opacityLogit[i] > -6.0f) scene.opacityLogit[i] = std::clamp(scene.opacityLogit[i] + rng.uniform() - 0.5f, -4.0f, 4.0f);
   }

@@ -71,7 +71,9 @@ void expectSame(const GaussianTracer& tracer, const std::vector<TraceRay>& rays,
     hits += int(single.hits.size());
   }
   EXPECT_GT(hits, int(rays.size())) << what << ": the rays must composite hits";
-  if (hitCapacity < 8) EXPECT_GT(overflowed, 0) << what << ": the small lists must overflow";
+  if (hitCapacity < 8) {
+    EXPECT_GT(overflowed, 0) << what << ": the small lists must overflow";
+  }
 }
 
 struct TracerCase {

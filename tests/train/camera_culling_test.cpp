@@ -80,7 +80,9 @@ TEST(CameraSpheres, ACapturesSparsePointsBoundTheRadius) {
       EXPECT_NEAR(spheres[v].radius, std::min(fromDepth, fromPoints), 1e-6) << name << " view " << v;
       // Up to the pixel grid: a point near the image's edge may lie nearer than the surface
       // seen at the centre of its pixel (1.5% in one view of this 64x48 capture).
-      if (std::string(name) == "exact") EXPECT_LE(fromDepth, fromPoints * 1.03) << "view " << v;
+      if (std::string(name) == "exact") {
+        EXPECT_LE(fromDepth, fromPoints * 1.03) << "view " << v;
+      }
     }
   }
 }

@@ -24,7 +24,7 @@ inline Rgb planeColour(const Vec3d& p) {
 inline DatasetView planeView(const std::string& split, int index, const Vec3d& eye, const Vec3d& target) {
   char file[64];
   std::snprintf(file, sizeof file, "%s/render/render_%04d", split.c_str(), index);
-  return {file, Camera::fromFieldOfView(Mat4::lookAt(eye, target, Vec3d(0, 1, 0)), 0.9, kPlaneWidth, kPlaneHeight)};
+  return {file, Camera::fromFieldOfView(Mat4::lookAt(eye, target, Vec3d(0, 1, 0)), 0.9, kPlaneWidth, kPlaneHeight), {}};
 }
 
 // Buffers of a camera seeing the plane z = 0: rays that miss it (or hit it behind the

@@ -14,7 +14,10 @@ DatasetSplit splitWithCameraCentres(const std::vector<Vec3d>& centres) {
   for (size_t i = 0; i < centres.size(); ++i) {
     // Orientation must not matter: only the camera centres enter the extent.
     Mat4 pose = Mat4::translation(centres[i]) * Mat4::rotation(0.8, 0.1 * double(i), 0.3, -0.2);
-    split.views.push_back({"train/render/render_" + std::to_string(i), pose});
+    DatasetView view;
+    view.filePath = "train/render/render_" + std::to_string(i);
+    view.camera.cameraToWorld = pose;
+    split.views.push_back(view);
   }
   return split;
 }

@@ -112,9 +112,13 @@ TEST_F(TrainerTest, ReflectionLossLowersTheSpecularError) {
     for (int step = 1; step <= 300; ++step) {
       StepReport r = trainer->step();
       EXPECT_EQ(r.overflowedRays, 0);
-      if (step <= 50) EXPECT_EQ(r.terms.specular, 0.0) << "reflections start after the warm-up";
+      if (step <= 50) {
+        EXPECT_EQ(r.terms.specular, 0.0) << "reflections start after the warm-up";
+      }
       if (step > 250) late += r.terms.specular / 50;
-      if (step == 300) EXPECT_GT(r.reflectedSegments, r.rays / 2) << "most paths should reflect by now";
+      if (step == 300) {
+        EXPECT_GT(r.reflectedSegments, r.rays / 2) << "most paths should reflect by now";
+      }
     }
     return late;
   };
@@ -125,7 +129,7 @@ TEST_F(TrainerTest, ReflectionLossLowersTheSpecularError) {
 }
 
 template <typename V>
-bool sameBytes(const std::vector<V>& a, const std::vector<V>& b) {
+bool sameTrainerBytes(const std::vector<V>& a, const std::vector<V>& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(V)) == 0;
 }
 
@@ -320,14 +324,14 @@ TEST_F(TrainerTest, ResumedRunIsBitExact) {
   const GaussianScene& b = resumed.scene();
   ASSERT_EQ(a.size(), b.size());
   EXPECT_LT(a.size(), makeTrainer(c)->scene().size()) << "pruning should have removed Gaussians";
-  EXPECT_TRUE(sameBytes(a.position, b.position));
-  EXPECT_TRUE(sameBytes(a.rotation, b.rotation));
-  EXPECT_TRUE(sameBytes(a.logScale, b.logScale));
-  EXPECT_TRUE(sameBytes(a.opacityLogit, b.opacityLogit));
-  EXPECT_TRUE(sameBytes(a.diffuse, b.diffuse));
-  EXPECT_TRUE(sameBytes(a.normal, b.normal));
-  EXPECT_TRUE(sameBytes(a.roughness, b.roughness));
-  EXPECT_TRUE(sameBytes(a.f0, b.f0));
+  EXPECT_TRUE(sameTrainerBytes(a.position, b.position));
+  EXPECT_TRUE(sameTrainerBytes(a.rotation, b.rotation));
+  EXPECT_TRUE(sameTrainerBytes(a.logScale, b.logScale));
+  EXPECT_TRUE(sameTrainerBytes(a.opacityLogit, b.opacityLogit));
+  EXPECT_TRUE(sameTrainerBytes(a.diffuse, b.diffuse));
+  EXPECT_TRUE(sameTrainerBytes(a.normal, b.normal));
+  EXPECT_TRUE(sameTrainerBytes(a.roughness, b.roughness));
+  EXPECT_TRUE(sameTrainerBytes(a.f0, b.f0));
 }
 
 }  // namespace
