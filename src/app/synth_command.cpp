@@ -165,8 +165,11 @@ void runSynth(const SynthOptions& o) {
     for (const std::string& name : o.degradeOnly) captureSettings.degradedPriors.push_back(*bufferFromName(name));
     const int testViews = o.holdout > 1 ? (o.train + o.holdout - 1) / o.holdout : 0;
     std::string priors = o.degrade == "none" ? "exact" : o.degrade + "-like";
-    for (size_t k = 0; k < o.degradeOnly.size(); ++k)
-      priors += (k == 0 ? " (only " : ", ") + o.degradeOnly[k] + (k + 1 == o.degradeOnly.size() ? ")" : "");
+    if (!o.degradeOnly.empty()) {
+      priors += " (only " + o.degradeOnly[0];
+      for (size_t k = 1; k < o.degradeOnly.size(); ++k) priors += ", " + o.degradeOnly[k];
+      priors += ")";
+    }
     std::fprintf(stderr,
                  "glint synth: %s -> %s (capture): %d views, %d held out (every %d-th) at %d spp, the rest at %d "
                  "spp, %dx%d, %d bounces, %s priors, %d threads\n",

@@ -2,7 +2,6 @@
 #include "synth/capture_generator.h"
 
 #include <algorithm>
-
 #include <cstdio>
 
 #include "core/cluster.h"
