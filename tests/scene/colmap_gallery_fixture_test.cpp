@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <string>
+#include <vector>
 
 #include "io/colmap_model.h"
 #include "math/mat3.h"
@@ -30,17 +32,19 @@ std::filesystem::path modelFolder(const char* variable, const char* fixtureFolde
 // model's bounds (a mean position error of 8.6 cm, one camera 59 cm and 4.3 degrees off; a
 // focal length 3.9% off). Two later runs (SIMPLE_PINHOLE, 2026-11-28, beside other tests) did
 // not close the ring of views: its ends, views 0 and 23, were up to 83 and 81 cm off, the
-// other cameras 3-24 cm, the mean up to 16.8 cm. A fresh reconstruction (GLINT_COLMAP_MODEL) is held to bounds that
-// take that in (what they still catch: a wrong convention or a view given another's pose,
-// which moves cameras by metres or turns them by 15 degrees or more); the committed model, a
-// good run, to the strict ones.
+// other cameras 3-24 cm, the mean up to 16.8 cm. A fresh reconstruction (GLINT_COLMAP_MODEL)
+// is held to bounds that take that in, and colmap_capture runs COLMAP once more when a run
+// misses them. What those bounds still catch: a wrong convention or a view given another's
+// pose, which moves cameras by metres or turns them by 15 degrees or more. The committed
+// model, a good run, is held to the strict ones.
 struct Bounds {
   double focal, meanPosition, maxPosition, maxDegrees;  // relative; fractions of the room; degrees
+  size_t leastRegistered;                               // of the 24 images
 };
 Bounds boundsFor() {
   const char* fresh = std::getenv("GLINT_COLMAP_MODEL");
-  if (fresh && *fresh) return {0.06, 0.03, 0.15, 6.0};
-  return {0.02, 0.01, 0.03, 2.0};
+  if (fresh && *fresh) return {0.06, 0.03, 0.15, 6.0, 20};
+  return {0.02, 0.01, 0.03, 2.0, 24};
 }
 
 Mat3d rotationOf(const Mat4& m) {
@@ -102,12 +106,21 @@ TEST(ColmapGalleryFixture, EveryImageRegisteredWithCamerasCloseToTheTruth) {
   CaptureScene truth = captureFromColmap(readColmapModel(modelFolder("GLINT_COLMAP_TRUTH", "true")));
   CaptureScene colmap = captureFromColmap(readColmapModel(modelFolder("GLINT_COLMAP_MODEL", "colmap")));
   ASSERT_GE(truth.cameras.size(), 24u);
-  ASSERT_EQ(colmap.cameras.size(), truth.cameras.size()) << "COLMAP left images out";
-  for (size_t k = 0; k < truth.cameras.size(); ++k)
-    ASSERT_EQ(colmap.cameras[k].imageName, truth.cameras[k].imageName);  // both sorted by name
+  // The committed model registered every image; a fresh run may leave a few out (the
+  // colmap_capture test asks for 20 of 24), so the truth is taken for the images it kept.
+  const Bounds bounds = boundsFor();
+  std::map<std::string, CaptureCamera> trueByName;
+  for (const CaptureCamera& c : truth.cameras) trueByName[c.imageName] = c;
+  std::vector<CaptureCamera> matched;
+  for (const CaptureCamera& c : colmap.cameras) {
+    auto found = trueByName.find(c.imageName);
+    ASSERT_NE(found, trueByName.end()) << "COLMAP's model names an image the truth has not: " << c.imageName;
+    matched.push_back(found->second);
+  }
+  ASSERT_GE(colmap.cameras.size(), bounds.leastRegistered) << "COLMAP left images out";
+  truth.cameras = std::move(matched);
 
   // Intrinsics: one shared camera whose focal length COLMAP refined from the true one.
-  const Bounds bounds = boundsFor();
   for (const CaptureCamera& c : colmap.cameras) {
     EXPECT_NEAR(c.fx / truth.cameras[0].fx, 1.0, bounds.focal);
     EXPECT_NEAR(c.fy / truth.cameras[0].fy, 1.0, bounds.focal);

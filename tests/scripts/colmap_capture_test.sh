@@ -27,30 +27,51 @@ mkdir -p "$work"
 registered() {  # registered LOG: the count glint capture printed
   sed -n 's/.*registered \([0-9]*\) of \([0-9]*\) photographs.*/\1/p' "$1"
 }
-expect_registered() {  # expect_registered LOG WHAT
+check_registered() {  # check_registered LOG WHAT: at least 20 of the 24 photographs
   local count
   count="$(registered "$1")"
   if [ -z "$count" ] || [ "$count" -lt 20 ]; then
-    echo "FAILED ($2): COLMAP registered ${count:-no} photographs of 24 (at least 20 expected)"
-    exit 1
+    echo "$2: COLMAP registered ${count:-no} photographs of 24 (at least 20 expected)"
+    return 1
   fi
   echo "$2: $count of 24 photographs registered"
 }
 
-# The capture as glint synth wrote it: priors/ kept, so a pinhole camera.
-"$glint" capture "$work/synth" -o "$work/capture" 2>&1 | tee "$work/capture.log"
-expect_registered "$work/capture.log" "capture with priors"
-grep -q "cameras: SIMPLE_PINHOLE$" "$work/capture.log" || { echo "FAILED: expected a SIMPLE_PINHOLE camera"; exit 1; }
-[ -d "$work/capture/priors" ] || { echo "FAILED: priors/ was not kept"; exit 1; }
-"$glint" info "$work/capture"
-GLINT_COLMAP_MODEL="$work/capture/sparse/0" GLINT_COLMAP_TRUTH="$work/synth/sparse/0" \
-  "$scene_tests" --gtest_filter='ColmapGalleryFixture.*'
+# The capture as glint synth wrote it: priors/ kept, so a pinhole camera, checked against
+# the true cameras.
+capture_with_priors() {
+  rm -rf "$work/capture"
+  "$glint" capture "$work/synth" -o "$work/capture" 2>&1 | tee "$work/capture.log"
+  check_registered "$work/capture.log" "capture with priors" || return 1
+  grep -q "cameras: SIMPLE_PINHOLE$" "$work/capture.log" || { echo "expected a SIMPLE_PINHOLE camera"; return 1; }
+  [ -d "$work/capture/priors" ] || { echo "priors/ was not kept"; return 1; }
+  "$glint" info "$work/capture" || return 1
+  GLINT_COLMAP_MODEL="$work/capture/sparse/0" GLINT_COLMAP_TRUTH="$work/synth/sparse/0" \
+    "$scene_tests" --gtest_filter='ColmapGalleryFixture.*'
+}
 
 # The photographs alone: the OPENCV model, then COLMAP's undistortion to pinholes.
-mkdir -p "$work/photos"
-cp "$work/synth/images/"*.jpg "$work/photos/"
-"$glint" capture "$work/photos" -o "$work/photos_capture" 2>&1 | tee "$work/photos.log"
-expect_registered "$work/photos.log" "photographs alone"
-grep -q "cameras: OPENCV, undistorted to pinholes" "$work/photos.log" || { echo "FAILED: expected undistortion"; exit 1; }
-"$glint" info "$work/photos_capture"
+capture_photos_alone() {
+  rm -rf "$work/photos" "$work/photos_capture"
+  mkdir -p "$work/photos"
+  cp "$work/synth/images/"*.jpg "$work/photos/"
+  "$glint" capture "$work/photos" -o "$work/photos_capture" 2>&1 | tee "$work/photos.log"
+  check_registered "$work/photos.log" "photographs alone" || return 1
+  grep -q "cameras: OPENCV, undistorted to pinholes" "$work/photos.log" || { echo "expected undistortion"; return 1; }
+  "$glint" info "$work/photos_capture"
+}
+
+# COLMAP's result varies from run to run (threads and RANSAC), and now and then a run does
+# not close the ring of views or leaves a photograph out. So each reconstruction gets a second
+# run when its first misses: what this test exists to catch (a wrong convention, a view given
+# another's pose, a capture Glint cannot open) fails both.
+twice() {  # twice NAME: run the function NAME, and once more if it fails
+  if "$1"; then return 0; fi
+  echo "colmap_capture: $1 missed on COLMAP's first run (above); running it once more"
+  if "$1"; then return 0; fi
+  echo "FAILED: $1 missed on two runs of COLMAP (the second run's output is above)"
+  exit 1
+}
+twice capture_with_priors
+twice capture_photos_alone
 echo "PASSED"
