@@ -17,9 +17,10 @@ namespace glint {
 namespace {
 
 constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'K', 'P'};
-// Version 2 added the densification score after the prune weight; version 1 files are read
-// with a zero score (they come from runs that did not densify).
-constexpr uint32_t kVersion = 2;
+// Version 2 added the densification score after the prune weight, version 3 the roughness
+// shift after it; older files are read with a zero score (they come from runs that did not
+// densify) and a zero shift (the shift-invariant roughness loss did not exist).
+constexpr uint32_t kVersion = 3;
 
 class Writer {
  public:
@@ -96,7 +97,7 @@ void forEachStateArray(Scene& scene, Moments& first, Moments& second, Visit&& vi
 std::vector<char> encodeCheckpoint(const TrainingState& state) {
   // The whole file is reserved at once: the header, the config, each array's count and
   // floats (the values and both moments of every parameter, the prune weight and the
-  // densification score), the checksum.
+  // densification score), the roughness shift, the checksum.
   const size_t n = state.scene.size();
   size_t floatsPerGaussian = 2;
   forEachParameter([&](const auto& p) { floatsPerGaussian += 3 * p.components; });
@@ -117,6 +118,7 @@ std::vector<char> encodeCheckpoint(const TrainingState& state) {
                     [&](const void* entries, size_t entrySize) { w.array(entries, n, entrySize); });
   w.array(state.pruneWeight.data(), state.pruneWeight.size(), sizeof(float));
   w.array(state.densifyScore.data(), state.densifyScore.size(), sizeof(float));
+  w.value(state.roughnessShift);
   uint64_t checksum = fnv1a(w.data().data(), w.data().size());
   w.value(checksum);
   return w.take();
@@ -150,7 +152,7 @@ TrainingState decodeCheckpoint(std::span<const char> data, const std::string& na
   char magic[sizeof(kMagic)];
   r.bytes(magic, sizeof(magic));
   uint32_t version = r.value<uint32_t>();
-  if (version != kVersion && version != 1)
+  if (version < 1 || version > kVersion)
     throw Error(name, "has checkpoint version " + std::to_string(version) + "; this Glint reads versions 1 to " +
                           std::to_string(kVersion));
   TrainingState state;
@@ -172,6 +174,7 @@ TrainingState decodeCheckpoint(std::span<const char> data, const std::string& na
   r.array(state.pruneWeight.data(), n, sizeof(float));
   state.densifyScore.assign(n, 0.0f);
   if (version >= 2) r.array(state.densifyScore.data(), n, sizeof(float));
+  if (version >= 3) state.roughnessShift = r.value<float>();
   if (!r.atEnd()) throw Error(name, "is corrupt: unexpected bytes after the last array");
   return state;
 }

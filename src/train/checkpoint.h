@@ -21,6 +21,7 @@ struct TrainingState {
   AdamOptimizer adam;
   std::vector<float> pruneWeight;  // blend weight accumulated since the last prune
   std::vector<float> densifyScore;  // split score since the last densify step (train/densify.h)
+  float roughnessShift = 0;        // the shift-invariant roughness loss's offset (train/trainer.h)
   std::string configJson;          // the run's config, to refuse resuming with another
 };
 

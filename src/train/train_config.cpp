@@ -67,6 +67,7 @@ void forEachField(Config& c, F&& f) {
   f("", "baseline", c.baseline);
   f("", "reflection_warmup", c.reflectionWarmup);
   f("", "f0_tint_from_reflections", c.f0TintFromReflections);
+  f("", "roughness_shift_invariant", c.roughnessShiftInvariant);
   f("", "invalid_normal_length", c.invalidNormalLength);
   f("", "backface_skip", c.backfaceSkip);
   f("", "batch_rays", c.batchRays);
@@ -318,6 +319,7 @@ void usePredictedBufferSetting(TrainConfig* config) {
   config->bounces = 2;
   config->loss.depth = 0.0f;
   config->loss.specular = 0.01f;
+  config->roughnessShiftInvariant = true;
 }
 
 TrainConfig readTrainConfig(const std::filesystem::path& path) {

@@ -107,6 +107,12 @@ struct TrainConfig {
   // option beyond the paper. Off: it cost 1.6 dB of specular and 1.4 of final on the
   // monocular room capture, whose gold sphere it was meant for (docs/captures.md).
   bool f0TintFromReflections = false;
+  // When true, the roughness term ignores a constant offset between the priors and the
+  // model: it compares r + b with the prior p, b the median of p - r over the previous
+  // step's surface pixels (train/roughness_shift.h). A predictor's roughness is often
+  // biased as a whole; the offset is then left to L_r. An option beyond the paper
+  // (docs/captures.md measures it).
+  bool roughnessShiftInvariant = false;
   float invalidNormalLength = 0.7f;  // paths end at shorter blended normals
   float backfaceSkip = 0.1f;         // reflection rays ignore back faces this close
   int batchRays = 16384;
@@ -165,7 +171,9 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
 TrainConfig readTrainConfig(const std::filesystem::path& path);  // defaults + the file
 
 // The setting for a capture whose buffers a network predicted (the paper's, for its real
-// scenes): no depth loss, the specular weight 0.01, 2 trained bounces. `glint train`
+// scenes): no depth loss, the specular weight 0.01, 2 trained bounces; and beyond the
+// paper, the shift-invariant roughness term (a predictor's roughness is often biased as a
+// whole: docs/captures.md). `glint train`
 // applies it to such captures unless --config is given; scripts/real-capture-train.json
 // holds the same values for other tools.
 void usePredictedBufferSetting(TrainConfig* config);

@@ -19,6 +19,7 @@
 #include "train/far_field.h"
 #include "train/rank_sync.h"
 #include "train/reflection_seeds.h"
+#include "train/roughness_shift.h"
 
 namespace glint {
 
@@ -30,6 +31,7 @@ struct Trainer::Slot {
   int64_t hitCount = 0;
   int64_t overflowed = 0;
   int64_t reflected = 0;
+  ResidualHistogram roughnessResiduals;  // prior - model roughness (shift-invariant loss)
 };
 
 namespace {
@@ -54,7 +56,8 @@ Trainer::Trainer(const TrainConfig& config, const TrainingViews& views, std::vec
                  TrainingState state, const std::string& tracerKind)
     : config_(config), views_(views), spheres_(std::move(spheres)), scene_(std::move(state.scene)),
       extent_(state.sceneExtent), step_(state.step), adam_(config.adam),
-      pruneWeight_(std::move(state.pruneWeight)), densifyScore_(std::move(state.densifyScore)) {
+      pruneWeight_(std::move(state.pruneWeight)), densifyScore_(std::move(state.densifyScore)),
+      roughnessShift_(state.roughnessShift) {
   adam_.reset(scene_.size());
   adam_.firstMoment() = std::move(state.adam.firstMoment());
   adam_.secondMoment() = std::move(state.adam.secondMoment());
@@ -78,6 +81,7 @@ TrainingState Trainer::state() const {
   s.scene = scene_;
   s.adam = adam_;
   s.pruneWeight = pruneWeight_;
+  s.roughnessShift = roughnessShift_;
   s.densifyScore = densifyScore_;
   s.configJson = toJson(config_).dump();
   return s;
@@ -101,6 +105,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   // slower than tracing each ray alone).
   pathSettings.primaryCoherence = RayCoherence::Scattered;
   const bool scoring = backward && scoringSplits();
+  const bool shiftInvariant = config_.roughnessShiftInvariant;
   if (scoring) {
     sigmaMax_.resize(n);
     parallelForChunks(int64_t(n), 8192, [&](int64_t begin, int64_t end) {
@@ -120,6 +125,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     if (scoring) slot.splitScore.assign(n, 0.0f);
     slot.terms = {};
     slot.hitCount = slot.overflowed = slot.reflected = 0;
+    slot.roughnessResiduals.clear();
   });
   // This process's share of the batch (all of it unless an MPI job splits it over ranks),
   // cut into one contiguous lane per slot. Each slot adds its lane's rays in ray order, and
@@ -173,9 +179,14 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
       };
       for (int64_t r = laneStart[size_t(s)]; r < laneStart[size_t(s) + 1]; ++r) {
         const BatchRay& b = batchRay(s, r);
-        const PixelTarget target = views_.target(b.view, b.pixel);
+        PixelTarget target = views_.target(b.view, b.pixel);
         std::span<const PathSegment> path = pathBatch_.path(size_t(r));
         const RayResult& result = path[0].result;
+        if (target.surface && target.hasRoughness) {
+          slot.roughnessResiduals.add(double(target.roughness) - double(result.roughness));
+          // The shift-invariant term compares r + b with the prior p, b the last step's offset.
+          if (shiftInvariant) target.roughness -= roughnessShift_;
+        }
         const Rgb specular = reflections ? paths_[size_t(r)].specular : Rgb(0.0f);
         slot.terms += rayLoss(result, target, norm, specular);
         slot.hitCount += int64_t(path[0].hits.hits.size());
@@ -211,7 +222,9 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   // Then over the ranks of an MPI job, in rank order.
   LossTerms terms;
   int64_t counters[3] = {0, 0, 0};
+  ResidualHistogram residuals;
   for (const auto& slot : slots_) {
+    residuals.merge(slot->roughnessResiduals);
     terms += slot->terms;
     counters[0] += slot->hitCount;
     counters[1] += slot->overflowed;
@@ -228,6 +241,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     cluster::sumInRankOrder(std::span<double>(t, 6));
     terms = {t[0], t[1], t[2], t[3], t[4], t[5]};
     cluster::sumInRankOrder(std::span<int64_t>(counters, 3));
+    cluster::sumInRankOrder(residuals.counts());
     report->exchangeSeconds += exchange.seconds;
     report->exchangedBytes += exchange.bytesIn;
     report->sparseExchange = exchange.sparse;
@@ -241,6 +255,11 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   report->overflowedRays += counters[1];
   report->reflectedSegments += counters[2];
   report->rays += rays;
+  // The batch's offset: its median residual, the b that minimises the batch's L1 roughness
+  // term over b (train/roughness_shift.h). The shift-invariant term takes it out of the next
+  // step's priors: it lags the model by one step, so the backward pass holds it constant.
+  report->roughnessOffset = float(residuals.median());
+  if (backward && shiftInvariant && residuals.count() > 0) roughnessShift_ = report->roughnessOffset;
 }
 
 StepReport Trainer::step() {

@@ -46,6 +46,10 @@ struct StepReport {
   double traceSeconds = 0, backwardSeconds = 0, waitSeconds = 0, exchangeSeconds = 0, adamSeconds = 0;
   uint64_t exchangedBytes = 0;  // received by this rank in the exchange
   bool sparseExchange = false;  // the exchange sent the touched Gaussians only
+  // The roughness priors' offset from the model: the median of prior - model roughness
+  // over the batch's surface pixels (0 without roughness priors). With
+  // TrainConfig::roughnessShiftInvariant the next step's roughness term takes it out.
+  float roughnessOffset = 0;
 };
 
 class Trainer {
@@ -109,6 +113,7 @@ class Trainer {
   AdamOptimizer adam_;
   std::vector<float> pruneWeight_;
   std::vector<float> densifyScore_;  // split score accumulated since the last densify step
+  float roughnessShift_ = 0;         // the median of prior - model roughness of the last step
   std::vector<float> sigmaMax_;      // largest standard deviation per Gaussian, for the score
   std::unique_ptr<GaussianTracer> tracer_;
   std::vector<std::unique_ptr<Slot>> slots_;

@@ -71,6 +71,9 @@ void writeScalars(TensorBoardWriter& board, const StepReport& r, const std::opti
   board.scalar("loss/roughness_l1", r.step, r.terms.roughness);
   board.scalar("loss/f0_l1", r.step, r.terms.f0);
   board.scalar("loss/specular_l1", r.step, r.terms.specular);
+  // How far the roughness priors sit from the model's (train/roughness_shift.h): a
+  // predictor's bias shows here.
+  board.scalar("roughness_prior_offset", r.step, r.roughnessOffset);
   board.scalar("gaussians", r.step, float(r.gaussians));
   board.scalar("hits_per_ray", r.step, float(double(r.hits) / double(std::max<int64_t>(r.rays, 1))));
   board.scalar("rays_per_s", r.step, float(double(r.rays) / r.seconds));

@@ -79,6 +79,7 @@ TEST_F(CaptureCliTest, PredictedBuffersTrainWithTheRealCaptureSetting) {
   Outcome outcome;
   nlohmann::json config = trainedConfig("EXACT", "", &outcome);
   EXPECT_EQ(config["loss"]["depth"], 2.5);
+  EXPECT_EQ(config["roughness_shift_invariant"], false);
   EXPECT_EQ(outcome.output.find("predicted buffers"), std::string::npos) << outcome.output;
 
   decoding.erase("priors");  // a predictor's capture does not say so: predicted is the default
@@ -86,6 +87,7 @@ TEST_F(CaptureCliTest, PredictedBuffersTrainWithTheRealCaptureSetting) {
   config = trainedConfig("PREDICTED", " --bounces 1", &outcome);
   EXPECT_EQ(config["loss"]["depth"], 0.0);
   EXPECT_FLOAT_EQ(config["loss"]["specular"].get<float>(), 0.01f);
+  EXPECT_EQ(config["roughness_shift_invariant"], true);
   EXPECT_EQ(config["bounces"], 1);  // a flag given still wins
   EXPECT_NE(outcome.output.find("holds predicted buffers"), std::string::npos) << outcome.output;
 

@@ -42,6 +42,7 @@ TrainingState randomState() {
   for (float& w : s.pruneWeight) w = r();
   s.densifyScore.resize(s.scene.size());
   for (float& w : s.densifyScore) w = r();
+  s.roughnessShift = 0.0731f;
   return s;
 }
 
@@ -74,13 +75,14 @@ TEST(Checkpoint, RoundTripIsBitExact) {
   }
   EXPECT_TRUE(sameBytes(back.pruneWeight, s.pruneWeight));
   EXPECT_TRUE(sameBytes(back.densifyScore, s.densifyScore));
+  EXPECT_EQ(back.roughnessShift, s.roughnessShift);
 }
 
 // A checkpoint written before the parameter table (scene/gaussian_parameters.h) chose its
 // arrays (tests/data/README.md) loads with every array in its place and a zero
-// densification score (version 1 had none); written again as version 2 it differs from the
-// old file only in the version and the appended score.
-TEST(Checkpoint, VersionOneFileLoadsAndRewritesWithOnlyTheScoreAdded) {
+// densification score (version 1 had none) and roughness shift; written again as version 3 it
+// differs from the old file only in the version and the appended score and shift.
+TEST(Checkpoint, VersionOneFileLoadsAndRewritesWithOnlyTheScoreAndShiftAdded) {
   const std::filesystem::path folder = std::filesystem::path(GLINT_TEST_DATA) / "version1_run";
   TrainingState state = readCheckpoint(folder / "state.bin");
   EXPECT_EQ(state.step, 12);
@@ -103,16 +105,17 @@ TEST(Checkpoint, VersionOneFileLoadsAndRewritesWithOnlyTheScoreAdded) {
   EXPECT_EQ(state.adam.firstMoment().of(&GaussianScene::rotation)[3], -0.00017370961722917855f);
 
   EXPECT_EQ(state.densifyScore, std::vector<float>(state.scene.size(), 0.0f));
+  EXPECT_EQ(state.roughnessShift, 0.0f);
 
   test::TempFolder temp;
   writeCheckpoint(temp.path() / "state.bin", state);
   const auto written = test::readBytes(temp.path() / "state.bin");
   auto old = test::readBytes(folder / "state.bin");
-  // Version 2: the version word becomes 2, and before the checksum come the score's count
-  // and its zero floats.
+  // Version 3: the version word becomes 3, and before the checksum come the score's count,
+  // its zero floats and the zero shift.
   const size_t checksum = sizeof(uint64_t), scoreBytes = sizeof(uint64_t) + state.scene.size() * sizeof(float);
-  ASSERT_EQ(written.size(), old.size() + scoreBytes);
-  old[8] = 2;
+  ASSERT_EQ(written.size(), old.size() + scoreBytes + sizeof(float));
+  old[8] = 3;
   const auto body = [](const auto& bytes, size_t end) { return std::vector<char>(bytes.begin(), bytes.begin() + end); };
   EXPECT_EQ(body(written, old.size() - checksum), body(old, old.size() - checksum));
 }
