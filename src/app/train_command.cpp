@@ -130,8 +130,7 @@ TrainConfig newRunConfig(const TrainOptions& o, const CLI::App& cmd) {
     usePredictedBufferSetting(&config);
     if (given("--bounces")) config.bounces = o.config.bounces;
     std::fprintf(stderr, "glint train: %s holds predicted buffers (capture.json \"priors\"): training with the "
-                 "real-capture setting (no depth loss, specular weight 0.01, the roughness priors' offset left out); "
-                 "--config overrides it\n",
+                 "real-capture setting (no depth loss, specular weight 0.01); --config overrides it\n",
                  o.dataset.c_str());
   }
   const bool autoRgb = !given("--baseline") && config.baseline == Baseline::None && traits.finalImagesOnly;
@@ -357,8 +356,7 @@ void addTrainCommand(CLI::App& app) {
                   "A capture with predicted buffers (capture.json \"priors\": \"predicted\", the default) "
                   "trains without a config file with the paper's setting for them (no depth loss, specular weight "
                   "0.01; scripts/real-capture-train.json), which measured 2.7 dB better than the defaults on "
-                  "COLMAP cameras, and with the shift-invariant roughness term (\"roughness_shift_invariant\": "
-                  "the priors' offset from the model's roughness is left to the reflections); a --config replaces it")
+                  "COLMAP cameras; a --config replaces it")
       ->check(CLI::ExistingFile);
   o->reading.add(cmd, /*withBackground=*/true);
   cmd->add_option("--seed", o->config.seed, "Seed of the ray batches")->default_val(defaults.seed);

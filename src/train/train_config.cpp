@@ -319,7 +319,6 @@ void usePredictedBufferSetting(TrainConfig* config) {
   config->bounces = 2;
   config->loss.depth = 0.0f;
   config->loss.specular = 0.01f;
-  config->roughnessShiftInvariant = true;
 }
 
 TrainConfig readTrainConfig(const std::filesystem::path& path) {

@@ -109,9 +109,11 @@ struct TrainConfig {
   bool f0TintFromReflections = false;
   // When true, the roughness term ignores a constant offset between the priors and the
   // model: it compares r + b with the prior p, b the median of p - r over the previous
-  // step's surface pixels (train/roughness_shift.h). A predictor's roughness is often
-  // biased as a whole; the offset is then left to L_r. An option beyond the paper
-  // (docs/captures.md measures it).
+  // step's surface pixels (train/roughness_shift.h), so a prior biased as a whole gives
+  // its structure but not its level. No other term sets the level (L_r's gradient never
+  // reaches roughness), so it stays where the first steps leave it. An option beyond the
+  // paper, off: +1.2 dB of specular at 2000 steps on one predicted capture, nothing at
+  // 8000 or on another (docs/captures.md).
   bool roughnessShiftInvariant = false;
   float invalidNormalLength = 0.7f;  // paths end at shorter blended normals
   float backfaceSkip = 0.1f;         // reflection rays ignore back faces this close
@@ -171,9 +173,7 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
 TrainConfig readTrainConfig(const std::filesystem::path& path);  // defaults + the file
 
 // The setting for a capture whose buffers a network predicted (the paper's, for its real
-// scenes): no depth loss, the specular weight 0.01, 2 trained bounces; and beyond the
-// paper, the shift-invariant roughness term (a predictor's roughness is often biased as a
-// whole: docs/captures.md). `glint train`
+// scenes): no depth loss, the specular weight 0.01, 2 trained bounces. `glint train`
 // applies it to such captures unless --config is given; scripts/real-capture-train.json
 // holds the same values for other tools.
 void usePredictedBufferSetting(TrainConfig* config);

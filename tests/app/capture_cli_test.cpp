@@ -87,7 +87,6 @@ TEST_F(CaptureCliTest, PredictedBuffersTrainWithTheRealCaptureSetting) {
   config = trainedConfig("PREDICTED", " --bounces 1", &outcome);
   EXPECT_EQ(config["loss"]["depth"], 0.0);
   EXPECT_FLOAT_EQ(config["loss"]["specular"].get<float>(), 0.01f);
-  EXPECT_EQ(config["roughness_shift_invariant"], true);
   EXPECT_EQ(config["bounces"], 1);  // a flag given still wins
   EXPECT_NE(outcome.output.find("holds predicted buffers"), std::string::npos) << outcome.output;
 
