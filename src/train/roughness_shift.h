@@ -1,5 +1,5 @@
 // The offset between a roughness prior and the model's roughness, which the shift-invariant
-// roughness loss (TrainConfig::loss.roughness_shift_invariant, beyond the paper) takes out.
+// roughness term (TrainConfig::roughnessShiftInvariant, beyond the paper) takes out.
 #pragma once
 
 #include <array>

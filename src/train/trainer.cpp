@@ -31,7 +31,7 @@ struct Trainer::Slot {
   int64_t hitCount = 0;
   int64_t overflowed = 0;
   int64_t reflected = 0;
-  ResidualHistogram roughnessResiduals;  // prior - model roughness (shift-invariant loss)
+  ResidualHistogram roughnessResiduals;  // prior - model roughness (StepReport::roughnessOffset)
 };
 
 namespace {

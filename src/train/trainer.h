@@ -113,7 +113,9 @@ class Trainer {
   AdamOptimizer adam_;
   std::vector<float> pruneWeight_;
   std::vector<float> densifyScore_;  // split score accumulated since the last densify step
-  float roughnessShift_ = 0;         // the median of prior - model roughness of the last step
+  // The last step's roughness offset, taken out of the priors when roughnessShiftInvariant
+  // (0 otherwise).
+  float roughnessShift_ = 0;
   std::vector<float> sigmaMax_;      // largest standard deviation per Gaussian, for the score
   std::unique_ptr<GaussianTracer> tracer_;
   std::vector<std::unique_ptr<Slot>> slots_;

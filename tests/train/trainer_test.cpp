@@ -193,8 +193,8 @@ TEST_F(TrainerTest, MissingBufferKindsTrainWithoutTheirLosses) {
 
 // The shift-invariant roughness term: the initialisation's roughness is far under the
 // priors (the reported offset, the median of prior - model, is large). The absolute term
-// closes that offset; the shift-invariant one takes it out of the priors and leaves it to
-// the other losses (none here, without reflections), so it stays, or nearly.
+// closes that offset; the shift-invariant one takes it out of the priors, and no other term
+// reaches roughness, so it stays, or nearly.
 TEST_F(TrainerTest, ShiftInvariantRoughnessTermLeavesAConstantOffsetAlone) {
   TrainConfig c = smallConfig();
   std::unique_ptr<Trainer> absolute = makeTrainer(c);
