@@ -2,7 +2,8 @@
 // rendering mode, and in training mode with the exact tail and hit lists), the fused
 // forward+backward pass, and whole training steps (with reduction, Adam and refit). The
 // scene is a dense initialisation trained for --warmup steps, so that hit counts are
-// those of training. Prints a table with the ratios and writes JSON (--json FILE).
+// those of training. Whole-image batches (glint train --batch-images) are measured beside
+// the random pixels. Prints a table with the ratios (time per ray) and writes JSON (--json FILE).
 #include <unistd.h>
 
 #include <chrono>
@@ -35,6 +36,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Forward vs fused forward+backward throughput of Glint's training pass"};
   std::string datasetPath, jsonPath;
   int warmup = 800, batches = 8, batchRays = 16384, threads = 2, reflectionWarmup = TrainConfig{}.reflectionWarmup;
+  int batchImages = 1;
+  std::string tracerKind = "fast";
   app.add_option("--dataset", datasetPath, "Dataset to train on (default: builtin:spheres, 40 views of 160x120, "
                                            "rendered into a temporary folder)");
   app.add_option("--warmup", warmup, "Training steps before measuring (the default passes the reflection warm-up of "
@@ -45,7 +48,14 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--batches", batches, "Batches measured per pass")->check(CLI::Range(1, 100000));
   app.add_option("--batch-rays", batchRays, "Rays per batch")->check(CLI::Range(1, 1 << 24));
+  app.add_option("--batch-images", batchImages, "Views per whole-image batch in the rows that train on whole images "
+                                               "(glint train --batch-images)")
+      ->check(CLI::Range(1, 1 << 20))
+      ->capture_default_str();
   app.add_option("--threads", threads, "Threads")->check(CLI::Range(1, 1024));
+  app.add_option("--tracer", tracerKind, "Gaussian tracer of the trainer (fast; cuda or cuda-warp: the GPU traces the "
+                                         "wavefronts and runs the backward pass)")
+      ->capture_default_str();
   app.add_option("--json", jsonPath, "Write the results as JSON here");
   CLI11_PARSE(app, argc, argv);
   ThreadLimit limit(threads);
@@ -64,7 +74,8 @@ int main(int argc, char** argv) {
   config.reflectionWarmup = reflectionWarmup;
   DenseInit init = denseInitialisation(dataset);
   Trainer trainer(config, views, cameraSpheres(dataset, dataset.train()), std::move(init.scene),
-                  sceneExtent(dataset.train()));
+                  sceneExtent(dataset.train()), tracerKind);
+  const bool gpu = isGpuTracer(tracerKind);
   std::fprintf(stderr, "warming up: %d training steps on %zu Gaussians\n", warmup, trainer.scene().size());
   for (int i = 0; i < warmup; ++i) trainer.step();
 
@@ -76,7 +87,7 @@ int main(int argc, char** argv) {
   // Rendering mode: no exact tail, no hit list, the tracer's own batch loop.
   TraceSettings renderSettings = config.trace;
   renderSettings.exactTail = false;
-  std::unique_ptr<GaussianTracer> renderTracer = makeGaussianTracer("fast");
+  std::unique_ptr<GaussianTracer> renderTracer = makeGaussianTracer(tracerKind);
   renderTracer->build(trainer.scene(), renderSettings);
   std::vector<TraceRay> traceRays;
   std::vector<RayResult> results(static_cast<size_t>(batchRays));
@@ -94,6 +105,17 @@ int main(int argc, char** argv) {
   double fusedSeconds = secondsOf([&] {
     for (const auto& batch : rays) trainer.forwardBackward(batch, true, &fusedReport);
   });
+  // On the GPU, the backward pass's sums both ways (raytrace/backward_batch.h): records
+  // sorted by Gaussian (the default, reproducible) and atomic adds.
+  double atomicSeconds = 0;
+  StepReport atomicReport;
+  if (gpu) {
+    trainer.setBackwardBatch(makeBackwardBatch(tracerKind, GradientSum::Atomic));
+    atomicSeconds = secondsOf([&] {
+      for (const auto& batch : rays) trainer.forwardBackward(batch, true, &atomicReport);
+    });
+    trainer.setBackwardBatch(makeBackwardBatch(tracerKind, GradientSum::Sorted));
+  }
   // The forward pass's paths alone, four ways on the trainer's own scene and settings: the
   // wavefront as the trainer runs it (camera rays traced one by one, reflected rays sorted
   // by origin and octant), with the reflected rays in path order, with the camera rays in
@@ -158,8 +180,24 @@ int main(int argc, char** argv) {
   }
   const double tilesBundledSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Coherent);
   const double tilesAloneSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Scattered);
+  // Whole images (glint train --batch-images): every pixel of the batch's views in row
+  // order, camera rays in bundles (as the trainer traces them) and one by one.
+  std::vector<std::vector<BatchRay>> wholeImages(static_cast<size_t>(batches));
+  double wholeImageRays = 0;
+  for (size_t b = 0; b < rays.size(); ++b) {
+    views.drawWholeImages(config.seed, 1000000 + int64_t(b), batchImages, &wholeImages[b]);
+    primaries[b].clear(), keys[b].clear();
+    for (const BatchRay& r : wholeImages[b]) {
+      primaries[b].push_back(r.ray);
+      keys[b].push_back({r.view, r.pixel, uint64_t(1000000 + b)});
+    }
+    wholeImageRays += double(wholeImages[b].size());
+  }
+  const double wholeBundledSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Coherent);
+  const double wholeAloneSeconds = wavefrontSeconds(ReflectedRayOrder::OriginAndOctant, RayCoherence::Scattered);
   primaries = scattered, keys = scatteredKeys;
-  const double perRaySeconds = secondsOf([&] {
+  // (Not on the GPU, where one ray at a time is one launch each.)
+  const double perRaySeconds = gpu ? 0.0 : secondsOf([&] {
     for (size_t b = 0; b < rays.size(); ++b)
       parallelForChunks(int64_t(primaries[b].size()), 64, [&](int64_t begin, int64_t end) {
         thread_local std::vector<PathSegment> segments;
@@ -170,35 +208,67 @@ int main(int argc, char** argv) {
         }
       });
   });
+  // Whole training steps on whole images: the same scene and state, the trainer set to
+  // --batch-images (its steps draw their own views).
+  TrainConfig wholeConfig = config;
+  wholeConfig.batchImages = batchImages;
+  Trainer wholeTrainer(wholeConfig, views, cameraSpheres(dataset, dataset.train()), trainer.state(), tracerKind);
+  double wholeStepRays = 0;
+  const double wholeStepSeconds = secondsOf([&] {
+    for (int b = 0; b < batches; ++b) wholeStepRays += double(wholeTrainer.step().rays);
+  });
+  StepReport parts;  // the whole steps' parts, summed
   double stepSeconds = secondsOf([&] {
-    for (int b = 0; b < batches; ++b) trainer.step();
+    for (int b = 0; b < batches; ++b) {
+      const StepReport r = trainer.step();
+      parts.traceSeconds += r.traceSeconds;
+      parts.backwardSeconds += r.backwardSeconds;
+      parts.adamSeconds += r.adamSeconds;
+      parts.seconds += r.seconds;
+    }
   });
 
+  // Each row's rays: the batches of random pixels, or (whole-image rows) of whole views.
   struct Row {
     const char* name;
     double seconds;
-  } rows[] = {{"forward, rendering mode (batch camera rays, bundled)", renderSeconds},
-              {"forward, training mode (paths, hit lists, loss)", forwardSeconds},
-              {"fused forward+backward", fusedSeconds},
-              {"paths only: wavefront (as trained)", sortedSeconds},
-              {"paths only: wavefront, reflected rays in path order", pathOrderSeconds},
-              {"paths only: wavefront, camera rays in bundles", bundledSeconds},
-              {"paths only, what-if 8x8 tiles: camera rays in bundles", tilesBundledSeconds},
-              {"paths only, what-if 8x8 tiles: camera rays one by one", tilesAloneSeconds},
-              {"paths only: per-ray design before the wavefront", perRaySeconds},
-              {"whole step (+ reduction, Adam, refit)", stepSeconds}};
-  std::printf("train_bench: %zu Gaussians, %.1f composited hits per ray, %d rays per batch, %d batches, %d threads\n",
+    double rays;
+  } rows[] = {{"forward, rendering mode (batch camera rays, bundled)", renderSeconds, totalRays},
+              {"forward, training mode (paths, hit lists, loss)", forwardSeconds, totalRays},
+              {"fused forward+backward", fusedSeconds, totalRays},
+              {"fused forward+backward, GPU sums by atomic adds", atomicSeconds, totalRays},
+              {"paths only: wavefront (as trained)", sortedSeconds, totalRays},
+              {"paths only: wavefront, reflected rays in path order", pathOrderSeconds, totalRays},
+              {"paths only: wavefront, camera rays in bundles", bundledSeconds, totalRays},
+              {"paths only, what-if 8x8 tiles: camera rays in bundles", tilesBundledSeconds, totalRays},
+              {"paths only, what-if 8x8 tiles: camera rays one by one", tilesAloneSeconds, totalRays},
+              {"paths only, whole images: camera rays in bundles", wholeBundledSeconds, wholeImageRays},
+              {"paths only, whole images: camera rays one by one", wholeAloneSeconds, wholeImageRays},
+              {"paths only: per-ray design before the wavefront", perRaySeconds, totalRays},
+              {"whole step (+ reduction, Adam, refit)", stepSeconds, totalRays},
+              {"whole step, whole images (--batch-images)", wholeStepSeconds, wholeStepRays}};
+  std::printf("train_bench: %zu Gaussians, %.1f composited hits per ray, %d rays per batch, %d batches, %d threads, "
+              "tracer %s%s%s\n",
               trainer.scene().size(), double(fusedReport.hits) / double(fusedReport.rays), batchRays, batches,
-              threads);
+              threads, tracerKind.c_str(), trainer.backwardBatch() ? ", backward pass " : "",
+              trainer.backwardBatch() ? trainer.backwardBatch()->name() : "");
+  std::printf("whole-image rows: every pixel of %d view(s) a batch (%.0f rays)\n", batchImages,
+              wholeImageRays / double(batches));
   std::printf("%-55s %10s %12s\n", "pass", "Mrays/s", "time ratio");
   nlohmann::json json;
   json["gaussians"] = trainer.scene().size();
   json["hits_per_ray"] = double(fusedReport.hits) / double(fusedReport.rays);
   json["batch_rays"] = batchRays;
+  json["tracer"] = tracerKind;
   json["threads"] = threads;
+  json["batch_images"] = batchImages;
+  // The time ratio is per ray, against the training forward pass.
+  const double forwardPerRay = forwardSeconds / totalRays;
   for (const Row& r : rows) {
-    std::printf("%-55s %10.3f %11.2fx\n", r.name, totalRays / r.seconds / 1e6, r.seconds / forwardSeconds);
-    json["passes"][r.name] = {{"mrays_per_s", totalRays / r.seconds / 1e6}, {"ratio_to_training_forward", r.seconds / forwardSeconds}};
+    if (r.seconds <= 0) continue;  // not measured on this device
+    const double ratio = r.seconds / r.rays / forwardPerRay;
+    std::printf("%-55s %10.3f %11.2fx\n", r.name, r.rays / r.seconds / 1e6, ratio);
+    json["passes"][r.name] = {{"mrays_per_s", r.rays / r.seconds / 1e6}, {"ratio_to_training_forward", ratio}};
   }
   const double wavefrontRays = double(std::min<int64_t>(batchRays, Trainer::kWavefrontRays));
   std::printf("reflected segments per ray %.2f; wavefront records %.1f MB for a wavefront of %.0f rays (%.0f B per "
@@ -211,6 +281,26 @@ int main(int argc, char** argv) {
   std::printf("fused / forward (training mode): %.2fx   fused / forward (rendering mode): %.2fx   (paper: 2.23x, "
               "target <= 2.5x)\n",
               fusedSeconds / forwardSeconds, fusedSeconds / renderSeconds);
+  json["fused_over_forward_training_mode"] = fusedSeconds / forwardSeconds;
+  json["fused_over_forward_rendering_mode"] = fusedSeconds / renderSeconds;
+  // A step's parts (StepReport): the wavefronts' tracing, the losses and backward pass with
+  // the reduction (on the GPU: the jobs' upload, the kernels and the sums' download), the
+  // Adam step, and the rest (drawing the batch, housekeeping: the tracer's refit).
+  const double rest = parts.seconds - parts.traceSeconds - parts.backwardSeconds - parts.adamSeconds;
+  std::printf("whole step's parts, ms per step: trace %.1f, backward %.1f, Adam %.1f, rest (batch, refit) %.1f; "
+              "total %.1f\n",
+              1e3 * parts.traceSeconds / batches, 1e3 * parts.backwardSeconds / batches,
+              1e3 * parts.adamSeconds / batches, 1e3 * rest / batches, 1e3 * parts.seconds / batches);
+  json["step_parts_ms"] = {{"trace", 1e3 * parts.traceSeconds / batches},
+                           {"backward", 1e3 * parts.backwardSeconds / batches},
+                           {"adam", 1e3 * parts.adamSeconds / batches},
+                           {"rest", 1e3 * rest / batches},
+                           {"total", 1e3 * parts.seconds / batches}};
+  if (gpu) {
+    if (!jsonPath.empty()) std::ofstream(jsonPath) << json.dump(2) << "\n";
+    if (!temp.empty()) fs::remove_all(temp);
+    return 0;
+  }
   // The step of the per-ray design: today's step with its wavefront swapped for per-ray paths.
   const double perRayStep = stepSeconds - sortedSeconds + perRaySeconds;
   std::printf("whole step, per-ray design (estimated: the step with per-ray paths instead of the wavefront): "
@@ -218,8 +308,6 @@ int main(int argc, char** argv) {
               totalRays / perRayStep / 1e6, perRayStep / stepSeconds);
   json["per_ray_design_step_mrays_per_s"] = totalRays / perRayStep / 1e6;
   json["step_speedup_over_per_ray_design"] = perRayStep / stepSeconds;
-  json["fused_over_forward_training_mode"] = fusedSeconds / forwardSeconds;
-  json["fused_over_forward_rendering_mode"] = fusedSeconds / renderSeconds;
   if (!jsonPath.empty()) std::ofstream(jsonPath) << json.dump(2) << "\n";
   if (!temp.empty()) fs::remove_all(temp);
   return 0;

@@ -19,21 +19,8 @@ bin=$GLINT_DEVICE_DIR/build
 work=/tmp/glint-device-work
 rm -rf "$work" && mkdir -p "$work"
 
-# Each step's status, for the table; a failing step does not stop the others.
-declare -a steps=()
-step() {  # step NAME TIMEOUT_S COMMAND... : runs it, logs to $out/NAME.log, records the status
-  local name=$1 limit=$2
-  shift 2
-  local start
-  start=$(date +%s%N)
-  timeout "$limit" "$@" >"$out/$name.log" 2>&1
-  local status=$?
-  local seconds
-  seconds=$(awk -v a="$start" -v b="$(date +%s%N)" 'BEGIN { printf "%.2f", (b - a) / 1e9 }')
-  steps+=("$name|$status|$seconds")
-  echo "== $name: exit $status in ${seconds} s"
-  tail -n 25 "$out/$name.log"
-}
+# shellcheck source=scripts/device-steps.sh
+source scripts/device-steps.sh
 
 nvidia-smi --query-gpu=name,memory.total,driver_version,clocks.sm,clocks.max.sm --format=csv >"$out/gpu.txt" 2>&1
 cat "$out/gpu.txt"
@@ -41,7 +28,7 @@ cat "$out/gpu.txt"
 cores=$(nproc)
 
 # 1. The GPU against the CPU, then the same tests under compute-sanitizer's memcheck.
-step gpu_tests 150 "$bin/tests/test_cuda"
+step gpu_tests 150 "$bin/tests/test_cuda" --gtest_filter='-GpuTraining.*'  # training: device-train-check.sh
 if command -v compute-sanitizer >/dev/null; then
   step gpu_memcheck 150 compute-sanitizer --tool memcheck --error-exitcode 9 --leak-check full \
     "$bin/tests/test_cuda" --gtest_filter='GpuTracer.*:GpuRenderer.*'

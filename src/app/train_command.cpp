@@ -16,12 +16,15 @@
 #include "app/commands.h"
 #include "app/dataset_flags.h"
 #include "app/thread_flag.h"
+#include "app/trace_flags.h"
 #include "app/viewer/viewer_setup.h"
 #include "core/cluster.h"
 #include "core/error.h"
 #include "core/folder_lock.h"
 #include "core/parallel.h"
 #include "core/progress.h"
+#include "raytrace/gaussian_tracer.h"
+#include "tracers/compute_device.h"
 #include "train/run_folder.h"
 #include "train/train_config.h"
 #include "train/training_loop.h"
@@ -47,6 +50,7 @@ struct TrainOptions {
   DatasetFlags reading;    // --downscale, --background
   double viewEvery = 2.0;  // seconds between the snapshots the viewer shows
   TrainConfig config;  // defaults, overridden by --config, then by explicit flags
+  std::string device = "cpu";  // the word of --device
 };
 
 std::atomic<bool> gInterrupted{false};
@@ -117,6 +121,11 @@ TrainConfig newRunConfig(const TrainOptions& o, const CLI::App& cmd) {
   if (given("--bounces")) config.bounces = o.config.bounces;
   if (given("--batch-rays")) config.batchRays = o.config.batchRays;
   if (given("--batch-views")) config.batchViews = o.config.batchViews;
+  if (given("--batch-images")) config.batchImages = o.config.batchImages;
+  if (config.batchImages > 0 && (given("--batch-rays") || given("--batch-views")))
+    throw Error(o.configFile, "batch_images is " + std::to_string(config.batchImages) +
+                                  ": steps take whole views, so --batch-rays and --batch-views would do nothing "
+                                  "(give \"batch_images\": 0 for random pixels)");
   if (given("--eval-every")) config.evalEvery = o.config.evalEvery;
   if (given("--save-every")) config.saveEvery = o.config.saveEvery;
   if (given("--init")) config.initSource = *choiceFromName<InitChoice>(o.initSource);  // IsMember checked it
@@ -192,9 +201,24 @@ class TrainPrinter : public TrainingObserver {
                                     ? std::to_string(cluster::size()) + " MPI ranks of " + std::to_string(maxThreads()) +
                                           " threads (each traces 1/" + std::to_string(cluster::size()) + " of the rays)"
                                     : std::to_string(maxThreads()) + " threads";
-    std::fprintf(stderr, "glint train: %zu Gaussians, %zu training views (the first %dx%d), %d rays per step, %s\n",
+    const std::string batch =
+        config_.batchImages > 0
+            ? "every pixel of " + std::to_string(std::min<size_t>(size_t(config_.batchImages), views.viewCount())) +
+                  (config_.batchImages == 1 ? " view" : " views") + " per step"
+            : std::to_string(config_.batchRays) + " rays per step";
+    std::fprintf(stderr, "glint train: %zu Gaussians, %zu training views (the first %dx%d), %s, %s\n",
                  trainer.scene().size(), views.viewCount(), views.camera(0).width, views.camera(0).height,
-                 config_.batchRays, workers.c_str());
+                 batch.c_str(), workers.c_str());
+    const PruneSettings& prune = config_.prune;
+    const int64_t viewsPerInterval = int64_t(prune.every) * int64_t(config_.batchImages);
+    if (config_.batchImages > 0 && viewsPerInterval < int64_t(views.viewCount()) && prune.start < config_.iters)
+      std::fprintf(stderr,
+                   "glint train: warning: a pruning interval (prune.every = %d steps of %d %s) sees %lld of the %zu "
+                   "training views, so a Gaussian that only the others see is pruned; prune.every of at least %lld "
+                   "sees them all\n",
+                   prune.every, config_.batchImages, config_.batchImages == 1 ? "view" : "views",
+                   (long long)viewsPerInterval, views.viewCount(),
+                   (long long)((int64_t(views.viewCount()) + config_.batchImages - 1) / config_.batchImages));
     const SupervisedBuffers& s = views.supervised();
     if (s.finalColour)
       std::fprintf(stderr, "glint train: colours fitted to the final (render) images%s\n",
@@ -204,13 +228,27 @@ class TrainPrinter : public TrainingObserver {
                    s.list(false).c_str());
     progress_ = std::make_unique<ProgressBar>("train", config_.iters, "steps");
     progress_->resumeAt(trainer.stepCount());  // the rate and ETA count this session's steps only
+    onGpu_ = isGpuTracer(trainer.tracer().name());
   }
 
   void stepped(const StepReport& r, const std::optional<TestScore>& score) override {
     if (score) lastPsnr_ = score->diffusePsnr;
-    char status[200];
-    std::snprintf(status, sizeof(status), "loss %.4f | %s Gaussians | %s rays/s%s", r.loss,
+    // On the GPU, the memory in use on it (all processes'), asked at most once a second.
+    const auto now = std::chrono::steady_clock::now();
+    if (onGpu_ && now - lastGpuQuery_ >= std::chrono::seconds(1)) {
+      lastGpuQuery_ = now;
+      std::string why;
+      if (const std::optional<GpuInfo> gpu = findGpu(&why)) {
+        char text[48];
+        std::snprintf(text, sizeof text, " | GPU %.1f/%.0f GiB", double(gpu->totalBytes - gpu->freeBytes) / 1073741824.0,
+                      double(gpu->totalBytes) / 1073741824.0);
+        gpuMemory_ = text;
+      }
+    }
+    char status[240];
+    std::snprintf(status, sizeof(status), "loss %.4f | %s Gaussians | %s rays/s%s%s", r.loss,
                   formatCount(double(r.gaussians)).c_str(), formatCount(double(r.rays) / r.seconds).c_str(),
+                  gpuMemory_.c_str(),
                   std::isnan(lastPsnr_) ? "" : (" | test " + std::to_string(lastPsnr_).substr(0, 5) + " dB").c_str());
     progress_->setStatus(status);
     progress_->advance();
@@ -250,6 +288,9 @@ class TrainPrinter : public TrainingObserver {
   std::unique_ptr<ViewerServer> viewer_;
   std::chrono::steady_clock::time_point lastSnapshot_;
   double lastPsnr_ = NAN;
+  bool onGpu_ = false;
+  std::chrono::steady_clock::time_point lastGpuQuery_;
+  std::string gpuMemory_;  // " | GPU 1.2/79 GiB", or empty on the CPU
 };
 
 // The run's settings at its start, as config.json holds them (floats as written), one line
@@ -306,7 +347,10 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
   TrainPrinter printer(o, config, run);
   TrainingOutcome outcome;
   try {
-    outcome = trainRun(run, config, o.session, printer);
+    TrainingSession session = o.session;
+    session.tracer = resolveTracerForDevice(o.device, o.session.tracer, cmd.get_option("--tracer")->count() > 0,
+                                            "glint train");
+    outcome = trainRun(run, config, session, printer);
   } catch (...) {
     if (undoFailedStart && !printer.hasStarted()) run.removeFailedStart(madeFolder);
     throw;
@@ -374,9 +418,19 @@ void addTrainCommand(CLI::App& app) {
   cmd->add_option("--batch-rays", o->config.batchRays, "Rays per step")
       ->check(CLI::Range(kBatchRaysRange.min, kBatchRaysRange.max))
       ->default_val(defaults.batchRays);
-  cmd->add_option("--batch-views", o->config.batchViews, "Training views each step's rays are drawn from")
-      ->check(CLI::Range(kBatchViewsRange.min, kBatchViewsRange.max))
-      ->default_val(defaults.batchViews);
+  CLI::Option* batchRays = cmd->get_option("--batch-rays");
+  CLI::Option* batchViews =
+      cmd->add_option("--batch-views", o->config.batchViews, "Training views each step's rays are drawn from")
+          ->check(CLI::Range(kBatchViewsRange.min, kBatchViewsRange.max))
+          ->default_val(defaults.batchViews);
+  cmd->add_option("--batch-images", o->config.batchImages,
+                  "Whole-image batches (the paper's protocol): each step traces every pixel of N training views, "
+                  "each view once per epoch in a seeded order, in place of --batch-rays random pixels of "
+                  "--batch-views views; 0 = random pixels")
+      ->check(CLI::Range(kBatchImagesRange.min, kBatchImagesRange.max))
+      ->default_val(defaults.batchImages)
+      ->excludes(batchRays)
+      ->excludes(batchViews);
   cmd->add_option("--eval-every", o->config.evalEvery, "Steps between test-view scores in the log")
       ->check(CLI::Range(kEveryStepsRange.min, kEveryStepsRange.max))
       ->default_val(defaults.evalEvery);
@@ -394,8 +448,16 @@ void addTrainCommand(CLI::App& app) {
                                                    "the depth buffers), depth, point-cloud")
       ->check(CLI::IsMember(choiceNames<InitChoice>()))
       ->default_val(choiceName(defaults.initSource));
-  cmd->add_option("--tracer", o->session.tracer, "Gaussian tracer (fast, embree-k16, reference)")
+  cmd->add_option("--tracer", o->session.tracer,
+                  "Gaussian tracer (fast, embree-k16, reference; cuda or cuda-warp on the GPU)")
       ->default_val(o->session.tracer);
+  cmd->add_option("--device", o->device,
+                  "Where training traces its paths: cpu, cuda (the GPU traces every wavefront of a step and its "
+                  "test-view scores; the backward pass, Adam and the schedule stay on the CPU; an error without "
+                  "a GPU), or auto (the GPU when one is present). Default cpu until the GPU's step is measured "
+                  "(docs/gpu.md). A run's checkpoint resumes on either device")
+      ->check(CLI::IsMember(deviceRequestNames()))
+      ->default_val(o->device);
   cmd->add_option("--exchange", o->exchange,
                   "Under MPI (mpirun/srun): how the ranks sum their gradients each step. dense: every Gaussian's "
                   "(measured faster here and through shared memory); sparse: only those the rank's rays touched, "

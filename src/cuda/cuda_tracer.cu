@@ -6,6 +6,7 @@
 #include <cuda_runtime.h>
 
 #include <cub/device/device_radix_sort.cuh>
+#include <cub/device/device_scan.cuh>
 
 #include <algorithm>
 #include <mutex>
@@ -72,6 +73,15 @@ __global__ void traceRaysKernel(DeviceScene scene, const TraceRay* rays, RayResu
   results[i] = r;
   counts[i] = count;
   overflowed[i] = over;
+}
+
+// Copies ray i's hits from its slot of `capacity` records to offsets[i] of `packed`.
+__global__ void packHitsKernel(const HitRecord* slots, uint32_t capacity, const uint32_t* offsets, size_t n,
+                               HitRecord* packed) {
+  const size_t i = size_t(blockIdx.x) * blockDim.x + threadIdx.x;
+  if (i >= n) return;
+  const uint32_t count = offsets[i + 1] - offsets[i];
+  for (uint32_t k = 0; k < count; ++k) packed[offsets[i] + k] = slots[i * capacity + k];
 }
 
 // ---- Views: a wavefront of paths per sample ----
@@ -226,7 +236,7 @@ class CudaGaussianTracer final : public GaussianTracer, public DeviceViewRendere
     for (const HitList& h : hits) capacity = std::max(capacity, uint32_t(std::min<size_t>(h.capacity, UINT32_MAX)));
     if (!hits.empty()) {
       hitRecords_.resize(n * size_t(capacity), "the hit lists of a batch of rays");
-      hitCounts_.resize(n, "the hit lists of a batch of rays");
+      hitCounts_.resize(n + 1, "the hit lists of a batch of rays");  // + 1: the scan's end (below)
       overflowed_.resize(n, "the hit lists of a batch of rays");
     }
     traceRaysKernel<<<blocksFor(n), kThreadsPerBlock>>>(
@@ -235,18 +245,39 @@ class CudaGaussianTracer final : public GaussianTracer, public DeviceViewRendere
     cuda::checkLaunch("tracing rays");
     results_.download(results, "downloading ray results");
     if (hits.empty()) return;
-    std::vector<HitRecord> records(n * size_t(capacity));
-    std::vector<uint32_t> counts(n);
+    // The lists are packed on the GPU before they come back: a training wavefront's rays hold
+    // a dozen hits each in slots of ~900 (hitCapacityWithoutOverflow), and copying the slots
+    // whole would move 75 times the bytes.
+    const char* what = "downloading hit lists";
+    GLINT_CHECK(n * size_t(capacity) < size_t(UINT32_MAX), "CudaGaussianTracer::traceBatch: too many hit slots");
+    hitOffsets_.resize(n + 1, what);
+    size_t scanBytes = 0;
+    cuda::check(cub::DeviceScan::ExclusiveSum(nullptr, scanBytes, hitCounts_.data(), hitOffsets_.data(), int(n + 1)),
+                what);
+    sortTemp_.resize(std::max<size_t>(scanBytes, 1), what);
+    // The scan reads one count past the rays': the slot kept for it is zero.
+    cuda::check(cudaMemset(hitCounts_.data() + n, 0, sizeof(uint32_t)), what);
+    cuda::check(cub::DeviceScan::ExclusiveSum(sortTemp_.data(), scanBytes, hitCounts_.data(), hitOffsets_.data(),
+                                              int(n + 1)),
+                what);
+    std::vector<uint32_t> offsets(n + 1);
     std::vector<uint8_t> over(n);
-    hitRecords_.download(records, "downloading hit lists");
-    hitCounts_.download(counts, "downloading hit lists");
-    cuda::check(cudaMemcpy(over.data(), overflowed_.data(), n, cudaMemcpyDeviceToHost), "downloading hit lists");
+    hitOffsets_.download(offsets, what);
+    cuda::check(cudaMemcpy(over.data(), overflowed_.data(), n, cudaMemcpyDeviceToHost), what);
+    const uint32_t total = offsets[n];
+    packedHits_.resize(std::max<uint32_t>(total, 1), what);
+    packHitsKernel<<<blocksFor(n), kThreadsPerBlock>>>(hitRecords_.data(), capacity, hitOffsets_.data(), n,
+                                                       packedHits_.data());
+    cuda::checkLaunch(what);
+    std::vector<HitRecord> records(total);
+    packedHits_.download(records, what);
     for (size_t i = 0; i < n; ++i) {
       // Each list keeps its own capacity, as the CPU tracers honour it.
       HitList& list = hits[i];
-      const size_t kept = std::min<size_t>(counts[i], list.capacity);
-      list.hits.assign(records.begin() + ptrdiff_t(i * capacity), records.begin() + ptrdiff_t(i * capacity + kept));
-      list.overflowed = over[i] != 0 || kept < counts[i];
+      const size_t count = offsets[i + 1] - offsets[i];
+      const size_t kept = std::min<size_t>(count, list.capacity);
+      list.hits.assign(records.begin() + ptrdiff_t(offsets[i]), records.begin() + ptrdiff_t(offsets[i] + kept));
+      list.overflowed = over[i] != 0 || kept < count;
     }
   }
 
@@ -392,7 +423,8 @@ class CudaGaussianTracer final : public GaussianTracer, public DeviceViewRendere
   mutable cuda::DeviceBuffer<TraceRay> rays_;
   mutable cuda::DeviceBuffer<RayResult> results_;
   mutable cuda::DeviceBuffer<HitRecord> hitRecords_;
-  mutable cuda::DeviceBuffer<uint32_t> hitCounts_;
+  mutable cuda::DeviceBuffer<uint32_t> hitCounts_, hitOffsets_;
+  mutable cuda::DeviceBuffer<HitRecord> packedHits_;
   mutable cuda::DeviceBuffer<bool> overflowed_;
   mutable cuda::DeviceBuffer<Rgb> sumDiffuse_, sumSpecular_, sumNormal_, sumF0_, sumBounces_, pathSpecular_;
   mutable cuda::DeviceBuffer<float> sumDepth_, sumRoughness_;

@@ -55,7 +55,7 @@ class DeviceBuffer {
         cudaMemGetInfo(&free, &total);
         throw Error(std::string("the GPU has no room for ") + what + ": it needs " + mebibytes(want * sizeof(T)) +
                     ", and " + mebibytes(free) + " of the GPU's " + mebibytes(total) +
-                    " are free (render on the CPU with --device cpu, or free GPU memory)");
+                    " are free (run on the CPU with --device cpu, or free GPU memory)");
       }
       capacity_ = want;
     }

@@ -2,6 +2,8 @@
 // rotation matrix), for the backward pass; derivations D1-D2 in docs/derivations.md.
 #pragma once
 
+#include "core/cpu_gpu.h"
+
 #include "math/mat3.h"
 #include "math/quat.h"
 
@@ -11,7 +13,7 @@ namespace glint {
 // v_u orthogonal to u, scaled by 1/|q| (derivations D1). The primal maps q = 0 to the
 // constant identity, whose adjoint is 0.
 template <typename T>
-Quat<T> quatNormalize_vjp(const Quat<T>& q, const Quat<T>& v_u) {
+GLINT_CPU_GPU Quat<T> quatNormalize_vjp(const Quat<T>& q, const Quat<T>& v_u) {
   T n = q.norm();
   if (!(n > T(0))) return Quat<T>{0, 0, 0, 0};
   Quat<T> u = q.normalized();
@@ -24,7 +26,7 @@ Quat<T> quatNormalize_vjp(const Quat<T>& q, const Quat<T>& v_u) {
 // through the quadratic entries of R(u) (derivations D2), then through the normalisation
 // (D1).
 template <typename T>
-Quat<T> quatToRotation_vjp(const Quat<T>& q, const Mat3<T>& v_R) {
+GLINT_CPU_GPU Quat<T> quatToRotation_vjp(const Quat<T>& q, const Mat3<T>& v_R) {
   Quat<T> u = q.normalized();
   T w = u.w, x = u.x, y = u.y, z = u.z;
   const Vec3<T>* v = v_R.m;  // v[i][j] = dL/dR_ij

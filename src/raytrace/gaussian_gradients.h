@@ -9,6 +9,7 @@
 #include <span>
 #include <vector>
 
+#include "core/cpu_gpu.h"
 #include "math/quat.h"
 #include "math/vec.h"
 #include "scene/gaussian_parameters.h"
@@ -28,6 +29,15 @@ struct HitGradient {
   Vec3<T> v_f0;
   T weight = 0;  // the hit's blend weight w_i = T_i alpha_i (not a gradient)
 };
+
+// The split score of one hit's gradient (densification, train/densify.h): how much the loss
+// changes when the Gaussian moves by its own largest standard deviation `sigmaMax`, plus how
+// much it changes per unit turn of its normal. Summing it over hits (not the gradient over hits first) keeps the pulls of
+// rays that disagree, which cancel in the summed gradient: that disagreement is what a
+// Gaussian too large for its detail shows.
+GLINT_CPU_GPU inline float splitScore(const HitGradient<float>& g, float sigmaMax) {
+  return length(g.v_position) * sigmaMax + length(g.v_normal);
+}
 
 struct GaussianGradients {
   // values[p.index] holds parameter p's components for every Gaussian, Gaussian i's at

@@ -6,6 +6,8 @@
 // docs/derivations.md.
 #pragma once
 
+#include "core/cpu_gpu.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -39,18 +41,36 @@ struct KernelGrad {
   T v_opacityLogit = 0;
 };
 
+// The kernel's parameters of every Gaussian as arrays: the scene's own (CPU), or their
+// copies in GPU memory, so that the backward pass reads them the same way on both.
+struct KernelParamArrays {
+  const Vec3f* position = nullptr;
+  const Quatf* rotation = nullptr;
+  const Vec3f* logScale = nullptr;
+  const float* opacityLogit = nullptr;
+
+  static KernelParamArrays of(const GaussianScene& scene) {
+    return {scene.position.data(), scene.rotation.data(), scene.logScale.data(), scene.opacityLogit.data()};
+  }
+};
+
+template <typename T>
+GLINT_CPU_GPU KernelParams<T> kernelParams(const KernelParamArrays& arrays, size_t i) {
+  const Quatf& q = arrays.rotation[i];
+  return {Vec3<T>(arrays.position[i]), Quat<T>{T(q.w), T(q.x), T(q.y), T(q.z)}, Vec3<T>(arrays.logScale[i]),
+          T(arrays.opacityLogit[i])};
+}
+
 template <typename T>
 KernelParams<T> kernelParams(const GaussianScene& scene, size_t i) {
-  const Quatf& q = scene.rotation[i];
-  return {Vec3<T>(scene.position[i]), Quat<T>{T(q.w), T(q.x), T(q.y), T(q.z)}, Vec3<T>(scene.logScale[i]),
-          T(scene.opacityLogit[i])};
+  return kernelParams<T>(KernelParamArrays::of(scene), i);
 }
 
 // ---- Opacity: o = sigmoid(logit) (D8) ----
 
 // d sigmoid / d logit = o (1 - o), written with the primal output o.
 template <typename T>
-T opacityFromLogit_vjp(T opacity, T v_opacity) {
+GLINT_CPU_GPU T opacityFromLogit_vjp(T opacity, T v_opacity) {
   return v_opacity * opacity * (T(1) - opacity);
 }
 
@@ -58,7 +78,7 @@ T opacityFromLogit_vjp(T opacity, T v_opacity) {
 
 // W_rj = exp(-s_r) R_jr: v_R_jr = exp(-s_r) v_W_rj and v_s_r = -sum_j v_W_rj W_rj (D4).
 template <typename T>
-void worldToLocal_vjp(const Quat<T>& q, const Vec3<T>& logScale, const Mat3<T>& v_W, Quat<T>* v_q,
+GLINT_CPU_GPU void worldToLocal_vjp(const Quat<T>& q, const Vec3<T>& logScale, const Mat3<T>& v_W, Quat<T>* v_q,
                       Vec3<T>* v_logScale) {
   Mat3<T> w = worldToLocal(q, logScale);
   Mat3<T> v_R;
@@ -73,7 +93,7 @@ void worldToLocal_vjp(const Quat<T>& q, const Vec3<T>& logScale, const Mat3<T>& 
 // The frame makeGaussianFrame builds from a scene, built from KernelParams instead (the
 // same operations, so the same values to rounding).
 template <typename T>
-GaussianFrame<T> gaussianFrame(const KernelParams<T>& p, const TraceSettings& s) {
+GLINT_CPU_GPU GaussianFrame<T> gaussianFrame(const KernelParams<T>& p, const TraceSettings& s) {
   GaussianFrame<T> g;
   g.mean = p.mean;
   g.worldToLocal = worldToLocal(p.rotation, p.logScale);
@@ -86,7 +106,7 @@ GaussianFrame<T> gaussianFrame(const KernelParams<T>& p, const TraceSettings& s)
 
 // Adds dL/dW to *v_W and returns dL/dmean (D3, D5).
 template <typename T>
-Vec3<T> localRay_vjp(const Mat3<T>& W, const Vec3<T>& mean, const Vec3<T>& o, const Vec3<T>& d, T t0,
+GLINT_CPU_GPU Vec3<T> localRay_vjp(const Mat3<T>& W, const Vec3<T>& mean, const Vec3<T>& o, const Vec3<T>& d, T t0,
                      const LocalRay<T>& v_local, Mat3<T>* v_W) {
   Vec3<T> v_offset;  // adjoint of o + d t0 - mean
   matVec_vjp(W, o + d * t0 - mean, v_local.origin, v_W, &v_offset);
@@ -98,7 +118,7 @@ Vec3<T> localRay_vjp(const Mat3<T>& W, const Vec3<T>& mean, const Vec3<T>& o, co
 
 // dr2/doL = 2 pL, dr2/ddL = 2 tc pL, dtc/doL = -dL / dd, dtc/ddL = -(oL + 2 tc dL) / dd (D6).
 template <typename T>
-LocalRay<T> closestApproach_vjp(const LocalRay<T>& ray, const ClosestApproach<T>& c, T v_tc, T v_r2) {
+GLINT_CPU_GPU LocalRay<T> closestApproach_vjp(const LocalRay<T>& ray, const ClosestApproach<T>& c, T v_tc, T v_r2) {
   const Vec3<T>& oL = ray.origin;
   const Vec3<T>& dL = ray.direction;
   T dd = dot(dL, dL);
@@ -112,20 +132,20 @@ LocalRay<T> closestApproach_vjp(const LocalRay<T>& ray, const ClosestApproach<T>
 
 // dG/dr2 = -G (r^2)^(p-1) / 2; finite at r2 = 0 for p >= 1.
 template <typename T>
-T gaussianResponse_vjp(T r2, T power, T G, T v_G) {
+GLINT_CPU_GPU T gaussianResponse_vjp(T r2, T power, T G, T v_G) {
   return -v_G * G * kernelPow(r2, power - T(1)) / T(2);
 }
 
 // The same, computing G.
 template <typename T>
-T gaussianResponse_vjp(T r2, T power, T v_G) {
+GLINT_CPU_GPU T gaussianResponse_vjp(T r2, T power, T v_G) {
   return gaussianResponse_vjp(r2, power, gaussianResponse(r2, power), v_G);
 }
 
 // ---- Alpha = kMaxAlpha * opacity * G (D8; primal hitAlpha) ----
 
 template <typename T>
-void hitAlpha_vjp(T opacity, T response, T v_alpha, T* v_opacity, T* v_response) {
+GLINT_CPU_GPU void hitAlpha_vjp(T opacity, T response, T v_alpha, T* v_opacity, T* v_response) {
   *v_opacity = v_alpha * T(kMaxAlpha) * response;
   *v_response = v_alpha * T(kMaxAlpha) * opacity;
 }
@@ -136,7 +156,7 @@ void hitAlpha_vjp(T opacity, T response, T v_alpha, T* v_opacity, T* v_response)
 // clamp only ever acts when tPeak < tMin, and then key = tMin, a constant of the ray:
 // its gradient is 0. Otherwise key = tPeak and the adjoint passes through.
 template <typename T>
-T hitKey_vjp(T tPeak, T tMin, T v_key) {
+GLINT_CPU_GPU T hitKey_vjp(T tPeak, T tMin, T v_key) {
   return tPeak < tMin ? T(0) : v_key;
 }
 
@@ -147,7 +167,7 @@ T hitKey_vjp(T tPeak, T tMin, T v_key) {
 // dL/dalpha and v_key = dL/dkey, the adjoint of KernelHit::key (which the compositor
 // accumulates as depth). Recomputes the forward intermediates in the precision T.
 template <typename T>
-KernelGrad<T> evaluateGaussian_vjp(const KernelParams<T>& params, const Vec3<T>& o, const Vec3<T>& d, T tMin,
+GLINT_CPU_GPU KernelGrad<T> evaluateGaussian_vjp(const KernelParams<T>& params, const Vec3<T>& o, const Vec3<T>& d, T tMin,
                                    const TraceSettings& s, T v_alpha, T v_key) {
   // Forward, with the step functions evaluateGaussian is made of.
   T power = T(s.kernelPower);

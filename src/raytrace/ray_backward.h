@@ -7,6 +7,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "core/cpu_gpu.h"
+#include "raytrace/compositor.h"
 #include "raytrace/gaussian_gradients.h"
 #include "raytrace/gaussian_kernel_vjp.h"
 #include "raytrace/gaussian_tracer.h"
@@ -23,7 +25,7 @@ struct RayResultAdjoint {
   float v_roughness = 0;
   Rgb v_f0;
 
-  bool isZero() const {
+  GLINT_CPU_GPU bool isZero() const {
     return v_diffuse == Rgb(0.0f) && v_depth == 0.0f && v_normal == Vec3f(0.0f) && v_roughness == 0.0f &&
            v_f0 == Rgb(0.0f);
   }
@@ -38,11 +40,11 @@ struct BlendedValues {
   T roughness = 0;
   Vec3<T> f0;
 
-  T dot(const RayResultAdjoint& g) const {
+  GLINT_CPU_GPU T dot(const RayResultAdjoint& g) const {
     return glint::dot(diffuse, Vec3<T>(g.v_diffuse)) + depth * T(g.v_depth) + glint::dot(normal, Vec3<T>(g.v_normal)) +
            roughness * T(g.v_roughness) + glint::dot(f0, Vec3<T>(g.v_f0));
   }
-  void addScaled(const BlendedValues& a, T w) {
+  GLINT_CPU_GPU void addScaled(const BlendedValues& a, T w) {
     diffuse += a.diffuse * w;
     depth += a.depth * w;
     normal += a.normal * w;
@@ -51,10 +53,26 @@ struct BlendedValues {
   }
 };
 
+// What the backward pass reads of the scene, as arrays in CPU or GPU memory: the kernel's
+// parameters and the attributes compositing blends.
+struct BackwardScene {
+  KernelParamArrays kernel;
+  GaussianAttributes attributes;
+
+  static BackwardScene of(const GaussianScene& scene) {
+    return {KernelParamArrays::of(scene), GaussianAttributes::of(scene)};
+  }
+};
+
+template <typename T>
+GLINT_CPU_GPU BlendedValues<T> blendedValues(const GaussianAttributes& a, const HitRecord& hit) {
+  uint32_t i = hit.id;
+  return {Vec3<T>(a.diffuse[i]), T(hit.t), Vec3<T>(a.normal[i]), T(a.roughness[i]), Vec3<T>(a.f0[i])};
+}
+
 template <typename T>
 BlendedValues<T> blendedValues(const GaussianScene& scene, const HitRecord& hit) {
-  uint32_t i = hit.id;
-  return {Vec3<T>(scene.diffuse[i]), T(hit.t), Vec3<T>(scene.normal[i]), T(scene.roughness[i]), Vec3<T>(scene.f0[i])};
+  return blendedValues<T>(GaussianAttributes::of(scene), hit);
 }
 
 // Scratch memory of one thread, reused from ray to ray (no allocation on the hot path).
@@ -70,15 +88,18 @@ struct RayBackwardScratch {
 // minTransmittance.
 size_t hitCapacityWithoutOverflow(const TraceSettings& settings);
 
-// Back-propagates v (dL/d result) through the compositing of `hits` and through each
-// hit's kernel, calling sink(id, HitGradient<T>) once per hit (back to front). `result`
-// is what the trace returned for the same ray and hit list; the hit list must not have
-// overflowed. For a truncated ray, the tail estimate's colour is detached and its
+// Back-propagates v (dL/d result) through the compositing of the n composited hits
+// (front to back) and through each hit's kernel, calling sink(id, HitGradient<T>) once per
+// hit (back to front). `truncated` and `finalTransmittance` are what the trace returned
+// for the same ray (RayResult::truncated, ::transmittance); the list must be whole (not
+// overflowed). For a truncated ray, the tail estimate's colour is detached and its
 // final-transmittance ratio T_f / tau_n is held fixed (D12; 0 for the opaque tail).
+// trans (n + 1 entries), alphas and keys (n each) are scratch. The one source of the CPU's
+// backward pass (backwardRay) and the GPU's.
 template <typename T, typename Sink>
-void backwardRay(const GaussianScene& scene, const TraceSettings& settings, const TraceRay& ray, const HitList& hits,
-                 const RayResult& result, const RayResultAdjoint& v, RayBackwardScratch<T>& scratch, Sink&& sink) {
-  const size_t n = hits.hits.size();
+GLINT_CPU_GPU void backwardHits(const BackwardScene& scene, const TraceSettings& settings, const TraceRay& ray,
+                                const HitRecord* hits, size_t n, bool truncated, float finalTransmittance,
+                                const RayResultAdjoint& v, T* trans, T* alphas, T* keys, Sink& sink) {
   if (n == 0) return;
   Vec3<T> o(ray.origin), d(ray.direction);
   T tMin = T(ray.tMin);
@@ -86,26 +107,21 @@ void backwardRay(const GaussianScene& scene, const TraceSettings& settings, cons
   // composited values C. In float the trace's records are used as they are; in double
   // (the finite-difference oracle's precision) the kernel is re-evaluated, so that the
   // gradient is not limited by the records' float rounding.
-  std::vector<T>& trans = scratch.transmittance;
-  std::vector<T>& alphas = scratch.alpha;
-  std::vector<T>& keys = scratch.key;
-  trans.resize(n + 1);
-  alphas.resize(n);
-  keys.resize(n);
   trans[0] = T(1);
   BlendedValues<T> composited;
   for (size_t i = 0; i < n; ++i) {
-    const HitRecord& h = hits.hits[i];
+    const HitRecord& h = hits[i];
     alphas[i] = T(h.alpha);
     keys[i] = T(h.t);
     if constexpr (std::is_same_v<T, double>) {
       KernelHit<double> exact;
-      if (evaluateGaussian(gaussianFrame(kernelParams<double>(scene, h.id), settings), o, d, tMin, settings, &exact)) {
+      if (evaluateGaussian(gaussianFrame(kernelParams<double>(scene.kernel, h.id), settings), o, d, tMin, settings,
+                           &exact)) {
         alphas[i] = exact.alpha;
         keys[i] = exact.key;
       }
     }
-    BlendedValues<T> a = blendedValues<T>(scene, h);
+    BlendedValues<T> a = blendedValues<T>(scene.attributes, h);
     a.depth = keys[i];
     composited.addScaled(a, trans[i] * alphas[i]);
     trans[i + 1] = trans[i] * (T(1) - alphas[i]);
@@ -115,17 +131,17 @@ void backwardRay(const GaussianScene& scene, const TraceSettings& settings, cons
   // Truncation tail (D12): out = C + tau_n * b with the background b = (1 - T_f / tau_n)
   // C / (1 - tau_n) detached, so that alpha gradients see the tail as a background.
   T behind = 0;  // S = sum_{j > i} w_j (g . a_j) + tau_n (g . b), built back to front
-  if (result.truncated && tauN < T(1)) {
-    T remaining = T(result.transmittance) / tauN;  // product of (1 - alpha) over the tail
+  if (truncated && tauN < T(1)) {
+    T remaining = T(finalTransmittance) / tauN;  // product of (1 - alpha) over the tail
     T scale = (T(1) - remaining) / (T(1) - tauN);
     behind = tauN * scale * composited.dot(v);
   }
 
   for (size_t k = n; k-- > 0;) {
-    const HitRecord& h = hits.hits[k];
+    const HitRecord& h = hits[k];
     T alpha = alphas[k];
     T w = trans[k] * alpha;
-    BlendedValues<T> a = blendedValues<T>(scene, h);
+    BlendedValues<T> a = blendedValues<T>(scene.attributes, h);
     a.depth = keys[k];
     T ga = a.dot(v);
     // dL/dalpha_k = T_k (g . a_k) - S / (1 - alpha_k) (D11).
@@ -133,7 +149,7 @@ void backwardRay(const GaussianScene& scene, const TraceSettings& settings, cons
     behind += w * ga;
     T v_key = w * T(v.v_depth);
 
-    KernelGrad<T> kg = evaluateGaussian_vjp(kernelParams<T>(scene, h.id), o, d, tMin, settings, v_alpha, v_key);
+    KernelGrad<T> kg = evaluateGaussian_vjp(kernelParams<T>(scene.kernel, h.id), o, d, tMin, settings, v_alpha, v_key);
     HitGradient<T> g;
     g.v_position = kg.v_mean;
     g.v_rotation = kg.v_rotation;
@@ -146,6 +162,20 @@ void backwardRay(const GaussianScene& scene, const TraceSettings& settings, cons
     g.weight = w;
     sink(h.id, g);
   }
+}
+
+// backwardHits on the CPU, for a ray's HitList and RayResult, with a thread's scratch.
+template <typename T, typename Sink>
+void backwardRay(const GaussianScene& scene, const TraceSettings& settings, const TraceRay& ray, const HitList& hits,
+                 const RayResult& result, const RayResultAdjoint& v, RayBackwardScratch<T>& scratch, Sink&& sink) {
+  const size_t n = hits.hits.size();
+  if (n == 0) return;
+  scratch.transmittance.resize(n + 1);
+  scratch.alpha.resize(n);
+  scratch.key.resize(n);
+  backwardHits<T>(BackwardScene::of(scene), settings, ray, hits.hits.data(), n, result.truncated,
+                  result.transmittance, v, scratch.transmittance.data(), scratch.alpha.data(), scratch.key.data(),
+                  sink);
 }
 
 }  // namespace glint

@@ -185,4 +185,24 @@ float reflectionGradientWeight(std::span<const PathSegment> segments, size_t k) 
   return (1 - rho) * (1 - rho) * (1 - rho);
 }
 
+int appendBackwardJobs(std::span<const PathSegment> segments, const RayResultAdjoint& v_first, const Rgb& v_specular,
+                       bool weighted, std::vector<BackwardJob>* jobs, std::vector<HitRecord>* hits) {
+  return forEachSegmentAdjoint(segments, v_first, v_specular, weighted,
+                               [&](const PathSegment& segment, const RayResultAdjoint& v) {
+                                 const std::vector<HitRecord>& h = segment.hits.hits;
+                                 if (h.empty()) return;
+                                 GLINT_CHECK(hits->size() + h.size() < size_t(UINT32_MAX),
+                                             "a backward batch of more than 4 billion hits");
+                                 BackwardJob job;
+                                 job.ray = segment.ray;
+                                 job.firstHit = uint32_t(hits->size());
+                                 job.hitCount = uint32_t(h.size());
+                                 job.truncated = segment.result.truncated;
+                                 job.transmittance = segment.result.transmittance;
+                                 job.v = v;
+                                 jobs->push_back(job);
+                                 hits->insert(hits->end(), h.begin(), h.end());
+                               });
+}
+
 }  // namespace glint

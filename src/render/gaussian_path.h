@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "raytrace/backward_batch.h"
 #include "raytrace/gaussian_tracer.h"
 #include "raytrace/ray_backward.h"
 #include "render/path_step.h"
@@ -107,6 +108,37 @@ Rgb pathSpecular(std::span<const PathSegment> segments);
 // It favours the low-variance gradients of sharp reflections (appendix B.5).
 float reflectionGradientWeight(std::span<const PathSegment> segments, size_t k);
 
+// dL/d segment k's blended outputs (D13): v_first for the first segment; for k >= 1,
+// throughput_k x v_specular on its blended diffuse (times reflectionGradientWeight when
+// weighted), nothing on its G-buffers.
+inline RayResultAdjoint segmentAdjoint(std::span<const PathSegment> segments, size_t k,
+                                       const RayResultAdjoint& v_first, const Rgb& v_specular, bool weighted) {
+  if (k == 0) return v_first;
+  RayResultAdjoint v;
+  v.v_diffuse = segments[k].throughput * v_specular * (weighted ? reflectionGradientWeight(segments, k) : 1.0f);
+  return v;
+}
+
+// Calls f(segment, adjoint) for each segment of a recorded path that gets a gradient: its
+// adjoint is not zero (e.g. a loss of the specular term alone hands the first segment
+// nothing) and its hit list did not overflow. Returns how many segments with a non-zero
+// adjoint overflowed.
+template <typename F>
+int forEachSegmentAdjoint(std::span<const PathSegment> segments, const RayResultAdjoint& v_first,
+                          const Rgb& v_specular, bool weighted, F&& f) {
+  int overflowed = 0;
+  for (size_t k = 0; k < segments.size(); ++k) {
+    const RayResultAdjoint v = segmentAdjoint(segments, k, v_first, v_specular, weighted);
+    if (v.isZero()) continue;
+    if (segments[k].hits.overflowed) {
+      ++overflowed;
+      continue;
+    }
+    f(segments[k], v);
+  }
+  return overflowed;
+}
+
 // The vector-Jacobian product of a recorded path (D13): v_first = dL/d(the first segment's
 // result) and v_specular = dL/d(specular). The first segment's adjoint flows through its
 // compositing into every attribute of the Gaussians it hits; segment k >= 1 receives
@@ -120,22 +152,17 @@ template <typename T, typename Sink>
 int tracePath_vjp(const GaussianScene& scene, const TraceSettings& trace, std::span<const PathSegment> segments,
                   const RayResultAdjoint& v_first, const Rgb& v_specular, bool weighted, RayBackwardScratch<T>& scratch,
                   Sink&& sink) {
-  int overflowed = 0;
-  for (size_t k = 0; k < segments.size(); ++k) {
-    const PathSegment& segment = segments[k];
-    RayResultAdjoint v = v_first;
-    if (k > 0) {
-      v = {};
-      v.v_diffuse = segment.throughput * v_specular * (weighted ? reflectionGradientWeight(segments, k) : 1.0f);
-    }
-    if (v.isZero()) continue;  // nothing to hand out (e.g. a loss of the specular term alone)
-    if (segment.hits.overflowed) {
-      ++overflowed;
-      continue;
-    }
-    backwardRay<T>(scene, trace, segment.ray, segment.hits, segment.result, v, scratch, sink);
-  }
-  return overflowed;
+  return forEachSegmentAdjoint(segments, v_first, v_specular, weighted,
+                               [&](const PathSegment& segment, const RayResultAdjoint& v) {
+                                 backwardRay<T>(scene, trace, segment.ray, segment.hits, segment.result, v, scratch,
+                                                sink);
+                               });
 }
+
+// tracePath_vjp's segments as jobs for a BackwardBatch (raytrace/backward_batch.h): each
+// segment with a non-zero adjoint and a whole hit list becomes a job, its hits appended to
+// `hits`. Returns how many segments overflowed, as tracePath_vjp does.
+int appendBackwardJobs(std::span<const PathSegment> segments, const RayResultAdjoint& v_first, const Rgb& v_specular,
+                       bool weighted, std::vector<BackwardJob>* jobs, std::vector<HitRecord>* hits);
 
 }  // namespace glint

@@ -1,6 +1,8 @@
-// Creates a Gaussian tracer by name: the one place that knows every implementation. It lives
-// in glint_tracers, beside the Embree baseline, so that glint_raytrace does not link Embree.
+// Creates a Gaussian tracer by name, and the backward batch that goes with it: the one place
+// that knows every implementation. It lives in glint_tracers, beside the Embree baseline, so
+// that glint_raytrace does not link Embree.
 #include "core/error.h"
+#include "raytrace/backward_batch.h"
 #include "raytrace/fast/fast_tracer.h"
 #include "raytrace/gaussian_tracer.h"
 #include "raytrace/reference/reference_tracer.h"
@@ -8,6 +10,7 @@
 #include "tracers/embree_tracer.h"
 
 #ifdef GLINT_HAVE_CUDA
+#include "cuda/cuda_backward.h"
 #include "cuda/cuda_tracer.h"
 #endif
 
@@ -35,6 +38,15 @@ std::unique_ptr<GaussianTracer> makeGaussianTracer(const std::string& kind) {
   std::string names;
   for (const std::string& n : gaussianTracerNames()) names += (names.empty() ? "" : ", ") + n;
   throw Error("unknown tracer '" + kind + "' (available: " + names + ")");
+}
+
+std::unique_ptr<BackwardBatch> makeBackwardBatch(const std::string& tracerKind, GradientSum sum) {
+  if (!isGpuTracer(tracerKind)) return nullptr;
+#ifdef GLINT_HAVE_CUDA
+  return makeCudaBackwardBatch(sum);
+#else
+  throw Error("the GPU's backward pass: " + cudaBuildDescription() + " (glint --version)");
+#endif
 }
 
 }  // namespace glint

@@ -32,14 +32,8 @@ struct DensifySettings {
 // Throws Error(where, ...) for settings out of range.
 void checkDensifySettings(const DensifySettings& s, const std::string& where);
 
-// The split score of one hit's gradient: how much the loss changes when the Gaussian moves
-// by its own largest standard deviation `sigmaMax`, plus how much it changes per unit turn
-// of its normal. Summing it over hits (not the gradient over hits first) keeps the pulls of
-// rays that disagree, which cancel in the summed gradient: that disagreement is what a
-// Gaussian too large for its detail shows.
-inline float splitScore(const HitGradient<float>& g, float sigmaMax) {
-  return length(g.v_position) * sigmaMax + length(g.v_normal);
-}
+// The split score of one hit's gradient, splitScore, is in raytrace/gaussian_gradients.h
+// (the backward pass sums it on the CPU and on the GPU).
 
 // The indices of the Gaussians to split: the ceil(fraction x n) highest positive scores, at
 // most `room` of them, in increasing index order; ties go to the lower index, so the choice

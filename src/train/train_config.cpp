@@ -72,6 +72,7 @@ void forEachField(Config& c, F&& f) {
   f("", "backface_skip", c.backfaceSkip);
   f("", "batch_rays", c.batchRays);
   f("", "batch_views", c.batchViews);
+  f("", "batch_images", c.batchImages);
   f("", "eval_every", c.evalEvery);
   f("", "save_every", c.saveEvery);
   f("", "scale_decay", c.scaleDecay);
@@ -259,6 +260,7 @@ void TrainConfig::validate(const std::string& source) const {
   inRange(downscale, kDownscaleRange, "downscale");
   inRange(batchRays, kBatchRaysRange, "batch_rays");
   inRange(batchViews, kBatchViewsRange, "batch_views");
+  inRange(batchImages, kBatchImagesRange, "batch_images");
   inRange(evalEvery, kEveryStepsRange, "eval_every");
   inRange(saveEvery, kEveryStepsRange, "save_every");
   inRange(threads, kThreadsRange, "threads");

@@ -76,6 +76,7 @@ inline constexpr IntRange kBouncesRange{0, 8};
 inline constexpr IntRange kRenderBouncesRange{0, 64};
 inline constexpr IntRange kBatchRaysRange{1, 1 << 24};
 inline constexpr IntRange kBatchViewsRange{1, 1 << 20};
+inline constexpr IntRange kBatchImagesRange{0, 1 << 20};
 inline constexpr IntRange kEveryStepsRange{1, 100'000'000};  // eval_every, save_every, prune.every, decay steps
 // Loss weights above this would overflow Adam's second moment (gradients squared in float).
 inline constexpr float kMaxLossWeight = 1e6f;
@@ -119,6 +120,11 @@ struct TrainConfig {
   float backfaceSkip = 0.1f;         // reflection rays ignore back faces this close
   int batchRays = 16384;
   int batchViews = 4;  // training views a batch's rays are drawn from
+  // When > 0, each step takes every pixel of this many training views (the paper's
+  // protocol: whole images, the views visited in a new seeded order each epoch) in place
+  // of batchRays random pixels of batchViews views (train/training_views.h,
+  // drawWholeImages). On the CPU a ray costs the same either way (train_bench).
+  int batchImages = 0;
   int evalEvery = 1000;
   int saveEvery = 1000;
   float scaleDecay = 0.9999f;

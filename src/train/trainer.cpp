@@ -32,6 +32,9 @@ struct Trainer::Slot {
   int64_t overflowed = 0;
   int64_t reflected = 0;
   ResidualHistogram roughnessResiduals;  // prior - model roughness (StepReport::roughnessOffset)
+  // With a BackwardBatch: this slot's backward jobs of the current wavefront, and their hits.
+  std::vector<BackwardJob> jobs;
+  std::vector<HitRecord> jobHits;
 };
 
 namespace {
@@ -70,6 +73,7 @@ Trainer::~Trainer() = default;
 void Trainer::setUp(const std::string& tracerKind) {
   tracer_ = makeGaussianTracer(tracerKind);
   tracer_->build(scene_, config_.trace);
+  backwardBatch_ = makeBackwardBatch(tracerKind);  // the GPU's for a GPU tracer, else none
   int slots = std::max(1, maxThreads());
   for (int s = 0; s < slots; ++s) slots_.push_back(std::make_unique<Slot>());
 }
@@ -101,8 +105,9 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   PathSettings pathSettings = config_.path();
   if (!reflections) pathSettings.bounces = 0;
   pathSettings.hitListCapacity = hitCapacityWithoutOverflow(config_.trace);
-  // A batch's pixels are scattered over its views (train_bench: bundles of them were
-  // slower than tracing each ray alone).
+  // Camera rays one by one: bundles of random pixels were slower (train_bench), and those of
+  // whole images no faster in training mode, with its exact tail and hit lists (train_bench,
+  // 2 threads: 0.092 against 0.090 Mrays/s, within the runs' variation).
   pathSettings.primaryCoherence = RayCoherence::Scattered;
   const bool scoring = backward && scoringSplits();
   const bool shiftInvariant = config_.roughnessShiftInvariant;
@@ -115,14 +120,19 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
       }
     });
   }
+  // With a BackwardBatch the slots hand it their jobs, and it sums the gradients.
+  BackwardBatch* const device = backward ? backwardBatch_.get() : nullptr;
+  if (device) device->begin(scene_, config_.trace, scoring ? std::span<const float>(sigmaMax_) : std::span<const float>());
   // Slots start empty; each accumulates its lane (below) of the batch.
   parallelFor(slotCount, 1, [&](int64_t s) {
     Slot& slot = *slots_[s];
-    if (slot.gradient.size() != n)
-      slot.gradient.reset(n);
-    else
-      slot.gradient.zero(0, n);
-    if (scoring) slot.splitScore.assign(n, 0.0f);
+    if (!device) {
+      if (slot.gradient.size() != n)
+        slot.gradient.reset(n);
+      else
+        slot.gradient.zero(0, n);
+      if (scoring) slot.splitScore.assign(n, 0.0f);
+    }
     slot.terms = {};
     slot.hitCount = slot.overflowed = slot.reflected = 0;
     slot.roughnessResiduals.clear();
@@ -173,6 +183,8 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     report->traceSeconds += std::chrono::duration<double>(backwardStart - traceStart).count();
     parallelFor(slotCount, 1, [&](int64_t s) {
       Slot& slot = *slots_[s];
+      slot.jobs.clear();
+      slot.jobHits.clear();
       auto sink = [&](uint32_t id, const HitGradient<float>& g) {
         slot.gradient.add(id, g);
         if (scoring) slot.splitScore[id] += splitScore(g, sigmaMax_[id]);
@@ -202,22 +214,30 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
         RayResultAdjoint v_first = rayLoss_vjp(result, target, norm, config_.loss, specular);
         // Fitting diffuse + specular to the final image sends the colour's gradient down the path too.
         if (reflections && target.finalColour) v_specular += v_first.v_diffuse;
-        slot.overflowed += tracePath_vjp<float>(scene_, config_.trace, path, v_first, v_specular, /*weighted=*/true,
-                                                slot.scratch, sink);
+        if (device)
+          slot.overflowed += appendBackwardJobs(path, v_first, v_specular, /*weighted=*/true, &slot.jobs, &slot.jobHits);
+        else
+          slot.overflowed += tracePath_vjp<float>(scene_, config_.trace, path, v_first, v_specular, /*weighted=*/true,
+                                                  slot.scratch, sink);
       }
     });
+    if (device) handToDevice(device);
     report->backwardSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - backwardStart).count();
   }
-  // Reduce into slot 0, in slot order for every Gaussian.
+  // Reduce into slot 0, in slot order for every Gaussian (or take the BackwardBatch's sums).
   auto reduceStart = std::chrono::steady_clock::now();
   GaussianGradients& total = slots_[0]->gradient;
   std::vector<float>& score = slots_[0]->splitScore;
-  parallelForChunks(int64_t(n), 8192, [&](int64_t begin, int64_t end) {
-    for (size_t s = 1; s < slots_.size(); ++s) total.addRange(slots_[s]->gradient, size_t(begin), size_t(end));
-    if (scoring)
-      for (size_t s = 1; s < slots_.size(); ++s)
-        for (int64_t i = begin; i < end; ++i) score[size_t(i)] += slots_[s]->splitScore[size_t(i)];
-  });
+  if (device) {
+    device->finish(&total, scoring ? &score : nullptr);
+  } else {
+    parallelForChunks(int64_t(n), 8192, [&](int64_t begin, int64_t end) {
+      for (size_t s = 1; s < slots_.size(); ++s) total.addRange(slots_[s]->gradient, size_t(begin), size_t(end));
+      if (scoring)
+        for (size_t s = 1; s < slots_.size(); ++s)
+          for (int64_t i = begin; i < end; ++i) score[size_t(i)] += slots_[s]->splitScore[size_t(i)];
+    });
+  }
   report->backwardSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - reduceStart).count();
   // Then over the ranks of an MPI job, in rank order.
   LossTerms terms;
@@ -262,12 +282,37 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   if (backward && shiftInvariant && residuals.count() > 0) roughnessShift_ = report->roughnessOffset;
 }
 
+void Trainer::handToDevice(BackwardBatch* device) {
+  // The slots' jobs in slot order (each slot's in ray order), their hits renumbered into
+  // one array: the order of the CPU's own backward pass.
+  deviceJobs_.clear();
+  deviceHits_.clear();
+  for (const auto& slot : slots_) {
+    const uint32_t offset = uint32_t(deviceHits_.size());
+    for (BackwardJob job : slot->jobs) {
+      job.firstHit += offset;
+      deviceJobs_.push_back(job);
+    }
+    deviceHits_.insert(deviceHits_.end(), slot->jobHits.begin(), slot->jobHits.end());
+  }
+  device->add(deviceJobs_, deviceHits_);
+}
+
+void Trainer::setBackwardBatch(std::unique_ptr<BackwardBatch> batch) { backwardBatch_ = std::move(batch); }
+
+const GaussianGradients& Trainer::lastGradient() const { return slots_[0]->gradient; }
+
+const std::vector<float>& Trainer::lastSplitScores() const { return slots_[0]->splitScore; }
+
 StepReport Trainer::step() {
   auto start = std::chrono::steady_clock::now();
   StepReport report;
   if (config_.bounces > 0 && step_ == config_.reflectionWarmup)
     std::tie(report.farFieldAdded, report.reflectionSeedsAdded) = addFarField();
-  views_.drawBatch(config_.seed, step_, config_.batchRays, config_.batchViews, &batch_);
+  if (config_.batchImages > 0)
+    views_.drawWholeImages(config_.seed, step_, config_.batchImages, &batch_);
+  else
+    views_.drawBatch(config_.seed, step_, config_.batchRays, config_.batchViews, &batch_);
   forwardBackward(batch_, /*backward=*/true, &report);
   const GaussianGradients& gradient = slots_[0]->gradient;
   for (size_t i = 0; i < scene_.size(); ++i) pruneWeight_[i] += gradient.weight[i];
@@ -331,6 +376,12 @@ std::pair<size_t, size_t> Trainer::addFarField() {
   return {added, seeds.size()};
 }
 
+double Trainer::raysPerStep() const {
+  if (config_.batchImages > 0)
+    return double(std::min<size_t>(size_t(config_.batchImages), views_.viewCount())) * views_.meanPixelsPerView();
+  return double(config_.batchRays);
+}
+
 bool Trainer::scoringSplits() const {
   const DensifySettings& d = config_.densify;
   // The score of a densify step is what the steps since the previous one accumulated.
@@ -363,7 +414,7 @@ void Trainer::housekeeping(StepReport* report) {
 size_t Trainer::prune() {
   const PruneSettings& p = config_.prune;
   // Weight per full training image, averaged over the interval's steps (appendix A.4).
-  const double perImage = views_.meanPixelsPerView() / double(config_.batchRays);
+  const double perImage = views_.meanPixelsPerView() / raysPerStep();
   const double scale = perImage / double(p.every);
   // The paper's threshold is for its resolution; at fewer pixels a Gaussian of the same
   // size collects proportionally less weight (train_config.h).

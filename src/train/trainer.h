@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "raytrace/backward_batch.h"
 #include "raytrace/gaussian_gradients.h"
 #include "raytrace/gaussian_tracer.h"
 #include "raytrace/ray_backward.h"
@@ -76,6 +77,16 @@ class Trainer {
   // With backward false only the forward pass and the loss run (benchmarks compare the two).
   void forwardBackward(std::span<const BatchRay> batch, bool backward, StepReport* report);
 
+  // Where the backward pass runs: by default on the CPU's threads, or (set up with a GPU
+  // tracer) the GPU's BackwardBatch; tests and benchmarks may give another (null: the CPU's
+  // threads).
+  void setBackwardBatch(std::unique_ptr<BackwardBatch> batch);
+  const BackwardBatch* backwardBatch() const { return backwardBatch_.get(); }
+  // The gradients of the last forwardBackward (or step), summed over the batch, and, when
+  // that pass scored splits, the densification scores.
+  const GaussianGradients& lastGradient() const;
+  const std::vector<float>& lastSplitScores() const;
+
   int64_t stepCount() const { return step_; }
   const GaussianScene& scene() const { return scene_; }
   float sceneExtent() const { return extent_; }
@@ -97,6 +108,10 @@ class Trainer {
   // Splits the Gaussians of highest densification score (train/densify.h); returns how many.
   size_t densify();
   size_t prune();  // weight pruning and camera-sphere culling; returns how many went
+  // Gathers the slots' backward jobs of a wavefront and hands them to `device`.
+  void handToDevice(BackwardBatch* device);
+  // Rays a step traces: batchRays, or the mean pixel count of batchImages whole views.
+  double raysPerStep() const;
   // Whether this step's backward pass accumulates the densification score.
   bool scoringSplits() const;
   // Appends the far-field Gaussians outside the camera spheres and the reflection seeds;
@@ -125,6 +140,9 @@ class Trainer {
   std::vector<TraceRay> rays_;
   std::vector<PathKey> keys_;
   std::vector<PathResult> paths_;
+  std::unique_ptr<BackwardBatch> backwardBatch_;  // null: the backward pass on the CPU's threads
+  std::vector<BackwardJob> deviceJobs_;           // a wavefront's jobs for it, and their hits
+  std::vector<HitRecord> deviceHits_;
 };
 
 }  // namespace glint

@@ -17,6 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 constexpr uint64_t kBatchStream = 0x62617463682d7279;  // "batch-ry": keys batch draws apart from other streams
+constexpr uint64_t kEpochStream = 0x65706f63682d6f72;  // "epoch-or": the order of whole views in an epoch
 }
 
 std::string SupervisedBuffers::list(bool present) const {
@@ -163,6 +164,32 @@ void TrainingViews::drawBatch(uint64_t seed, int64_t step, int rays, int views, 
               [](const BatchRay& a, const BatchRay& b) { return a.pixel < b.pixel; });
   }
   for (BatchRay& b : *batch) b.ray = pixelRay(b.view, b.pixel);
+}
+
+uint32_t TrainingViews::epochView(uint64_t seed, int64_t position) const {
+  const uint64_t total = viewCount();
+  const uint64_t epoch = uint64_t(position) / total;
+  // The epoch's order: a Fisher-Yates shuffle keyed by (seed, epoch), drawn in full (a few
+  // thousand views at most, a microsecond each), so each position depends on nothing else.
+  Rng rng = Rng::forKeys({seed, kEpochStream, epoch});
+  std::vector<uint32_t> order(total);
+  std::iota(order.begin(), order.end(), 0u);
+  for (size_t i = 0; i + 1 < order.size(); ++i)
+    std::swap(order[i], order[i + rng.uniformInt(uint32_t(order.size() - i))]);
+  return order[size_t(uint64_t(position) % total)];
+}
+
+void TrainingViews::drawWholeImages(uint64_t seed, int64_t step, int images, std::vector<BatchRay>* batch) const {
+  batch->clear();
+  const int64_t perStep = std::min<int64_t>(images, int64_t(viewCount()));
+  size_t rays = 0;
+  for (int64_t k = 0; k < perStep; ++k) rays += pixelCount(epochView(seed, step * perStep + k));
+  batch->reserve(rays);
+  for (int64_t k = 0; k < perStep; ++k) {
+    const uint32_t view = epochView(seed, step * perStep + k);
+    const uint32_t pixels = uint32_t(pixelCount(view));
+    for (uint32_t p = 0; p < pixels; ++p) batch->push_back({pixelRay(view, p), view, p});
+  }
 }
 
 }  // namespace glint

@@ -73,6 +73,14 @@ class TrainingViews {
   // pixel within a view so that neighbouring rays traverse similar nodes. Depends only
   // on (seed, step).
   void drawBatch(uint64_t seed, int64_t step, int rays, int views, std::vector<BatchRay>* batch) const;
+  // Draws the batch of a step of whole images (TrainConfig::batchImages): every pixel of
+  // `images` views (all of them when there are fewer), in row-major order. The views are
+  // visited epoch by epoch, each epoch in its own seeded order, so every view is trained
+  // once per epoch; step s takes positions [s * images, (s + 1) * images) of that sequence
+  // (a step that straddles two epochs may take one view twice). Depends only on (seed, step).
+  void drawWholeImages(uint64_t seed, int64_t step, int images, std::vector<BatchRay>* batch) const;
+  // The view at `position` of the sequence of epochs drawWholeImages visits.
+  uint32_t epochView(uint64_t seed, int64_t position) const;
 
  private:
   std::vector<Camera> cameras_;

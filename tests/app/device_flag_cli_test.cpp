@@ -1,4 +1,4 @@
-// --device on the commands that trace (render, eval, view, export --bake-reflections), run as a
+// --device on the commands that trace (render, eval, view, export --bake-reflections, train), run as a
 // user would: auto says which device it took; cuda without a GPU (or in a build without
 // CUDA) is one clear error, never a silent CPU render; contradicting flags are refused.
 #include <gtest/gtest.h>
@@ -73,6 +73,26 @@ TEST_F(DeviceFlagCliTest, CudaWithoutAGpuIsOneClearError) {
   Outcome view = runGlint("view " + path("cloud.ply") + " --device cuda", 20);
   EXPECT_NE(view.status, 0);
   EXPECT_NE(view.output.find("--device cuda: no GPU to use: "), std::string::npos) << view.output;
+}
+
+// Training traces on the CPU unless told otherwise; --device cuda takes the GPU (its
+// wavefronts; issue 42's first part) or, without one, fails before a run folder is left.
+TEST_F(DeviceFlagCliTest, TrainingTracesOnTheCpuByDefaultAndOnTheGpuWhenAsked) {
+  Outcome cpu = runGlint("train " + path("D") + " -o " + path("run_cpu") + " --iters 2 --threads 2 --eval-views 0");
+  ASSERT_EQ(cpu.status, 0) << cpu.output;
+  EXPECT_NE(cpu.output.find("glint train: device: CPU (--device cpu)"), std::string::npos) << cpu.output;
+  Outcome cuda = runGlint("train " + path("D") + " -o " + path("run_cuda") + " --iters 2 --threads 2 --device cuda");
+  if (gpu_) {
+    ASSERT_EQ(cuda.status, 0) << cuda.output;
+    EXPECT_NE(cuda.output.find("cuda tracer"), std::string::npos) << cuda.output;
+    // The GPU run's checkpoint goes on on the CPU.
+    Outcome resumed = runGlint("train -o " + path("run_cuda") + " --resume --iters 4 --threads 2 --device cpu");
+    EXPECT_EQ(resumed.status, 0) << resumed.output;
+    return;
+  }
+  EXPECT_NE(cuda.status, 0);
+  EXPECT_NE(cuda.output.find("--device cuda: no GPU to use: "), std::string::npos) << cuda.output;
+  EXPECT_FALSE(fs::exists(root_ / "run_cuda")) << "a start that failed leaves no run folder";
 }
 
 TEST_F(DeviceFlagCliTest, ContradictingTracerAndDeviceAreRefused) {

@@ -149,6 +149,31 @@ TEST_F(TrainCliTest, RefusesBadInput) {
   EXPECT_NE(noRun.output.find("config.json"), std::string::npos) << noRun.output;
 }
 
+// --batch-images trains on whole views (said in the log, kept in config.json), warns when a
+// pruning interval sees fewer views than the run has, and refuses the random-pixel flags.
+TEST_F(TrainCliTest, WholeImageBatchesAreSaidKeptAndExclusive) {
+  Outcome run = runGlint("train " + path("D") + " -o " + path("whole") + " --batch-images 2 --iters 3 --threads 2");
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_NE(run.output.find("every pixel of 2 views per step"), std::string::npos) << run.output;
+  EXPECT_EQ(nlohmann::json::parse(readBytes(path("whole") + "/config.json"))["batch_images"], 2);
+  EXPECT_EQ(run.output.find("pruning interval"), std::string::npos) << run.output;
+
+  std::ofstream(path("short_prune.json")) << "{\"batch_images\": 1, \"prune\": {\"every\": 3, \"start\": 0}}";
+  Outcome shortInterval = runGlint("train " + path("D") + " -o " + path("short") + " --config " +
+                                   path("short_prune.json") + " --iters 2 --threads 2");
+  ASSERT_EQ(shortInterval.status, 0) << shortInterval.output;
+  EXPECT_NE(shortInterval.output.find("pruning interval"), std::string::npos) << shortInterval.output;
+
+  Outcome both = runGlint("train " + path("D") + " -o " + path("both") + " --batch-images 1 --batch-rays 512");
+  EXPECT_NE(both.status, 0);
+  EXPECT_NE(both.output.find("--batch-rays"), std::string::npos) << both.output;
+  EXPECT_FALSE(fs::exists(path("both")));
+  Outcome configAndFlag = runGlint("train " + path("D") + " -o " + path("both2") + " --config " +
+                                   path("short_prune.json") + " --batch-views 2");
+  EXPECT_NE(configAndFlag.status, 0);
+  EXPECT_NE(configAndFlag.output.find("short_prune.json"), std::string::npos) << configAndFlag.output;
+}
+
 TEST_F(TrainCliTest, DivergenceStopsWithAMessageAndWritesNoCheckpointOfTheBrokenScene) {
   // Every learning rate at the largest value allowed: the Gaussians blow up within steps.
   std::ofstream(path("wild.json"))

@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <span>
 
+#include "common/small_training_set.h"
 #include "core/parallel.h"
 #include "io/temp_folder.h"
 #include "synth/builtin_scenes.h"
@@ -26,27 +28,15 @@ namespace {
 class TrainerTest : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    folder_ = new test::TempFolder();
-    SynthSettings s;
-    s.trainViews = 24;
-    s.testViews = 4;
-    s.width = 64;
-    s.height = 48;
-    s.spp = 8;
-    s.bounces = 3;
-    generateDataset(makeBuiltinScene("spheres"), s, folder_->path());
-    dataset_ = new Dataset(Dataset::open(folder_->path()));
-    views_ = new TrainingViews(TrainingViews::load(*dataset_, dataset_->train()));
+    set_ = test::SmallTrainingSet::make().release();
+    dataset_ = set_->dataset.get();
+    views_ = set_->views.get();
   }
-  static void TearDownTestSuite() {
-    delete views_;
-    delete dataset_;
-    delete folder_;
-  }
+  static void TearDownTestSuite() { delete set_; }
 
   static TrainConfig smallConfig() {
     TrainConfig c;
-    c.dataset = folder_->path().string();
+    c.dataset = set_->folder.path().string();
     c.batchRays = 2048;
     c.batchViews = 2;
     c.prune.start = 100;
@@ -56,20 +46,15 @@ class TrainerTest : public ::testing::Test {
     return c;
   }
   static std::unique_ptr<Trainer> makeTrainer(const TrainConfig& c, bool black = false) {
-    DenseInitSettings init;
-    init.forceDepthBuffers = true;
-    GaussianScene scene = denseInitialisation(*dataset_, init).scene;
-    if (black) std::fill(scene.diffuse.begin(), scene.diffuse.end(), Rgb(0.0f));
-    return std::make_unique<Trainer>(c, *views_, cameraSpheres(*dataset_, dataset_->train()), std::move(scene),
-                                     sceneExtent(dataset_->train()));
+    return set_->trainer(c, "fast", black);
   }
 
-  static test::TempFolder* folder_;
+  static test::SmallTrainingSet* set_;
   static Dataset* dataset_;
   static TrainingViews* views_;
 };
 
-test::TempFolder* TrainerTest::folder_ = nullptr;
+test::SmallTrainingSet* TrainerTest::set_ = nullptr;
 Dataset* TrainerTest::dataset_ = nullptr;
 TrainingViews* TrainerTest::views_ = nullptr;
 
@@ -162,7 +147,7 @@ TEST_F(TrainerTest, RenderColourTargetHoldsTheRenderBuffer) {
 // and F0 trains on its render images as final colours, with the depth and normal losses.
 TEST_F(TrainerTest, MissingBufferKindsTrainWithoutTheirLosses) {
   test::TempFolder copy;
-  std::filesystem::copy(folder_->path(), copy.path(), std::filesystem::copy_options::recursive);
+  std::filesystem::copy(set_->folder.path(), copy.path(), std::filesystem::copy_options::recursive);
   for (const char* kind : {"diffuse", "specular", "roughness", "f0"})
     std::filesystem::remove_all(copy.path() / "train" / kind);
   Dataset partial = Dataset::open(copy.path());
@@ -316,6 +301,157 @@ TEST_F(TrainerTest, DensificationSplitsTheChosenShareOnSchedule) {
   EXPECT_EQ(splits[9], size_t(std::ceil(0.1 * double(initial))));
   const GaussianScene& scene = t->scene();
   for (size_t i = 0; i < scene.size(); ++i) ASSERT_TRUE(std::isfinite(scene.position[i].x)) << i;
+}
+
+// Whole-image batches (TrainConfig::batchImages): every pixel of the step's views, in
+// row-major order, each view once per epoch, the epochs in different seeded orders.
+TEST_F(TrainerTest, WholeImageBatchesVisitEveryViewOncePerEpoch) {
+  const size_t viewCount = views_->viewCount();  // 24: an epoch is 12 steps of 2 views
+  std::vector<BatchRay> batch;
+  std::vector<uint32_t> epochs[2];
+  for (int64_t step = 0; step < int64_t(viewCount); ++step) {
+    views_->drawWholeImages(7, step, 2, &batch);
+    ASSERT_EQ(batch.size(), 2 * views_->pixelCount(0));
+    for (size_t v = 0; v < 2; ++v) {
+      const uint32_t view = batch[v * views_->pixelCount(0)].view;
+      epochs[size_t(step) / (viewCount / 2)].push_back(view);
+      for (size_t p = 0; p < views_->pixelCount(view); ++p) {
+        const BatchRay& r = batch[v * views_->pixelCount(0) + p];
+        ASSERT_EQ(r.view, view);
+        ASSERT_EQ(r.pixel, p);
+        const TraceRay expected = views_->pixelRay(view, p);
+        ASSERT_EQ(r.ray.origin, expected.origin);
+        ASSERT_EQ(r.ray.direction, expected.direction);
+      }
+    }
+  }
+  for (std::vector<uint32_t>& epoch : epochs) {
+    std::vector<uint32_t> sorted = epoch;
+    std::sort(sorted.begin(), sorted.end());
+    for (size_t v = 0; v < viewCount; ++v) EXPECT_EQ(sorted[v], v) << "every view once per epoch";
+  }
+  EXPECT_NE(epochs[0], epochs[1]) << "each epoch in its own order";
+  // The same (seed, step), the same batch; another seed, another order.
+  std::vector<BatchRay> again, otherSeed;
+  views_->drawWholeImages(7, 5, 2, &again);
+  views_->drawWholeImages(8, 5, 2, &otherSeed);
+  views_->drawWholeImages(7, 5, 2, &batch);
+  EXPECT_EQ(again.front().view, batch.front().view);
+  std::vector<uint32_t> order7, order8;
+  for (int64_t step = 0; step < 12; ++step) {
+    views_->drawWholeImages(7, step, 2, &batch);
+    order7.push_back(batch.front().view);
+    views_->drawWholeImages(8, step, 2, &batch);
+    order8.push_back(batch.front().view);
+  }
+  EXPECT_NE(order7, order8);
+  // More images than views: each step takes every view once.
+  views_->drawWholeImages(7, 3, 1000, &batch);
+  EXPECT_EQ(batch.size(), viewCount * views_->pixelCount(0));
+}
+
+// Training on whole images (camera rays in the tracer's bundles) improves the test views as
+// random pixels do, prunes on the same scale, and is reproducible bit for bit across a resume.
+TEST_F(TrainerTest, WholeImageTrainingImprovesTheTestViewsAndResumesBitExact) {
+  TrainConfig c = smallConfig();
+  c.batchImages = 1;  // 3,072 rays a step
+  c.prune.start = 24;  // after each epoch of the 24 views
+  c.prune.every = 24;
+  std::unique_ptr<Trainer> straight = makeTrainer(c);
+  const size_t initial = straight->scene().size();
+  TestViews test = TestViews::load(*dataset_, dataset_->test(), 4);
+  const TestScore before = test.score(straight->tracer(), 4);
+  GaussianScene atStep60;
+  for (int i = 0; i < 200; ++i) {
+    const StepReport r = straight->step();
+    ASSERT_EQ(r.rays, int64_t(views_->pixelCount(0)));
+    EXPECT_EQ(r.overflowedRays, 0);
+    if (i == 59) atStep60 = straight->scene();
+  }
+  const TestScore after = test.score(straight->tracer(), 4);
+  EXPECT_GT(after.diffusePsnr, before.diffusePsnr + 5.0) << "before " << before.diffusePsnr;
+  // Pruning scales a whole image's weight as random pixels' (Trainer::raysPerStep): the
+  // same rays a step drawn at random pixels of one random view prune at least as many (a
+  // view no step of an interval drew loses what only it sees; whole images see every view
+  // each epoch). Weights scaled for 16,384 rays a step would prune most of the scene.
+  TrainConfig random = c;
+  random.batchImages = 0;
+  random.batchRays = int(views_->pixelCount(0));
+  random.batchViews = 1;
+  std::unique_ptr<Trainer> randomPixels = makeTrainer(random);
+  for (int i = 0; i < 200; ++i) randomPixels->step();
+  EXPECT_LT(straight->scene().size(), initial);
+  EXPECT_GE(straight->scene().size(), randomPixels->scene().size());
+
+  std::unique_ptr<Trainer> first = makeTrainer(c);
+  for (int i = 0; i < 30; ++i) first->step();
+  test::TempFolder temp;
+  writeCheckpoint(temp.path() / "state.bin", first->state());
+  first.reset();
+  Trainer resumed(c, *views_, cameraSpheres(*dataset_, dataset_->train()), readCheckpoint(temp.path() / "state.bin"));
+  for (int i = 0; i < 30; ++i) resumed.step();
+  const GaussianScene& b = resumed.scene();
+  ASSERT_EQ(atStep60.size(), b.size());
+  EXPECT_TRUE(sameTrainerBytes(atStep60.position, b.position));
+  EXPECT_TRUE(sameTrainerBytes(atStep60.opacityLogit, b.opacityLogit));
+  EXPECT_TRUE(sameTrainerBytes(atStep60.diffuse, b.diffuse));
+}
+
+// The backward pass as a batch of jobs (what the GPU runs, raytrace/backward_batch.h), here
+// on the CPU: the jobs the trainer builds give its own gradients and split scores, bit for
+// bit on one thread (the same sums in the same order), to rounding on two (the threads sum
+// apart, then together), through reflected segments and weights.
+TEST_F(TrainerTest, BackwardJobsGiveTheThreadsGradients) {
+  TrainConfig c = smallConfig();
+  c.bounces = 2;
+  c.reflectionWarmup = 0;
+  c.densify.start = 0;  // scores splits from the first step
+  c.lr.normal = c.lr.f0 = 0.02f;  // valid normals soon, so that paths go on
+  // Trained a little first, so that the blended normals are long enough for paths to go on.
+  std::unique_ptr<Trainer> warm = makeTrainer(c);
+  for (int i = 0; i < 60; ++i) warm->step();
+  const TrainingState state = warm->state();
+  for (int threads : {1, 2}) {
+    ThreadLimit limit(threads);
+    auto fromState = [&] {
+      return std::make_unique<Trainer>(c, *views_, cameraSpheres(*dataset_, dataset_->train()), state);
+    };
+    std::unique_ptr<Trainer> own = fromState(), jobs = fromState();
+    jobs->setBackwardBatch(makeCpuBackwardBatch());
+    std::vector<BatchRay> batch;
+    views_->drawBatch(c.seed, 3, c.batchRays, c.batchViews, &batch);
+    StepReport a, b;
+    own->forwardBackward(batch, true, &a);
+    jobs->forwardBackward(batch, true, &b);
+    EXPECT_EQ(a.overflowedRays, b.overflowedRays);
+    EXPECT_GT(a.reflectedSegments, 0);
+    const GaussianGradients& ga = own->lastGradient();
+    const GaussianGradients& gb = jobs->lastGradient();
+    ASSERT_EQ(ga.size(), gb.size());
+    auto relativeDifference = [](std::span<const float> x, std::span<const float> y) {
+      double diff = 0, norm = 0;
+      for (size_t i = 0; i < x.size(); ++i) {
+        diff += (double(x[i]) - double(y[i])) * (double(x[i]) - double(y[i]));
+        norm += double(x[i]) * double(x[i]);
+      }
+      return std::sqrt(diff / std::max(norm, 1e-300));
+    };
+    for (size_t p = 0; p < ga.values.size(); ++p) {
+      ASSERT_EQ(ga.values[p].size(), gb.values[p].size());
+      if (threads == 1)
+        EXPECT_TRUE(sameTrainerBytes(ga.values[p], gb.values[p])) << "parameter " << p;
+      else
+        EXPECT_LT(relativeDifference(ga.values[p], gb.values[p]), 1e-5) << "parameter " << p;
+    }
+    ASSERT_EQ(own->lastSplitScores().size(), ga.size());
+    if (threads == 1) {
+      EXPECT_TRUE(sameTrainerBytes(ga.weight, gb.weight));
+      EXPECT_TRUE(sameTrainerBytes(own->lastSplitScores(), jobs->lastSplitScores()));
+    } else {
+      EXPECT_LT(relativeDifference(ga.weight, gb.weight), 1e-5);
+      EXPECT_LT(relativeDifference(own->lastSplitScores(), jobs->lastSplitScores()), 1e-5);
+    }
+  }
 }
 
 TEST_F(TrainerTest, ResumedRunIsBitExact) {
