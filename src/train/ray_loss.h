@@ -3,6 +3,8 @@
 // _vjp that starts the backward pass.
 #pragma once
 
+#include <cmath>
+
 #include "math/vec.h"
 #include "raytrace/ray_backward.h"
 #include "raytrace/ray_result.h"
@@ -52,6 +54,12 @@ struct LossTerms {
     return *this;
   }
 };
+
+// Whether a pixel's rendered depth lies within `band` (a fraction) of its prior's, so that
+// the depth term counts it (LossWeights::depthBand; always with band 0).
+inline bool withinDepthBand(float rendered, float prior, float band) {
+  return band <= 0.0f || std::abs(rendered - prior) <= band * prior;
+}
 
 // One ray's contribution to each term. pathSpecular is the path's specular sum (0 before
 // reflections are trained): with target.finalColour the colour term fits diffuse + specular.

@@ -82,6 +82,7 @@ void forEachField(Config& c, F&& f) {
   f("loss", "roughness", c.loss.roughness);
   f("loss", "f0", c.loss.f0);
   f("loss", "specular", c.loss.specular);
+  f("loss", "depth_band", c.loss.depthBand);
   // The learning rates, named by the parameter table.
   forEachParameter([&](const auto& p) {
     f("lr", p.rate.key, c.lr.*p.rate.initial);
@@ -274,6 +275,7 @@ void TrainConfig::validate(const std::string& source) const {
   checkFarFieldSettings(farField, source);
   checkDensifySettings(densify, source);
   require(reflectionWarmup >= 0, source, "reflection_warmup must be non-negative");
+  require(loss.depthBand >= 0, source, "loss.depth_band must be non-negative (0 = off)");
   require(invalidNormalLength >= 0 && invalidNormalLength <= 1, source, "invalid_normal_length must be in [0, 1]");
   require(backfaceSkip >= 0, source, "backface_skip must be non-negative");
   require(scaleDecay > 0 && scaleDecay <= 1, source, "scale_decay must be in (0, 1]");

@@ -31,6 +31,11 @@ struct LossWeights {
   float roughness = 1.0f;
   float f0 = 1.0f;
   float specular = 3.0f;  // L_r, on the specular buffer (reflected segments only)
+  // When positive, the depth term counts only the pixels whose rendered depth is within
+  // this fraction of their prior's (train/ray_loss.h, withinDepthBand): a predicted depth
+  // that disagrees with the geometry the other views agree on stops pulling it. Not a
+  // weight; an option beyond the paper, off (docs/captures.md).
+  float depthBand = 0.0f;
 };
 
 struct AdamSettings {

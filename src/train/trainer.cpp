@@ -194,6 +194,8 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
         PixelTarget target = views_.target(b.view, b.pixel);
         std::span<const PathSegment> path = pathBatch_.path(size_t(r));
         const RayResult& result = path[0].result;
+        if (target.surface && target.hasDepth && !withinDepthBand(result.depth, target.depth, config_.loss.depthBand))
+          target.hasDepth = false;  // a prior that disagrees with the geometry does not pull it
         if (target.surface && target.hasRoughness) {
           slot.roughnessResiduals.add(double(target.roughness) - double(result.roughness));
           // The shift-invariant term compares r + b with the prior p, b the last step's offset.

@@ -56,6 +56,16 @@ TEST(RayLoss, NoSurfaceMasksTheGBufferTerms) {
   EXPECT_NE(v.v_diffuse, Rgb(0.0f));
 }
 
+// The depth band (LossWeights::depthBand): a pixel counts when its depth is within the band's
+// fraction of the prior's, and always without a band.
+TEST(RayLoss, DepthBandKeepsThePixelsNearTheirPrior) {
+  EXPECT_TRUE(withinDepthBand(3.2f, 3.0f, 0.1f));
+  EXPECT_TRUE(withinDepthBand(2.8f, 3.0f, 0.1f));
+  EXPECT_FALSE(withinDepthBand(3.4f, 3.0f, 0.1f));
+  EXPECT_FALSE(withinDepthBand(2.6f, 3.0f, 0.1f));
+  EXPECT_TRUE(withinDepthBand(30.0f, 3.0f, 0.0f));
+}
+
 // From a metalness prior the target is grey and only the brightest channels meet: a gold
 // F0 against the grey 1 of a full metalness costs nothing, whatever its tint.
 TEST(RayLoss, F0FromMetalnessComparesTheBrightestChannels) {

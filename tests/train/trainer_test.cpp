@@ -454,6 +454,25 @@ TEST_F(TrainerTest, BackwardJobsGiveTheThreadsGradients) {
   }
 }
 
+// The depth band (LossWeights::depthBand) leaves out of the depth term the pixels whose
+// rendered depth is far from their prior: a wide band keeps every one, a narrow one most
+// of them out.
+TEST_F(TrainerTest, DepthBandLeavesFarPixelsOutOfTheDepthTerm) {
+  std::vector<BatchRay> batch;
+  views_->drawBatch(0, 5, 2048, 2, &batch);
+  auto depthTerm = [&](float band) {
+    TrainConfig c = smallConfig();
+    c.loss.depthBand = band;
+    StepReport r;
+    makeTrainer(c)->forwardBackward(batch, false, &r);
+    return r.terms.depth;
+  };
+  const double all = depthTerm(0.0f);
+  EXPECT_GT(all, 0.0);
+  EXPECT_EQ(depthTerm(1e6f), all);
+  EXPECT_LT(depthTerm(1e-4f), 0.2 * all);
+}
+
 TEST_F(TrainerTest, ResumedRunIsBitExact) {
   TrainConfig c = smallConfig();
   c.bounces = 1;  // reflections and the far-field Gaussians start after the resume
