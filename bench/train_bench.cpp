@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   std::string datasetPath, jsonPath;
   int warmup = 800, batches = 8, batchRays = 16384, threads = 2, reflectionWarmup = TrainConfig{}.reflectionWarmup;
   int batchImages = 1;
+  int64_t wavefrontPaths = Trainer::kWavefrontRays;
   std::string tracerKind = "fast";
   app.add_option("--dataset", datasetPath, "Dataset to train on (default: builtin:spheres, 40 views of 160x120, "
                                            "rendered into a temporary folder)");
@@ -53,6 +54,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(1, 1 << 20))
       ->capture_default_str();
   app.add_option("--threads", threads, "Threads")->check(CLI::Range(1, 1024));
+  app.add_option("--wavefront-rays", wavefrontPaths, "Paths per wavefront of the trainer's steps (Trainer::kWavefrontRays "
+                                              "by default)")
+      ->check(CLI::Range(int64_t(1), int64_t(1) << 24))
+      ->capture_default_str();
   app.add_option("--tracer", tracerKind, "Gaussian tracer of the trainer (fast; cuda or cuda-warp: the GPU traces the "
                                          "wavefronts and runs the backward pass)")
       ->capture_default_str();
@@ -76,6 +81,7 @@ int main(int argc, char** argv) {
   Trainer trainer(config, views, cameraSpheres(dataset, dataset.train()), std::move(init.scene),
                   sceneExtent(dataset.train()), tracerKind);
   const bool gpu = isGpuTracer(tracerKind);
+  trainer.setWavefrontRays(wavefrontPaths);
   std::fprintf(stderr, "warming up: %d training steps on %zu Gaussians\n", warmup, trainer.scene().size());
   for (int i = 0; i < warmup; ++i) trainer.step();
 
@@ -136,13 +142,13 @@ int main(int argc, char** argv) {
     p.reflectedOrder = order;
     p.primaryCoherence = coherence;
     PathBatch wavefront;
-    pathResults.resize(std::min(primaries[0].size(), size_t(Trainer::kWavefrontRays)));
+    pathResults.resize(std::min(primaries[0].size(), size_t(wavefrontPaths)));
     wavefront.trace(trainer.tracer(), std::span(primaries[0]).first(pathResults.size()),
                     std::span(keys[0]).first(pathResults.size()), config.seed, p, pathResults, /*record=*/true);  // warm
     return secondsOf([&] {
       for (size_t b = 0; b < rays.size(); ++b)
-        for (size_t first = 0; first < primaries[b].size(); first += size_t(Trainer::kWavefrontRays)) {
-          const size_t count = std::min(size_t(Trainer::kWavefrontRays), primaries[b].size() - first);
+        for (size_t first = 0; first < primaries[b].size(); first += size_t(wavefrontPaths)) {
+          const size_t count = std::min(size_t(wavefrontPaths), primaries[b].size() - first);
           pathResults.resize(count);
           wavefront.trace(trainer.tracer(), std::span(primaries[b]).subspan(first, count),
                           std::span(keys[b]).subspan(first, count), config.seed, p, pathResults, /*record=*/true);
@@ -213,6 +219,7 @@ int main(int argc, char** argv) {
   TrainConfig wholeConfig = config;
   wholeConfig.batchImages = batchImages;
   Trainer wholeTrainer(wholeConfig, views, cameraSpheres(dataset, dataset.train()), trainer.state(), tracerKind);
+  wholeTrainer.setWavefrontRays(wavefrontPaths);
   double wholeStepRays = 0;
   const double wholeStepSeconds = secondsOf([&] {
     for (int b = 0; b < batches; ++b) wholeStepRays += double(wholeTrainer.step().rays);
@@ -260,6 +267,7 @@ int main(int argc, char** argv) {
   json["hits_per_ray"] = double(fusedReport.hits) / double(fusedReport.rays);
   json["batch_rays"] = batchRays;
   json["tracer"] = tracerKind;
+  json["wavefront_rays"] = wavefrontPaths;
   json["threads"] = threads;
   json["batch_images"] = batchImages;
   // The time ratio is per ray, against the training forward pass.
@@ -270,7 +278,7 @@ int main(int argc, char** argv) {
     std::printf("%-55s %10.3f %11.2fx\n", r.name, r.rays / r.seconds / 1e6, ratio);
     json["passes"][r.name] = {{"mrays_per_s", r.rays / r.seconds / 1e6}, {"ratio_to_training_forward", ratio}};
   }
-  const double wavefrontRays = double(std::min<int64_t>(batchRays, Trainer::kWavefrontRays));
+  const double wavefrontRays = double(std::min<int64_t>(batchRays, wavefrontPaths));
   std::printf("reflected segments per ray %.2f; wavefront records %.1f MB for a wavefront of %.0f rays (%.0f B per "
               "ray, shared by the threads); fast tracer scratch %.1f KB per thread\n",
               double(fusedReport.reflectedSegments) / double(fusedReport.rays), trainer.wavefrontBytes() / 1e6,

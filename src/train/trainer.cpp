@@ -149,12 +149,12 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     lanes[size_t(s)] = {share.begin + lane.begin, share.begin + lane.end};
     longestLane = std::max(longestLane, lane.end - lane.begin);
   }
-  // The lanes go in wavefronts of at most kWavefrontRays paths, an equal part of each lane
+  // The lanes go in wavefronts of at most wavefrontRays_ paths, an equal part of each lane
   // per wavefront: each is traced with every segment recorded (hits included), then its
   // losses and backward pass run, each slot on its lane's part. The records' memory (about
   // 6 KB per path) stays bounded whatever the batch size. The sample key is the step, so
   // each step draws new reflection directions.
-  const int64_t perLane = std::max<int64_t>(1, kWavefrontRays / slotCount);
+  const int64_t perLane = std::max<int64_t>(1, wavefrontRays_ / slotCount);
   std::vector<int64_t> laneStart(static_cast<size_t>(slotCount) + 1);
   for (int64_t offset = 0; offset < longestLane; offset += perLane) {
     int64_t count = 0;
@@ -301,6 +301,11 @@ void Trainer::handToDevice(BackwardBatch* device) {
 }
 
 void Trainer::setBackwardBatch(std::unique_ptr<BackwardBatch> batch) { backwardBatch_ = std::move(batch); }
+
+void Trainer::setWavefrontRays(int64_t paths) {
+  GLINT_CHECK(paths > 0, "Trainer::setWavefrontRays: a wavefront holds at least one path");
+  wavefrontRays_ = paths;
+}
 
 const GaussianGradients& Trainer::lastGradient() const { return slots_[0]->gradient; }
 

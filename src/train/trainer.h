@@ -60,6 +60,11 @@ class Trainer {
   // path) stay bounded whatever the batch size.
   static constexpr int64_t kWavefrontRays = 8192;
 
+  // Paths per wavefront (kWavefrontRays unless set): a GPU may want larger ones, each level
+  // of a wavefront being a round trip to it (train_bench --wavefront-rays measures).
+  void setWavefrontRays(int64_t paths);
+  int64_t wavefrontRays() const { return wavefrontRays_; }
+
   // Starts from `initial` (the dense initialisation) at step 0. The views and spheres
   // are referenced and must outlive the trainer. Gaussians inside the camera spheres are
   // removed at once.
@@ -140,6 +145,7 @@ class Trainer {
   std::vector<TraceRay> rays_;
   std::vector<PathKey> keys_;
   std::vector<PathResult> paths_;
+  int64_t wavefrontRays_ = kWavefrontRays;
   std::unique_ptr<BackwardBatch> backwardBatch_;  // null: the backward pass on the CPU's threads
   std::vector<BackwardJob> deviceJobs_;           // a wavefront's jobs for it, and their hits
   std::vector<HitRecord> deviceHits_;

@@ -473,6 +473,20 @@ TEST_F(TrainerTest, DepthBandLeavesFarPixelsOutOfTheDepthTerm) {
   EXPECT_LT(depthTerm(1e-4f), 0.2 * all);
 }
 
+// A path's result depends on its keys alone and each thread sums its lane in ray order, so
+// the wavefronts' size (a GPU may want larger ones) does not change a step's bits.
+TEST_F(TrainerTest, WavefrontSizeLeavesTheStepsAlone) {
+  TrainConfig c = smallConfig();
+  c.bounces = 1;
+  c.reflectionWarmup = 2;
+  std::unique_ptr<Trainer> usual = makeTrainer(c), small = makeTrainer(c);
+  small->setWavefrontRays(700);
+  for (int i = 0; i < 6; ++i) usual->step(), small->step();
+  EXPECT_TRUE(sameTrainerBytes(usual->scene().position, small->scene().position));
+  EXPECT_TRUE(sameTrainerBytes(usual->scene().diffuse, small->scene().diffuse));
+  EXPECT_TRUE(sameTrainerBytes(usual->scene().opacityLogit, small->scene().opacityLogit));
+}
+
 TEST_F(TrainerTest, ResumedRunIsBitExact) {
   TrainConfig c = smallConfig();
   c.bounces = 1;  // reflections and the far-field Gaussians start after the resume
