@@ -1,7 +1,7 @@
 // The GPU's backward batch: the scene's parameters in GPU memory, one thread per job running
 // backwardHits (raytrace/ray_backward.h, the CPU's own code), and each hit's gradient summed
-// per Gaussian, either by atomic adds or through records sorted by Gaussian and summed in
-// order (reproducible).
+// per Gaussian (raytrace/gradient_sums.h), either by atomic adds or through records sorted by
+// Gaussian and summed in order (reproducible).
 #include "cuda/cuda_backward.h"
 
 #include <cuda_runtime.h>
@@ -16,6 +16,7 @@
 #include "cuda/cuda_check.h"
 #include "cuda/device_buffer.h"
 #include "cuda/gpu_query.h"
+#include "raytrace/gradient_sums.h"
 #include "raytrace/ray_backward.h"
 
 namespace glint {
@@ -25,54 +26,11 @@ constexpr int kThreadsPerBlock = 128;
 
 unsigned blocksFor(size_t n) { return unsigned((n + kThreadsPerBlock - 1) / kThreadsPerBlock); }
 
-// The per-Gaussian sums in GPU memory, one array per parameter in GaussianGradients' layout
-// (Gaussian i's components at [i * components, (i + 1) * components), a quaternion's as w,
-// x, y, z), the blend weight and, when sigmaMax is given, the densification score.
-struct DeviceSums {
-  float *position, *rotation, *logScale, *opacityLogit, *diffuse, *normal, *roughness, *f0, *weight, *score;
-  const float* sigmaMax;  // null: no scores
-};
-
-// Calls add(address, value) for every float of one hit's gradient (and its score).
-template <typename Add>
-GLINT_GPU void forEachSum(const DeviceSums& s, uint32_t id, const HitGradient<float>& g, float score, Add add) {
-  const Vec3f* vectors[5] = {&g.v_position, &g.v_logScale, &g.v_diffuse, &g.v_normal, &g.v_f0};
-  float* arrays[5] = {s.position, s.logScale, s.diffuse, s.normal, s.f0};
-  GLINT_UNROLL
-  for (int a = 0; a < 5; ++a) {
-    add(arrays[a] + 3 * size_t(id) + 0, vectors[a]->x);
-    add(arrays[a] + 3 * size_t(id) + 1, vectors[a]->y);
-    add(arrays[a] + 3 * size_t(id) + 2, vectors[a]->z);
-  }
-  add(s.rotation + 4 * size_t(id) + 0, g.v_rotation.w);
-  add(s.rotation + 4 * size_t(id) + 1, g.v_rotation.x);
-  add(s.rotation + 4 * size_t(id) + 2, g.v_rotation.y);
-  add(s.rotation + 4 * size_t(id) + 3, g.v_rotation.z);
-  add(s.opacityLogit + id, g.v_opacityLogit);
-  add(s.roughness + id, g.v_roughness);
-  add(s.weight + id, g.weight);
-  if (s.sigmaMax) add(s.score + id, score);
-}
-
 // Sums each hit's gradient into its Gaussian's with atomic adds.
 struct AtomicSink {
-  DeviceSums sums;
+  GradientSums sums;
   GLINT_GPU void operator()(uint32_t id, const HitGradient<float>& g) const {
-    const float score = sums.sigmaMax ? splitScore(g, sums.sigmaMax[id]) : 0.0f;
-    forEachSum(sums, id, g, score, [](float* at, float value) { atomicAdd(at, value); });
-  }
-};
-
-// Records each hit's gradient and Gaussian at the job's next record (a job's records are its
-// hits' places in the batch: the k-th gradient it hands out goes to firstHit + k).
-struct RecordSink {
-  HitGradient<float>* records;
-  uint32_t* ids;
-  uint32_t next;
-  GLINT_GPU void operator()(uint32_t id, const HitGradient<float>& g) {
-    records[next] = g;
-    ids[next] = id;
-    ++next;
+    forEachSum(sums, id, g, hitScore(sums, id, g), [](float* at, float value) { atomicAdd(at, value); });
   }
 };
 
@@ -84,7 +42,7 @@ struct JobScratch {
 
 template <bool kRecord>
 __global__ void backwardJobsKernel(BackwardScene scene, TraceSettings settings, const BackwardJob* jobs, uint32_t count,
-                                   const HitRecord* hits, JobScratch scratch, DeviceSums sums,
+                                   const HitRecord* hits, JobScratch scratch, GradientSums sums,
                                    HitGradient<float>* records, uint32_t* ids) {
   const uint32_t j = blockIdx.x * blockDim.x + threadIdx.x;
   if (j >= count) return;
@@ -103,32 +61,11 @@ __global__ void backwardJobsKernel(BackwardScene scene, TraceSettings settings, 
   }
 }
 
-// After the records are sorted by Gaussian (stably, so each Gaussian's in job order): the
-// thread at the start of each Gaussian's run sums the run in order and adds it to the sums.
-// One thread per Gaussian, so plain adds, and the same bits every run.
+// After the records are sorted by Gaussian: each run summed in order (sumSortedRun).
 __global__ void sumSortedRunsKernel(const uint32_t* sortedIds, const uint32_t* sortedRecord,
-                                    const HitGradient<float>* records, uint32_t count, DeviceSums sums) {
+                                    const HitGradient<float>* records, uint32_t count, GradientSums sums) {
   const uint32_t r = blockIdx.x * blockDim.x + threadIdx.x;
-  if (r >= count) return;
-  const uint32_t id = sortedIds[r];
-  if (r > 0 && sortedIds[r - 1] == id) return;
-  HitGradient<float> total;
-  float score = 0;
-  for (uint32_t k = r; k < count && sortedIds[k] == id; ++k) {
-    const HitGradient<float>& g = records[sortedRecord[k]];
-    total.v_position += g.v_position;
-    total.v_rotation = {total.v_rotation.w + g.v_rotation.w, total.v_rotation.x + g.v_rotation.x,
-                        total.v_rotation.y + g.v_rotation.y, total.v_rotation.z + g.v_rotation.z};
-    total.v_logScale += g.v_logScale;
-    total.v_opacityLogit += g.v_opacityLogit;
-    total.v_diffuse += g.v_diffuse;
-    total.v_normal += g.v_normal;
-    total.v_roughness += g.v_roughness;
-    total.v_f0 += g.v_f0;
-    total.weight += g.weight;
-    if (sums.sigmaMax) score += splitScore(g, sums.sigmaMax[id]);
-  }
-  forEachSum(sums, id, total, score, [](float* at, float value) { *at += value; });
+  if (r < count) sumSortedRun(sortedIds, sortedRecord, records, count, r, sums);
 }
 
 __global__ void sequenceKernel(uint32_t* values, uint32_t count) {
@@ -159,9 +96,9 @@ class CudaBackwardBatch final : public BackwardBatch {
     f0_.upload(std::span<const Rgb>(scene.f0), what);
     scoring_ = !sigmaMax.empty();
     if (scoring_) sigmaMax_.upload(sigmaMax, "the Gaussians' sizes");
-    // The sums, in one zeroed array: 3 + 4 + 3 + 1 + 3 + 3 + 1 + 3 components, the weight and the score.
-    sums_.resize(n_ * kFloatsPerGaussian, "the Gaussians' gradients");
-    cuda::check(cudaMemset(sums_.data(), 0, n_ * kFloatsPerGaussian * sizeof(float)), "clearing the gradients");
+    // The sums, in one zeroed array (raytrace/gradient_sums.h).
+    sums_.resize(n_ * kSumFloatsPerGaussian, "the Gaussians' gradients");
+    cuda::check(cudaMemset(sums_.data(), 0, n_ * kSumFloatsPerGaussian * sizeof(float)), "clearing the gradients");
   }
 
   void add(std::span<const BackwardJob> jobs, std::span<const HitRecord> hits) override {
@@ -176,7 +113,7 @@ class CudaBackwardBatch final : public BackwardBatch {
     alpha_.resize(std::max<size_t>(hitCount, 1), what);
     key_.resize(std::max<size_t>(hitCount, 1), what);
     const JobScratch scratch{transmittance_.data(), alpha_.data(), key_.data()};
-    const DeviceSums sums = deviceSums();
+    const GradientSums sums = GradientSums::in(sums_.data(), n_, scoring_ ? sigmaMax_.data() : nullptr);
     const BackwardScene scene{{position_.data(), rotation_.data(), logScale_.data(), opacityLogit_.data()},
                               {diffuse_.data(), normal_.data(), roughness_.data(), f0_.data()}};
     if (sum_ == GradientSum::Atomic) {
@@ -213,58 +150,12 @@ class CudaBackwardBatch final : public BackwardBatch {
   }
 
   void finish(GaussianGradients* gradient, std::vector<float>* splitScore) override {
-    std::vector<float> host(n_ * kFloatsPerGaussian);
+    std::vector<float> host(n_ * kSumFloatsPerGaussian);
     sums_.download(host, "downloading the gradients");
-    gradient->reset(n_);
-    size_t offset = 0;
-    auto take = [&](std::span<float> to) {
-      std::copy(host.begin() + ptrdiff_t(offset), host.begin() + ptrdiff_t(offset + to.size()), to.begin());
-      offset += to.size();
-    };
-    // The order of deviceSums().
-    take(gradient->of(&GaussianScene::position));
-    take(gradient->of(&GaussianScene::rotation));
-    take(gradient->of(&GaussianScene::logScale));
-    take(gradient->of(&GaussianScene::opacityLogit));
-    take(gradient->of(&GaussianScene::diffuse));
-    take(gradient->of(&GaussianScene::normal));
-    take(gradient->of(&GaussianScene::roughness));
-    take(gradient->of(&GaussianScene::f0));
-    take(gradient->weight);
-    if (splitScore) {
-      splitScore->resize(n_);
-      if (scoring_)
-        take(*splitScore);
-      else
-        std::fill(splitScore->begin(), splitScore->end(), 0.0f);
-    }
+    copySums(host, n_, scoring_, gradient, splitScore);
   }
 
  private:
-  static constexpr size_t kFloatsPerGaussian = 3 + 4 + 3 + 1 + 3 + 3 + 1 + 3 + 1 + 1;
-
-  DeviceSums deviceSums() {
-    float* at = sums_.data();
-    auto next = [&](size_t components) {
-      float* p = at;
-      at += components * n_;
-      return p;
-    };
-    DeviceSums s;
-    s.position = next(3);
-    s.rotation = next(4);
-    s.logScale = next(3);
-    s.opacityLogit = next(1);
-    s.diffuse = next(3);
-    s.normal = next(3);
-    s.roughness = next(1);
-    s.f0 = next(3);
-    s.weight = next(1);
-    s.score = next(1);
-    s.sigmaMax = scoring_ ? sigmaMax_.data() : nullptr;
-    return s;
-  }
-
   GradientSum sum_;
   size_t n_ = 0;
   TraceSettings settings_;
