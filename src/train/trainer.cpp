@@ -4,7 +4,10 @@
 // each slot accumulates its lane in ray order into its own gradient buffer, and the buffers
 // are summed in slot order, then over the ranks in rank order. So a run is reproducible bit
 // for bit for a given seed, rank count and thread count, resumed or not, and N ranks of one
-// thread each give the bits of one process of N threads.
+// thread each give the bits of one process of N threads. With the GPU's backward batch
+// (sorted sums, raytrace/backward_batch.h) each wavefront's jobs go in the same lane order
+// and each Gaussian's hits are summed in that order, so a GPU run is reproducible too, for
+// a given seed, thread count and wavefront size; its bits are not the CPU's.
 #include "train/trainer.h"
 
 #include <algorithm>
