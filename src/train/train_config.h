@@ -34,7 +34,8 @@ struct LossWeights {
   // When positive, the depth term counts only the pixels whose rendered depth is within
   // this fraction of their prior's (train/ray_loss.h, withinDepthBand): a predicted depth
   // that disagrees with the geometry the other views agree on stops pulling it. Not a
-  // weight; an option beyond the paper, off (docs/captures.md).
+  // weight; an option beyond the paper, off: at 0.1 it gained 0.4 dB of specular on one
+  // predicted capture and lost 0.3 on another (docs/captures.md).
   float depthBand = 0.0f;
 };
 
