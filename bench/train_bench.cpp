@@ -231,6 +231,8 @@ int main(int argc, char** argv) {
       parts.traceSeconds += r.traceSeconds;
       parts.backwardSeconds += r.backwardSeconds;
       parts.adamSeconds += r.adamSeconds;
+      parts.reduceSeconds += r.reduceSeconds;
+      parts.housekeepingSeconds += r.housekeepingSeconds;
       parts.seconds += r.seconds;
     }
   });
@@ -291,17 +293,23 @@ int main(int argc, char** argv) {
               fusedSeconds / forwardSeconds, fusedSeconds / renderSeconds);
   json["fused_over_forward_training_mode"] = fusedSeconds / forwardSeconds;
   json["fused_over_forward_rendering_mode"] = fusedSeconds / renderSeconds;
-  // A step's parts (StepReport): the wavefronts' tracing, the losses and backward pass with
-  // the reduction (on the GPU: the jobs' upload, the kernels and the sums' download), the
-  // Adam step, and the rest (drawing the batch, housekeeping: the tracer's refit).
-  const double rest = parts.seconds - parts.traceSeconds - parts.backwardSeconds - parts.adamSeconds;
-  std::printf("whole step's parts, ms per step: trace %.1f, backward %.1f, Adam %.1f, rest (batch, refit) %.1f; "
-              "total %.1f\n",
-              1e3 * parts.traceSeconds / batches, 1e3 * parts.backwardSeconds / batches,
-              1e3 * parts.adamSeconds / batches, 1e3 * rest / batches, 1e3 * parts.seconds / batches);
+  // A step's parts (StepReport): the wavefronts' tracing; the losses and backward pass (on
+  // the GPU: the jobs built and uploaded, the kernels) and the reduction (the threads'
+  // buffers summed, or the GPU's sums downloaded); the Adam step; housekeeping (pruning,
+  // densification, the tracer's refit); and the rest (drawing the batch, the scale decay).
+  const double backwardAlone = parts.backwardSeconds - parts.reduceSeconds;
+  const double rest = parts.seconds - parts.traceSeconds - parts.backwardSeconds - parts.adamSeconds -
+                      parts.housekeepingSeconds;
+  std::printf("whole step's parts, ms per step: trace %.1f, backward %.1f, reduction %.1f, Adam %.1f, housekeeping "
+              "(refit) %.1f, rest %.1f; total %.1f\n",
+              1e3 * parts.traceSeconds / batches, 1e3 * backwardAlone / batches, 1e3 * parts.reduceSeconds / batches,
+              1e3 * parts.adamSeconds / batches, 1e3 * parts.housekeepingSeconds / batches, 1e3 * rest / batches,
+              1e3 * parts.seconds / batches);
   json["step_parts_ms"] = {{"trace", 1e3 * parts.traceSeconds / batches},
-                           {"backward", 1e3 * parts.backwardSeconds / batches},
+                           {"backward", 1e3 * backwardAlone / batches},
+                           {"reduction", 1e3 * parts.reduceSeconds / batches},
                            {"adam", 1e3 * parts.adamSeconds / batches},
+                           {"housekeeping", 1e3 * parts.housekeepingSeconds / batches},
                            {"rest", 1e3 * rest / batches},
                            {"total", 1e3 * parts.seconds / batches}};
   if (gpu) {

@@ -243,7 +243,9 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
           for (int64_t i = begin; i < end; ++i) score[size_t(i)] += slots_[s]->splitScore[size_t(i)];
     });
   }
-  report->backwardSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - reduceStart).count();
+  const double reduceSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - reduceStart).count();
+  report->reduceSeconds += reduceSeconds;
+  report->backwardSeconds += reduceSeconds;
   // Then over the ranks of an MPI job, in rank order.
   LossTerms terms;
   int64_t counters[3] = {0, 0, 0};
@@ -344,7 +346,10 @@ StepReport Trainer::step() {
   });
   report.adamSeconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - adamStart).count();
   ++step_;
+  const auto housekeepingStart = std::chrono::steady_clock::now();
   housekeeping(&report);
+  report.housekeepingSeconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - housekeepingStart).count();
   report.step = step_;
   report.gaussians = scene_.size();
   report.loss = report.terms.weighted(config_.loss);

@@ -45,6 +45,11 @@ struct StepReport {
   // and the Adam step with the clamping after it; in an MPI job also the wait for the
   // slowest rank before the exchange (the imbalance of the shares).
   double traceSeconds = 0, backwardSeconds = 0, waitSeconds = 0, exchangeSeconds = 0, adamSeconds = 0;
+  // Of backwardSeconds, the reduction: the threads' buffers summed, or the GPU's sums
+  // downloaded (its kernels run while the host goes on, so their time shows here).
+  double reduceSeconds = 0;
+  // Pruning, densification and the tracer's refit or rebuild after the update.
+  double housekeepingSeconds = 0;
   uint64_t exchangedBytes = 0;  // received by this rank in the exchange
   bool sparseExchange = false;  // the exchange sent the touched Gaussians only
   // The roughness priors' offset from the model: the median of prior - model roughness
