@@ -4,7 +4,7 @@
 # Usage (from the repository root on the GPU machine):  scripts/device-train-check.sh
 # Build and pack first on a Debian machine: `make build` then `scripts/pack-device-build.sh`,
 # and carry device-carry/ (docs/gpu.md). Logs and JSON go to $OUT (the device tool's folder
-# that comes back) or /tmp/glint-device-out. About 6 minutes on an H100; scripts/device-check.sh
+# that comes back) or /tmp/glint-device-out. About 8 minutes on an H100 by estimate (not yet run on one); scripts/device-check.sh
 # checks the tracer and rendering.
 set -uo pipefail
 
@@ -51,6 +51,12 @@ step synth 150 "$bin/glint" synth builtin:spheres -o "$work/spheres" --res 160x1
 step demo_train_gpu 240 "$bin/glint" train "$work/spheres" -o "$work/run_gpu" --device cuda --threads "$cores" \
   --eval-views 0
 
+# 4. The paper's scale of a step (issue 42): 884,736 rays (one 1152x768 view's worth) a step
+#    from the same dataset, wavefronts of 65,536 paths; last, so that running out of time
+#    loses nothing else.
+step train_bench_cuda_paper 200 "$bin/bench/train_bench" --tracer cuda --wavefront-rays 65536 --threads "$cores" \
+  --batch-rays 884736 --warmup 60 --reflection-warmup 30 --batches 2 --json "$out/train_bench_cuda_paper.json"
+
 python3 - "$out" "${steps[@]}" <<'EOF'
 import json, os, sys
 out = sys.argv[1]
@@ -60,7 +66,7 @@ print(open(os.path.join(out, "gpu.txt")).read().strip())
 print(f"{'step':22} {'exit':>5} {'seconds':>9}")
 for name, status, seconds in rows:
     print(f"{name:22} {status:>5} {float(seconds):9.1f}")
-for run in ("cuda_8192", "cuda_65536", "fast_8192"):
+for run in ("cuda_8192", "cuda_65536", "fast_8192", "cuda_paper"):
     try:
         t = json.load(open(os.path.join(out, f"train_bench_{run}.json")))
     except Exception:
