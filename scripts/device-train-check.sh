@@ -4,8 +4,8 @@
 # Usage (from the repository root on the GPU machine):  scripts/device-train-check.sh
 # Build and pack first on a Debian machine: `make build` then `scripts/pack-device-build.sh`,
 # and carry device-carry/ (docs/gpu.md). Logs and JSON go to $OUT (the device tool's folder
-# that comes back) or /tmp/glint-device-out. About 8 minutes on an H100 by estimate (not yet run on one); scripts/device-check.sh
-# checks the tracer and rendering.
+# that comes back) or /tmp/glint-device-out. About 8 minutes on an H100 by estimate (not yet
+# run on one); scripts/device-check.sh checks the tracer and rendering.
 set -uo pipefail
 
 repo=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
