@@ -34,12 +34,6 @@ struct AtomicSink {
   }
 };
 
-// Scratch of the jobs: job j's transmittances at [firstHit + j, firstHit + j + hitCount + 1),
-// its alphas and keys at [firstHit, firstHit + hitCount).
-struct JobScratch {
-  float *transmittance, *alpha, *key;
-};
-
 template <bool kRecord>
 __global__ void backwardJobsKernel(BackwardScene scene, TraceSettings settings, const BackwardJob* jobs, uint32_t count,
                                    const HitRecord* hits, JobScratch scratch, GradientSums sums,
@@ -47,17 +41,12 @@ __global__ void backwardJobsKernel(BackwardScene scene, TraceSettings settings, 
   const uint32_t j = blockIdx.x * blockDim.x + threadIdx.x;
   if (j >= count) return;
   const BackwardJob job = jobs[j];
-  float* trans = scratch.transmittance + job.firstHit + j;
-  float* alpha = scratch.alpha + job.firstHit;
-  float* key = scratch.key + job.firstHit;
   if constexpr (kRecord) {
     RecordSink sink{records, ids, job.firstHit};
-    backwardHits<float>(scene, settings, job.ray, hits + job.firstHit, job.hitCount, job.truncated, job.transmittance,
-                        job.v, trans, alpha, key, sink);
+    runBackwardJob(scene, settings, job, j, hits, scratch, sink);
   } else {
     AtomicSink sink{sums};
-    backwardHits<float>(scene, settings, job.ray, hits + job.firstHit, job.hitCount, job.truncated, job.transmittance,
-                        job.v, trans, alpha, key, sink);
+    runBackwardJob(scene, settings, job, j, hits, scratch, sink);
   }
 }
 

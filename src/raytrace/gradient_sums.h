@@ -1,7 +1,8 @@
-// Per-Gaussian gradient sums in one flat float array, as a GPU keeps them (the backward
-// batch of cuda/cuda_backward.cu): the layout, adding one hit's gradient, the reproducible
-// sum of hit records sorted by Gaussian, and the copy into GaussianGradients. Written once
-// for both devices, so the CPU suite tests what the GPU runs.
+// The GPU's backward batch written for both devices (cuda/cuda_backward.cu runs it, the CPU
+// emulates it): a job's run through backwardHits, per-Gaussian gradient sums in one flat
+// float array (the layout, adding one hit's gradient, the reproducible sum of hit records
+// sorted by Gaussian) and the copy into GaussianGradients. So the CPU suite tests what the
+// GPU runs.
 #pragma once
 
 #include <algorithm>
@@ -10,7 +11,9 @@
 #include <vector>
 
 #include "core/cpu_gpu.h"
+#include "raytrace/backward_batch.h"
 #include "raytrace/gaussian_gradients.h"
+#include "raytrace/ray_backward.h"
 #include "scene/gaussians.h"
 
 namespace glint {
@@ -87,6 +90,23 @@ struct RecordSink {
     ++next;
   }
 };
+
+// Scratch of a batch's jobs: job j's transmittances at [firstHit + j, firstHit + j + hitCount
+// + 1), its alphas and keys at [firstHit, firstHit + hitCount); so hitCount + jobs floats of
+// transmittance and hitCount of each other.
+struct JobScratch {
+  float *transmittance, *alpha, *key;
+};
+
+// Job j of a batch through backwardHits, its gradients to `sink`: the body of the GPU's
+// kernel (one thread per job), and of the CPU's emulation of it.
+template <typename Sink>
+GLINT_CPU_GPU void runBackwardJob(const BackwardScene& scene, const TraceSettings& settings, const BackwardJob& job,
+                                  uint32_t j, const HitRecord* hits, const JobScratch& scratch, Sink& sink) {
+  backwardHits<float>(scene, settings, job.ray, hits + job.firstHit, job.hitCount, job.truncated, job.transmittance,
+                      job.v, scratch.transmittance + job.firstHit + j, scratch.alpha + job.firstHit,
+                      scratch.key + job.firstHit, sink);
+}
 
 // With the records sorted by Gaussian, stably (sortedIds[r] the Gaussian of the r-th, and
 // sortedRecord[r] its record): position r starts a run when its Gaussian differs from the

@@ -398,9 +398,10 @@ TEST_F(TrainerTest, WholeImageTrainingImprovesTheTestViewsAndResumesBitExact) {
 }
 
 // The backward pass as a batch of jobs (what the GPU runs, raytrace/backward_batch.h), here
-// on the CPU: the jobs the trainer builds give its own gradients and split scores, bit for
-// bit on one thread (the same sums in the same order), to rounding on two (the threads sum
-// apart, then together), through reflected segments and weights.
+// on the CPU, summed hit by hit and by the GPU's own algorithm (records sorted by Gaussian):
+// the jobs the trainer builds give its own gradients and split scores, bit for bit on one
+// thread (the same sums in the same order), to rounding on two (the threads sum apart,
+// then together), through reflected segments and weights.
 TEST_F(TrainerTest, BackwardJobsGiveTheThreadsGradients) {
   TrainConfig c = smallConfig();
   c.bounces = 2;
@@ -411,13 +412,16 @@ TEST_F(TrainerTest, BackwardJobsGiveTheThreadsGradients) {
   std::unique_ptr<Trainer> warm = makeTrainer(c);
   for (int i = 0; i < 60; ++i) warm->step();
   const TrainingState state = warm->state();
-  for (int threads : {1, 2}) {
+  const std::pair<GradientSum, int> runs[] = {
+      {GradientSum::Atomic, 1}, {GradientSum::Atomic, 2}, {GradientSum::Sorted, 1}, {GradientSum::Sorted, 2}};
+  for (const auto& [sum, threads] : runs) {
+    SCOPED_TRACE(std::string(makeCpuBackwardBatch(sum)->name()) + ", " + std::to_string(threads) + " threads");
     ThreadLimit limit(threads);
     auto fromState = [&] {
       return std::make_unique<Trainer>(c, *views_, cameraSpheres(*dataset_, dataset_->train()), state);
     };
     std::unique_ptr<Trainer> own = fromState(), jobs = fromState();
-    jobs->setBackwardBatch(makeCpuBackwardBatch());
+    jobs->setBackwardBatch(makeCpuBackwardBatch(sum));
     std::vector<BatchRay> batch;
     views_->drawBatch(c.seed, 3, c.batchRays, c.batchViews, &batch);
     StepReport a, b;
