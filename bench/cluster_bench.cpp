@@ -81,12 +81,7 @@ json measure(const Options& o, const Dataset& dataset, const TrainingViews& view
   StepReport sum;
   for (int i = 0; i < o.steps; ++i) {
     StepReport r = trainer.step();
-    sum.seconds += r.seconds;
-    sum.traceSeconds += r.traceSeconds;
-    sum.backwardSeconds += r.backwardSeconds;
-    sum.exchangeSeconds += r.exchangeSeconds;
-    sum.waitSeconds += r.waitSeconds;
-    sum.adamSeconds += r.adamSeconds;
+    sum.addTimes(r);
     sum.exchangedBytes += r.exchangedBytes;
     sum.hits += r.hits;
     sum.rays += r.rays;

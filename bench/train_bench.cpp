@@ -226,15 +226,7 @@ int main(int argc, char** argv) {
   });
   StepReport parts;  // the whole steps' parts, summed
   double stepSeconds = secondsOf([&] {
-    for (int b = 0; b < batches; ++b) {
-      const StepReport r = trainer.step();
-      parts.traceSeconds += r.traceSeconds;
-      parts.backwardSeconds += r.backwardSeconds;
-      parts.adamSeconds += r.adamSeconds;
-      parts.reduceSeconds += r.reduceSeconds;
-      parts.housekeepingSeconds += r.housekeepingSeconds;
-      parts.seconds += r.seconds;
-    }
+    for (int b = 0; b < batches; ++b) parts.addTimes(trainer.step());
   });
 
   // Each row's rays: the batches of random pixels, or (whole-image rows) of whole views.

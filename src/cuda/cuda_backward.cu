@@ -15,6 +15,7 @@
 #include "core/error.h"
 #include "cuda/cuda_check.h"
 #include "cuda/device_buffer.h"
+#include "cuda/launch.h"
 #include "cuda/gpu_query.h"
 #include "raytrace/gradient_sums.h"
 #include "raytrace/ray_backward.h"
@@ -22,9 +23,8 @@
 namespace glint {
 namespace {
 
-constexpr int kThreadsPerBlock = 128;
-
-unsigned blocksFor(size_t n) { return unsigned((n + kThreadsPerBlock - 1) / kThreadsPerBlock); }
+using cuda::blocksFor;
+using cuda::kThreadsPerBlock;
 
 // Sums each hit's gradient into its Gaussian's with atomic adds.
 struct AtomicSink {

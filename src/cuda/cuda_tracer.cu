@@ -17,6 +17,7 @@
 #include "core/error.h"
 #include "cuda/cuda_check.h"
 #include "cuda/device_buffer.h"
+#include "cuda/launch.h"
 #include "cuda/gpu_query.h"
 #include "cuda/warp_traversal.cuh"
 #include "raytrace/fast/bvh8.h"
@@ -29,9 +30,8 @@
 namespace glint {
 namespace {
 
-constexpr int kThreadsPerBlock = 128;
-
-unsigned blocksFor(size_t n) { return unsigned((n + kThreadsPerBlock - 1) / kThreadsPerBlock); }
+using cuda::blocksFor;
+using cuda::kThreadsPerBlock;
 
 // What every kernel reads of the scene, and how rays walk the tree.
 struct DeviceScene {

@@ -52,11 +52,11 @@ class BackwardBatch {
   virtual void finish(GaussianGradients* gradient, std::vector<float>* splitScore) = 0;
 };
 
-// The CPU's. Atomic: every job in order, on the calling thread, into one buffer (the order
-// atomic adds take when the jobs arrive in order); given the jobs of a batch in ray order,
-// its sums are the bits of Trainer's own backward pass on one thread. Sorted: the GPU's
-// algorithm (cuda/cuda_backward.cu) run on the CPU with the same code
-// (raytrace/gradient_sums.h), so the CPU suite tests what the GPU runs.
+// The CPU's: the GPU's code (raytrace/gradient_sums.h) run on the CPU, so the CPU suite tests
+// what the GPU runs. Atomic: each hit added as it comes, the jobs in order (the order atomic
+// adds take when the jobs arrive in order); given a batch's jobs in ray order, its sums are
+// the bits of Trainer's own backward pass on one thread. Sorted: the GPU's default
+// algorithm (cuda/cuda_backward.cu).
 std::unique_ptr<BackwardBatch> makeCpuBackwardBatch(GradientSum sum = GradientSum::Atomic);
 
 // The backward batch that goes with a tracer of this kind (tracers/tracer_factory.cpp):

@@ -70,11 +70,6 @@ GLINT_CPU_GPU BlendedValues<T> blendedValues(const GaussianAttributes& a, const 
   return {Vec3<T>(a.diffuse[i]), T(hit.t), Vec3<T>(a.normal[i]), T(a.roughness[i]), Vec3<T>(a.f0[i])};
 }
 
-template <typename T>
-BlendedValues<T> blendedValues(const GaussianScene& scene, const HitRecord& hit) {
-  return blendedValues<T>(GaussianAttributes::of(scene), hit);
-}
-
 // Scratch memory of one thread, reused from ray to ray (no allocation on the hot path).
 template <typename T>
 struct RayBackwardScratch {

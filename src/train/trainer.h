@@ -56,6 +56,14 @@ struct StepReport {
   // over the batch's surface pixels (0 without roughness priors). With
   // TrainConfig::roughnessShiftInvariant the next step's roughness term takes it out.
   float roughnessOffset = 0;
+
+  // Adds the other step's times (the whole step's and each part's), for benchmarks that sum steps.
+  void addTimes(const StepReport& o) {
+    seconds += o.seconds;
+    traceSeconds += o.traceSeconds, backwardSeconds += o.backwardSeconds, waitSeconds += o.waitSeconds;
+    exchangeSeconds += o.exchangeSeconds, adamSeconds += o.adamSeconds, reduceSeconds += o.reduceSeconds;
+    housekeepingSeconds += o.housekeepingSeconds;
+  }
 };
 
 class Trainer {

@@ -182,11 +182,14 @@ uint32_t TrainingViews::epochView(uint64_t seed, int64_t position) const {
 void TrainingViews::drawWholeImages(uint64_t seed, int64_t step, int images, std::vector<BatchRay>* batch) const {
   batch->clear();
   const int64_t perStep = std::min<int64_t>(images, int64_t(viewCount()));
+  std::vector<uint32_t> views(static_cast<size_t>(perStep));
   size_t rays = 0;
-  for (int64_t k = 0; k < perStep; ++k) rays += pixelCount(epochView(seed, step * perStep + k));
-  batch->reserve(rays);
   for (int64_t k = 0; k < perStep; ++k) {
-    const uint32_t view = epochView(seed, step * perStep + k);
+    views[size_t(k)] = epochView(seed, step * perStep + k);
+    rays += pixelCount(views[size_t(k)]);
+  }
+  batch->reserve(rays);
+  for (uint32_t view : views) {
     const uint32_t pixels = uint32_t(pixelCount(view));
     for (uint32_t p = 0; p < pixels; ++p) batch->push_back({pixelRay(view, p), view, p});
   }

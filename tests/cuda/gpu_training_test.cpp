@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "common/relative_difference.h"
 #include "common/small_training_set.h"
 #include "eval/image_metrics.h"
 #include "raytrace/backward_batch.h"
@@ -60,15 +61,7 @@ test::SmallTrainingSet* GpuTraining::set_ = nullptr;
 Dataset* GpuTraining::dataset_ = nullptr;
 TrainingViews* GpuTraining::views_ = nullptr;
 
-// ||x - y|| / ||y|| over one parameter array.
-double relativeDifference(std::span<const float> x, std::span<const float> y) {
-  double diff = 0, norm = 0;
-  for (size_t i = 0; i < x.size(); ++i) {
-    diff += (double(x[i]) - double(y[i])) * (double(x[i]) - double(y[i]));
-    norm += double(y[i]) * double(y[i]);
-  }
-  return std::sqrt(diff / std::max(norm, 1e-300));
-}
+using test::relativeDifference;
 
 // A state 60 steps in, where the blended normals let paths go on.
 TrainingState warmState() {
