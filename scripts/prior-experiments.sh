@@ -29,6 +29,7 @@ make_capture() {  # make_capture KIND
   local kind="$1" degrade=(--degrade "$1")
   case "$kind" in
     exact) degrade=(--degrade none) ;;
+    network | monocular) ;;
     netradiance) degrade=(--degrade network --degrade-only diffuse,specular) ;;
     net*) degrade=(--degrade network --degrade-only "${kind#net}") ;;
   esac
@@ -46,8 +47,15 @@ cp "$here/real-capture-train.json" "$out/configs/preset.json"
 echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 0.01}, "init": {"depth_residual_voxels": 0}}' \
   > "$out/configs/preset_fine_voxels.json"
 echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 3.0}}' > "$out/configs/specular3.json"
-echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 3.0}, "f0_tint_from_reflections": true}' \
+echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 3.0, "f0_from_specular": 1.0}, "f0_tint_from_reflections": true}' \
   > "$out/configs/specular3_f0_tint.json"
+# L_r's gradient into roughness and F0 (docs/derivations.md D15), alone and with the
+# shift-invariant roughness term (which leaves the roughness level to it).
+echo '{"loss": {"roughness_from_specular": 1.0}}' > "$out/configs/rfs.json"
+echo '{"roughness_shift_invariant": true}' > "$out/configs/shift.json"
+echo '{"roughness_shift_invariant": true, "loss": {"roughness_from_specular": 1.0}}' > "$out/configs/shift_rfs.json"
+echo '{"loss": {"f0_from_specular": 1.0}}' > "$out/configs/ffs.json"
+echo '{"f0_tint_from_reflections": true, "loss": {"f0_from_specular": 1.0}}' > "$out/configs/f0_tint.json"
 echo '{"loss": {"roughness": 0.1}}' > "$out/configs/roughness01.json"
 echo '{"loss": {"normal": 2.5}}' > "$out/configs/normal25.json"
 # The monocular capture without its depth: initialised from the sparse points instead.
@@ -68,7 +76,8 @@ train_and_eval() {  # train_and_eval RUN CAPTURE CONFIG
 runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_preset network_defaults
   network_specular3 network_roughness01 network_normal25 monocular_preset_fine_voxels monocular_preset
   monocular_defaults monocular_specular3 monocular_specular3_f0_tint monodepthless_preset
-  netnormal_defaults netroughness_defaults netradiance_defaults netdepth_defaults netf0_defaults}"
+  netnormal_defaults netroughness_defaults netradiance_defaults netdepth_defaults netf0_defaults
+  network_rfs network_shift network_shift_rfs monocular_ffs monocular_f0_tint}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"

@@ -34,14 +34,16 @@ GLINT_CPU_GPU inline float D_GGX(const Vec3f& wm, float alpha) {
 }
 
 // Smith's Lambda for GGX: the mean masked fraction term, G1 = 1 / (1 + Lambda).
-GLINT_CPU_GPU inline float lambdaGGX(const Vec3f& w, float alpha) {
+// T = float, or double in the finite-difference tests.
+template <typename T>
+GLINT_CPU_GPU T lambdaGGX(const Vec3<T>& w, T alpha) {
   // Heitz 2014, "Understanding the Masking-Shadowing Function in Microfacet-Based BRDFs",
   // JCGT 3(2), GGX case: Lambda = (-1 + sqrt(1 + a^2 tan^2)) / 2, rewritten as
   // a^2 tan^2 / (2 (1 + sqrt(1 + a^2 tan^2))) so it stays accurate when a^2 tan^2 is tiny.
-  float cos2 = w.z * w.z;
-  if (cos2 == 0) return std::numeric_limits<float>::infinity();
-  float a2tan2 = alpha * alpha * (w.x * w.x + w.y * w.y) / cos2;
-  return a2tan2 / (2.0f * (1.0f + std::sqrt(1.0f + a2tan2)));
+  T cos2 = w.z * w.z;
+  if (cos2 == 0) return std::numeric_limits<T>::infinity();
+  T a2tan2 = alpha * alpha * (w.x * w.x + w.y * w.y) / cos2;
+  return a2tan2 / (T(2) * (T(1) + std::sqrt(T(1) + a2tan2)));
 }
 
 // Smith masking G1(w) for GGX (the back-facing test on the microfacet is left to callers).
@@ -57,6 +59,31 @@ GLINT_CPU_GPU inline float smithG2(const Vec3f& wo, const Vec3f& wi, float alpha
   // G2 = 1 / (1 + Lambda(wo) + Lambda(wi)).
   if (wo.z <= 0 || wi.z <= 0) return 0.0f;
   return 1.0f / (1.0f + lambdaGGX(wo, alpha) + lambdaGGX(wi, alpha));
+}
+
+// d Lambda / d alpha for GGX: Lambda = (sqrt(1 + a^2 tan^2) - 1) / 2 (lambdaGGX), so
+// dLambda / da = a tan^2 / (2 sqrt(1 + a^2 tan^2)). w above the surface.
+template <typename T>
+GLINT_CPU_GPU T lambdaGGXAlphaDerivative(const Vec3<T>& w, T alpha) {
+  const T tan2 = (w.x * w.x + w.y * w.y) / (w.z * w.z);
+  return alpha * tan2 / (T(2) * std::sqrt(T(1) + alpha * alpha * tan2));
+}
+
+// d/d alpha of log(D(wm) G2(wo, wi)) at fixed directions, wm = normalize(wo + wi): the
+// relative change of the Cook-Torrance lobe f_s(wo, wi) with alpha (F does not depend on
+// it). A sampled direction's weight f cos / p, with the direction and its density held
+// fixed, changes by this factor (docs/derivations.md D15). wo and wi above the surface;
+// T = float in training, double in the finite-difference tests.
+template <typename T>
+GLINT_CPU_GPU T lobeLogAlphaDerivative(const Vec3<T>& wo, const Vec3<T>& wi, T alpha) {
+  const Vec3<T> wm = normalize(wo + wi);
+  // D = 1 / (pi a^2 (q + z^2)^2), q = (x^2 + y^2) / a^2 over wm: dq/da = -2 q / a, so
+  // d log D / da = -2 / a + 4 q / (a (q + z^2)) = 2 (q - z^2) / (a (q + z^2)).
+  const T q = (wm.x * wm.x + wm.y * wm.y) / (alpha * alpha), z2 = wm.z * wm.z;
+  const T dLogD = T(2) * (q - z2) / (alpha * (q + z2));
+  // G2 = 1 / (1 + Lambda(wo) + Lambda(wi)).
+  const T dLambda = lambdaGGXAlphaDerivative(wo, alpha) + lambdaGGXAlphaDerivative(wi, alpha);
+  return dLogD - dLambda / (T(1) + lambdaGGX(wo, alpha) + lambdaGGX(wi, alpha));
 }
 
 // Samples a microfacet normal wm from the distribution of normals visible from wo,

@@ -186,8 +186,9 @@ float reflectionGradientWeight(std::span<const PathSegment> segments, size_t k) 
 }
 
 int appendBackwardJobs(std::span<const PathSegment> segments, const RayResultAdjoint& v_first, const Rgb& v_specular,
-                       bool weighted, std::vector<BackwardJob>* jobs, std::vector<HitRecord>* hits) {
-  return forEachSegmentAdjoint(segments, v_first, v_specular, weighted,
+                       const PathGradientSettings& settings, std::vector<BackwardJob>* jobs,
+                       std::vector<HitRecord>* hits) {
+  return forEachSegmentAdjoint(segments, v_first, v_specular, settings,
                                [&](const PathSegment& segment, const RayResultAdjoint& v) {
                                  const std::vector<HitRecord>& h = segment.hits.hits;
                                  if (h.empty()) return;

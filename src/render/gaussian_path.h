@@ -108,14 +108,39 @@ Rgb pathSpecular(std::span<const PathSegment> segments);
 // It favours the low-variance gradients of sharp reflections (appendix B.5).
 float reflectionGradientWeight(std::span<const PathSegment> segments, size_t k);
 
+// How a recorded path's gradient reaches its segments (D13, D15).
+struct PathGradientSettings {
+  // Scale each reflected segment's gradient by reflectionGradientWeight (training does).
+  bool weightReflections = true;
+  // Weights of L_r's gradient into the roughness and the F0 of each surface a path reflects
+  // off, through the step's weight with its direction and density held fixed (D15). 0, the
+  // paper's choice: the throughputs are detached and nothing flows into those materials.
+  float roughnessFromSpecular = 0;
+  float f0FromSpecular = 0;
+  PathSettings path;  // the settings the paths were traced with (continuePath's)
+};
+
 // dL/d segment k's blended outputs (D13): v_first for the first segment; for k >= 1,
 // throughput_k x v_specular on its blended diffuse (times reflectionGradientWeight when
-// weighted), nothing on its G-buffers.
+// weighted). With PathGradientSettings' material weights, a segment followed by another
+// also gets, on its roughness and F0, the change of the later segments' light with the
+// weight of the step it chose (D15).
 inline RayResultAdjoint segmentAdjoint(std::span<const PathSegment> segments, size_t k,
-                                       const RayResultAdjoint& v_first, const Rgb& v_specular, bool weighted) {
-  if (k == 0) return v_first;
-  RayResultAdjoint v;
-  v.v_diffuse = segments[k].throughput * v_specular * (weighted ? reflectionGradientWeight(segments, k) : 1.0f);
+                                       const RayResultAdjoint& v_first, const Rgb& v_specular,
+                                       const PathGradientSettings& settings) {
+  RayResultAdjoint v = k == 0 ? v_first : RayResultAdjoint{};
+  if (k > 0)
+    v.v_diffuse = segments[k].throughput * v_specular *
+                  (settings.weightReflections ? reflectionGradientWeight(segments, k) : 1.0f);
+  const bool materials = settings.roughnessFromSpecular != 0 || settings.f0FromSpecular != 0;
+  if (!materials || k + 1 >= segments.size()) return v;
+  // dL/d log w_{k+1}, per channel: the light of every later segment carries w_{k+1}.
+  Rgb later(0.0f);
+  for (size_t m = k + 1; m < segments.size(); ++m) later += v_specular * segments[m].throughput * segments[m].result.diffuse;
+  const StepMaterialDerivatives d =
+      stepMaterialDerivatives(segments[k].ray, segments[k].result, settings.path, segments[k + 1].ray.direction);
+  v.v_roughness += settings.roughnessFromSpecular * (later.x + later.y + later.z) * d.dLogWeightDRoughness;
+  v.v_f0 += settings.f0FromSpecular * later * d.dLogWeightDF0;
   return v;
 }
 
@@ -125,10 +150,10 @@ inline RayResultAdjoint segmentAdjoint(std::span<const PathSegment> segments, si
 // adjoint overflowed.
 template <typename F>
 int forEachSegmentAdjoint(std::span<const PathSegment> segments, const RayResultAdjoint& v_first,
-                          const Rgb& v_specular, bool weighted, F&& f) {
+                          const Rgb& v_specular, const PathGradientSettings& settings, F&& f) {
   int overflowed = 0;
   for (size_t k = 0; k < segments.size(); ++k) {
-    const RayResultAdjoint v = segmentAdjoint(segments, k, v_first, v_specular, weighted);
+    const RayResultAdjoint v = segmentAdjoint(segments, k, v_first, v_specular, settings);
     if (v.isZero()) continue;
     if (segments[k].hits.overflowed) {
       ++overflowed;
@@ -144,15 +169,16 @@ int forEachSegmentAdjoint(std::span<const PathSegment> segments, const RayResult
 // compositing into every attribute of the Gaussians it hits; segment k >= 1 receives
 // throughput_k x v_specular on its blended diffuse (times reflectionGradientWeight when
 // weighted), so the colour, opacity, position and shape of the Gaussians it hits. The
-// rays, throughputs and sampled directions are detached (the paper's choice), so nothing
-// flows from the specular term into normals, roughness or F0. Segments whose hit list
-// overflowed get no gradient; returns how many (of those with a non-zero adjoint) did. T = float in training, double for the
-// finite-difference tests.
+// rays and sampled directions are detached (the paper's choice), and so are the
+// throughputs unless the settings' material weights say otherwise (D15): by default
+// nothing flows from the specular term into normals, roughness or F0. Segments whose hit
+// list overflowed get no gradient; returns how many (of those with a non-zero adjoint)
+// did. T = float in training, double for the finite-difference tests.
 template <typename T, typename Sink>
 int tracePath_vjp(const GaussianScene& scene, const TraceSettings& trace, std::span<const PathSegment> segments,
-                  const RayResultAdjoint& v_first, const Rgb& v_specular, bool weighted, RayBackwardScratch<T>& scratch,
-                  Sink&& sink) {
-  return forEachSegmentAdjoint(segments, v_first, v_specular, weighted,
+                  const RayResultAdjoint& v_first, const Rgb& v_specular, const PathGradientSettings& settings,
+                  RayBackwardScratch<T>& scratch, Sink&& sink) {
+  return forEachSegmentAdjoint(segments, v_first, v_specular, settings,
                                [&](const PathSegment& segment, const RayResultAdjoint& v) {
                                  backwardRay<T>(scene, trace, segment.ray, segment.hits, segment.result, v, scratch,
                                                 sink);
@@ -163,6 +189,7 @@ int tracePath_vjp(const GaussianScene& scene, const TraceSettings& trace, std::s
 // segment with a non-zero adjoint and a whole hit list becomes a job, its hits appended to
 // `hits`. Returns how many segments overflowed, as tracePath_vjp does.
 int appendBackwardJobs(std::span<const PathSegment> segments, const RayResultAdjoint& v_first, const Rgb& v_specular,
-                       bool weighted, std::vector<BackwardJob>* jobs, std::vector<HitRecord>* hits);
+                       const PathGradientSettings& settings, std::vector<BackwardJob>* jobs,
+                       std::vector<HitRecord>* hits);
 
 }  // namespace glint

@@ -47,22 +47,46 @@ struct PathKey {
   uint64_t view = 0, pixel = 0, sample = 0;
 };
 
+// The GGX alpha of a blended roughness r: max(clamp(r, 0, 1), minRoughness)^2, at least
+// kMinGgxAlpha (CookTorranceLobe's own clamp), and d alpha / d r (0 where a clamp holds).
+struct LobeAlpha {
+  float alpha = kMinGgxAlpha;
+  float dAlphaDRoughness = 0;
+};
+
+GLINT_CPU_GPU inline LobeAlpha lobeAlpha(float roughness, float minRoughness) {
+  float rho = std::max(std::clamp(roughness, 0.0f, 1.0f), minRoughness);
+  float squared = rho * rho;
+  LobeAlpha a;
+  a.alpha = squared > kMinGgxAlpha ? squared : kMinGgxAlpha;
+  if (roughness > minRoughness && roughness < 1.0f && squared > kMinGgxAlpha) a.dAlphaDRoughness = 2.0f * roughness;
+  return a;
+}
+
+// The shading normal of a reflection off `result` (traced along `ray`), or false where the
+// blended normal is invalid and the path ends there. Blended normals may face away from
+// the incoming ray (Gaussians seen from behind); the surface is then taken as seen from
+// the ray's side.
+GLINT_CPU_GPU inline bool reflectionNormal(const TraceRay& ray, const RayResult& result, const PathSettings& settings,
+                                           Vec3f* n) {
+  if (!(result.normalLength >= settings.invalidNormalLength)) return false;
+  *n = result.normal / result.normalLength;
+  if (dot(*n, ray.direction) > 0) *n = -*n;
+  return true;
+}
+
 // The step from segment k - 1 (traced along `ray`, giving `result`) to segment k >= 1:
 // false when the path ends there (an invalid blended normal or an invalid sample); else
 // the next segment's ray and the factor its throughput gains.
 GLINT_CPU_GPU inline bool continuePath(const TraceRay& ray, const RayResult& result, const PathSettings& settings, uint64_t seed,
                   const PathKey& key, int k, TraceRay* next, Rgb* weight) {
-  if (!(result.normalLength >= settings.invalidNormalLength)) return false;
+  Vec3f n;
+  if (!reflectionNormal(ray, result, settings, &n)) return false;
   if (settings.minReflectance > 0 && std::max({result.f0.x, result.f0.y, result.f0.z}) < settings.minReflectance)
     return false;
-  Vec3f n = result.normal / result.normalLength;
-  // Blended normals may face away from the incoming ray (Gaussians seen from behind);
-  // the surface is then taken as seen from the ray's side.
-  if (dot(n, ray.direction) > 0) n = -n;
   Frame<float> frame = Frame<float>::fromNormal(n);
   Vec3f wo = frame.toLocal(-ray.direction);
-  float rho = std::max(std::clamp(result.roughness, 0.0f, 1.0f), settings.minRoughness);
-  CookTorranceLobe lobe(result.f0, rho * rho);
+  CookTorranceLobe lobe(result.f0, lobeAlpha(result.roughness, settings.minRoughness).alpha);
   // Dimension k of the pixel's stratified stream: a pixel's samples spread their
   // directions of segment k evenly over the lobe, which at 64 samples leaves far less
   // noise on glossy surfaces than independent numbers.
@@ -75,6 +99,33 @@ GLINT_CPU_GPU inline bool continuePath(const TraceRay& ray, const RayResult& res
   next->tMin = 0.0f;
   next->backfaceSkip = settings.backfaceSkip;
   return true;
+}
+
+// How the weight w of a step (continuePath from segment k - 1, traced along `ray` and
+// giving `result`, to the segment along `next`) changes with the material that chose it,
+// its direction and density held fixed (docs/derivations.md D15): w = F G2 D / (4 wo.z p)
+// with p detached, so d log w / d r = d log(D G2) / d alpha x d alpha / d r, and
+// d log w_c / d F0_c = (1 - (1 - wo.wm)^5) / F_c per channel. Zero where the step could not
+// have been taken.
+struct StepMaterialDerivatives {
+  float dLogWeightDRoughness = 0;
+  Rgb dLogWeightDF0{0.0f};
+};
+
+GLINT_CPU_GPU inline StepMaterialDerivatives stepMaterialDerivatives(const TraceRay& ray, const RayResult& result,
+                                                                     const PathSettings& settings, const Vec3f& next) {
+  StepMaterialDerivatives d;
+  Vec3f n, wm;
+  if (!reflectionNormal(ray, result, settings, &n)) return d;
+  Frame<float> frame = Frame<float>::fromNormal(n);
+  const Vec3f wo = frame.toLocal(-ray.direction), wi = frame.toLocal(next);
+  if (!reflectionHalfVector(wo, wi, &wm)) return d;
+  const LobeAlpha a = lobeAlpha(result.roughness, settings.minRoughness);
+  if (a.dAlphaDRoughness != 0) d.dLogWeightDRoughness = lobeLogAlphaDerivative(wo, wi, a.alpha) * a.dAlphaDRoughness;
+  const float cosD = dot(wo, wm), dFdF0 = 1.0f - schlickWeight(cosD);
+  const Rgb F = F_Schlick(result.f0, cosD);
+  for (int c = 0; c < 3; ++c) d.dLogWeightDF0[c] = F[c] > 0 ? dFdF0 / F[c] : 0.0f;
+  return d;
 }
 
 }  // namespace glint

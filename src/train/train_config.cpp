@@ -83,6 +83,8 @@ void forEachField(Config& c, F&& f) {
   f("loss", "f0", c.loss.f0);
   f("loss", "specular", c.loss.specular);
   f("loss", "depth_band", c.loss.depthBand);
+  f("loss", "roughness_from_specular", c.loss.roughnessFromSpecular);
+  f("loss", "f0_from_specular", c.loss.f0FromSpecular);
   // The learning rates, named by the parameter table.
   forEachParameter([&](const auto& p) {
     f("lr", p.rate.key, c.lr.*p.rate.initial);
@@ -276,6 +278,11 @@ void TrainConfig::validate(const std::string& source) const {
   checkDensifySettings(densify, source);
   require(reflectionWarmup >= 0, source, "reflection_warmup must be non-negative");
   require(loss.depthBand >= 0, source, "loss.depth_band must be non-negative (0 = off)");
+  for (float w : {loss.roughnessFromSpecular, loss.f0FromSpecular})
+    require(w >= 0 && w <= kMaxLossWeight, source,
+            "loss.roughness_from_specular and loss.f0_from_specular must be in [0, 1e6] (0 = off)");
+  require(!f0TintFromReflections || loss.f0FromSpecular > 0, source,
+          "f0_tint_from_reflections leaves F0's tint to L_r, which reaches F0 only with loss.f0_from_specular > 0");
   require(invalidNormalLength >= 0 && invalidNormalLength <= 1, source, "invalid_normal_length must be in [0, 1]");
   require(backfaceSkip >= 0, source, "backface_skip must be non-negative");
   require(scaleDecay > 0 && scaleDecay <= 1, source, "scale_decay must be in (0, 1]");

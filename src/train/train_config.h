@@ -37,6 +37,13 @@ struct LossWeights {
   // weight; an option beyond the paper, off: at 0.1 it gained 0.4 dB of specular on one
   // predicted capture and lost 0.3 on another (docs/captures.md).
   float depthBand = 0.0f;
+  // Weights of L_r's gradient into the roughness and the F0 of the surfaces a path reflects
+  // off, through each step's sample weight with its direction and density held fixed
+  // (render/gaussian_path.h, PathGradientSettings; docs/derivations.md D15). 0, the paper's
+  // detached throughputs: only the priors then set roughness and F0. Options beyond the
+  // paper (docs/captures.md).
+  float roughnessFromSpecular = 0.0f;
+  float f0FromSpecular = 0.0f;
 };
 
 struct AdamSettings {
@@ -110,15 +117,16 @@ struct TrainConfig {
   Baseline baseline = Baseline::None;
   int reflectionWarmup = 750;  // steps of first-segment training before reflections start
   // When true, a capture whose F0 is a predicted metalness (grey: a tinted metal's colour
-  // is lost) trains only F0's brightest channel against it and leaves its tint to L_r, an
-  // option beyond the paper. Off: it cost 1.6 dB of specular and 1.4 of final on the
-  // monocular room capture, whose gold sphere it was meant for (docs/captures.md).
+  // is lost) trains only F0's brightest channel against it and leaves its tint to L_r,
+  // which needs loss.f0_from_specular > 0 to reach F0. An option beyond the paper, off
+  // (docs/captures.md).
   bool f0TintFromReflections = false;
   // When true, the roughness term ignores a constant offset between the priors and the
   // model: it compares r + b with the prior p, b the median of p - r over the previous
   // step's surface pixels (train/roughness_shift.h), so a prior biased as a whole gives
   // its structure but not its level. No other term sets the level (L_r's gradient never
-  // reaches roughness), so it stays where the first steps leave it. An option beyond the
+  // reaches roughness unless loss.roughness_from_specular is set), so it stays where the
+  // first steps leave it. An option beyond the
   // paper, off: on one predicted capture +1.3 dB of specular at 8000 steps with the depth
   // loss and nothing without it, on another nothing (docs/captures.md).
   bool roughnessShiftInvariant = false;

@@ -112,6 +112,10 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   // whole images no faster in training mode, with its exact tail and hit lists (train_bench,
   // 2 threads: 0.092 against 0.090 Mrays/s, within the runs' variation).
   pathSettings.primaryCoherence = RayCoherence::Scattered;
+  PathGradientSettings gradients;
+  gradients.roughnessFromSpecular = config_.loss.roughnessFromSpecular;
+  gradients.f0FromSpecular = config_.loss.f0FromSpecular;
+  gradients.path = pathSettings;
   const bool scoring = backward && scoringSplits();
   const bool shiftInvariant = config_.roughnessShiftInvariant;
   if (scoring) {
@@ -220,10 +224,10 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
         // Fitting diffuse + specular to the final image sends the colour's gradient down the path too.
         if (reflections && target.finalColour) v_specular += v_first.v_diffuse;
         if (device)
-          slot.overflowed += appendBackwardJobs(path, v_first, v_specular, /*weighted=*/true, &slot.jobs, &slot.jobHits);
+          slot.overflowed += appendBackwardJobs(path, v_first, v_specular, gradients, &slot.jobs, &slot.jobHits);
         else
-          slot.overflowed += tracePath_vjp<float>(scene_, config_.trace, path, v_first, v_specular, /*weighted=*/true,
-                                                  slot.scratch, sink);
+          slot.overflowed +=
+              tracePath_vjp<float>(scene_, config_.trace, path, v_first, v_specular, gradients, slot.scratch, sink);
       }
     });
     if (device) handToDevice(device);

@@ -10,6 +10,7 @@
 
 #include "common/chi_square.h"
 #include "common/directions.h"
+#include "common/ggx_reference.h"
 #include "common/quadrature.h"
 #include "math/rng.h"
 #include "math/sampling.h"
@@ -154,6 +155,25 @@ TEST(MicrofacetChiSquare, VisibleNormalSampling) {
           normalGrid(alpha), [&](Vec2f u) { return sampleVisibleNormalGGX(wo, alpha, u); },
           [&](const Vec3f& wm) { return double(visibleNormalPdfGGX(wo, wm, alpha)); }, 500000, seed++, significance);
       EXPECT_TRUE(result.passed) << "alpha = " << alpha << ", wo.z = " << wo.z << ": " << result.message;
+    }
+  }
+}
+
+TEST(Microfacet, LobeLogAlphaDerivativeMatchesFiniteDifferences) {
+  Rng rng(31);
+  for (double alpha : {0.002, 0.03, 0.2, 0.6, 1.0}) {
+    for (int k = 0; k < 200; ++k) {
+      Vec3d wo(randomUpperDirection(rng, 0.05f)), wi(randomUpperDirection(rng, 0.05f));
+      if (k == 0) wi = Vec3d(-wo.x, -wo.y, wo.z);  // the mirror direction: wm = n
+      double h = 1e-6 * alpha;
+      double numeric = (std::log(test::ggxLobeReference(wo, wi, alpha + h)) -
+                        std::log(test::ggxLobeReference(wo, wi, alpha - h))) /
+                       (2 * h);
+      double analytic = lobeLogAlphaDerivative(wo, wi, alpha);
+      EXPECT_NEAR(analytic, numeric, 1e-6 * std::max(1.0, std::abs(numeric))) << alpha << " " << k;
+      // The float version training runs agrees to float rounding.
+      float single = lobeLogAlphaDerivative(Vec3f(wo), Vec3f(wi), float(alpha));
+      EXPECT_NEAR(single, analytic, 1e-4 * std::max(1.0, std::abs(analytic))) << alpha << " " << k;
     }
   }
 }

@@ -11,12 +11,14 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
 #include "common/double_compositor.h"
 #include "common/finite_difference.h"
+#include "common/ggx_reference.h"
 #include "math/frame.h"
 #include "math/rng.h"
 
@@ -181,7 +183,7 @@ std::vector<double> reflectionGradient(const PathCase& c, const Rgb& g, std::set
                                        int* overflowed = nullptr, const RayResultAdjoint& vFirst = {}) {
   std::vector<double> gradient(c.x.size(), 0.0);
   RayBackwardScratch<T> scratch;
-  int skipped = tracePath_vjp<T>(c.scene, c.trace, c.segments, vFirst, g, /*weighted=*/true, scratch,
+  int skipped = tracePath_vjp<T>(c.scene, c.trace, c.segments, vFirst, g, PathGradientSettings{}, scratch,
                                       [&](uint32_t id, const HitGradient<T>& hg) {
                                         test::accumulate(&gradient, id, hg);
                                         if (reached) reached->insert(id);
@@ -319,6 +321,110 @@ TEST(TracePathVjp, FloatAgreesWithDouble) {
   std::vector<double> reference = reflectionGradient<double>(c, loss.g);
   std::vector<double> single = reflectionGradient<float>(c, loss.g);
   test::expectGradientNear(single, reference, 1e-4, "float reflection gradient");
+}
+
+// D15: with L_r's gradient into roughness and F0 on, each step's weight w_j is a function
+// of the blended roughness and F0 of the surface it leaves, at its recorded directions and
+// density: w_j(theta) = w_j(theta_0) f_theta / f_theta_0, f = D G2 F. The whole gradient
+// (diffuse unweighted, so every term is the true derivative) matches central differences
+// of g . s with the rays held as recorded and the throughputs rescaled so.
+double lobeValue(const Vec3d& wo, const Vec3d& wi, double roughness, double minRoughness, double f0) {
+  double rho = std::max(std::clamp(roughness, 0.0, 1.0), minRoughness);
+  double alpha = std::max(rho * rho, double(kMinGgxAlpha));
+  double F = f0 + (1 - f0) * std::pow(1 - dot(wo, normalize(wo + wi)), 5);
+  return test::ggxLobeReference(wo, wi, alpha) * F;
+}
+
+TEST(TracePathVjp, MaterialGradientsMatchFiniteDifferencesOfTheDetachedWeights) {
+  PathCase c = makePathCase();
+  ASSERT_EQ(c.segments.size(), 3u);
+  PathGradientSettings settings;
+  settings.weightReflections = false;
+  settings.roughnessFromSpecular = 1;
+  settings.f0FromSpecular = 1;
+  settings.path = c.settings;
+  // The local directions of steps 1 and 2, in the frame continuePath used.
+  std::vector<Vec3d> wo(3), wi(3);
+  for (size_t j = 1; j < 3; ++j) {
+    const PathSegment& from = c.segments[j - 1];
+    Vec3f n;
+    ASSERT_TRUE(reflectionNormal(from.ray, from.result, c.settings, &n));
+    Framef frame = Framef::fromNormal(n);
+    wo[j] = Vec3d(frame.toLocal(-from.ray.direction));
+    wi[j] = Vec3d(frame.toLocal(c.segments[j].ray.direction));
+  }
+  std::vector<uint32_t> varied;
+  std::vector<std::set<uint32_t>> hits;
+  std::vector<test::Forward> base;
+  for (const PathSegment& s : c.segments) {
+    hits.push_back(hitIds(s));
+    base.push_back(test::traceDouble(c.x, s.ray, c.trace));
+  }
+  for (size_t k = 0; k < 3; ++k)
+    for (uint32_t id : hits[k]) {
+      for (size_t other = 0; other < 3; ++other) ASSERT_TRUE(other == k || !hits[other].count(id)) << id;
+      for (size_t j = 0; j < 3; ++j) ASSERT_GT(base[j].margin[id], 1e-3) << "Gaussian " << id << ", segment " << j;
+      varied.push_back(id);
+    }
+  // A truncated segment (the mirror is nearly opaque) holds its tail's colour ratio and
+  // T_f / tau_n as recorded, as backwardRay does (D12).
+  std::vector<std::optional<test::DetachedTail>> tails(3);
+  for (size_t k = 0; k < 3; ++k) {
+    if (!base[k].truncated) continue;
+    test::DetachedTail& tail = tails[k].emplace();
+    for (const test::Hit& h : base[k].composited) tail.order.push_back(h.id);
+    test::Outputs front = test::traceDouble(c.x, c.segments[k].ray, c.trace, &tail).out;
+    double ratio = base[k].finalT / base[k].tauN;
+    for (int i = 0; i < 11; ++i) tail.background[i] = (1 - ratio) * front[i] / (1 - base[k].tauN);
+  }
+  constexpr int kRoughness = 7, kF0 = 8;  // in test::Outputs
+  LossSetup loss(c.path.specular);
+  auto lossOf = [&](const std::vector<double>& t) {
+    std::vector<double> x = c.x;
+    for (size_t v = 0; v < varied.size(); ++v)
+      std::copy(t.begin() + v * kParams, t.begin() + (v + 1) * kParams, x.begin() + varied[v] * kParams);
+    std::vector<test::Outputs> out;
+    for (size_t k = 0; k < 3; ++k)
+      out.push_back(test::traceDouble(x, c.segments[k].ray, c.trace, tails[k] ? &*tails[k] : nullptr).out);
+    Vec3d specular(0.0), scale(1.0);
+    for (size_t k = 1; k < 3; ++k) {
+      for (int ch = 0; ch < 3; ++ch) {
+        double minRoughness = c.settings.minRoughness;
+        scale[ch] *= lobeValue(wo[k], wi[k], out[k - 1][kRoughness], minRoughness, out[k - 1][kF0 + ch]) /
+                     lobeValue(wo[k], wi[k], base[k - 1].out[kRoughness], minRoughness, base[k - 1].out[kF0 + ch]);
+      }
+      for (int ch = 0; ch < 3; ++ch) specular[ch] += c.segments[k].throughput[ch] * scale[ch] * out[k][ch];
+    }
+    return loss.loss(specular);
+  };
+  std::vector<double> theta;
+  for (uint32_t id : varied) theta.insert(theta.end(), c.x.begin() + id * kParams, c.x.begin() + (id + 1) * kParams);
+  ASSERT_NEAR(lossOf(theta), loss.loss(Vec3d(c.path.specular)), 1e-5);
+  std::vector<double> numeric = test::centralGradient(lossOf, theta);
+  std::vector<double> gradient(c.x.size(), 0.0);
+  RayBackwardScratch<double> scratch;
+  tracePath_vjp<double>(c.scene, c.trace, c.segments, RayResultAdjoint{}, loss.g, settings, scratch,
+                        [&](uint32_t id, const HitGradient<double>& hg) { test::accumulate(&gradient, id, hg); });
+  std::vector<double> reported;
+  for (uint32_t id : varied)
+    reported.insert(reported.end(), gradient.begin() + id * kParams, gradient.begin() + (id + 1) * kParams);
+  test::expectGradientNear(reported, numeric, 1e-4, "material gradients of the path");
+  // The check has teeth: the mirror's and the layer's roughness and F0 move the loss, and
+  // the mirror's Gaussians (hit by the first segment alone) get nothing without the option.
+  double roughness[2] = {0, 0}, f0[2] = {0, 0};
+  for (size_t v = 0; v < varied.size(); ++v)
+    for (size_t k = 0; k < 2; ++k)
+      if (hits[k].count(varied[v])) {
+        roughness[k] += std::abs(numeric[v * kParams + test::kNormalParam + 3]);
+        f0[k] += std::abs(numeric[v * kParams + test::kNormalParam + 4]);
+      }
+  for (size_t k = 0; k < 2; ++k) {
+    EXPECT_GT(roughness[k], 1e-4) << "segment " << k;
+    EXPECT_GT(f0[k], 1e-4) << "segment " << k;
+  }
+  std::set<uint32_t> reached;
+  reflectionGradient<double>(c, loss.g, &reached);
+  for (uint32_t id : hits[0]) EXPECT_FALSE(reached.count(id)) << id;
 }
 
 // A segment whose hit list overflowed gives no gradient and is counted.

@@ -20,6 +20,8 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.seed = 99;
   c.batchRays = 777;
   c.loss.normal = 0.5f;
+  c.loss.roughnessFromSpecular = 0.25f;
+  c.loss.f0FromSpecular = 2.0f;
   c.lr.f0 = 0.01f;
   c.prune.start = 17;
   c.initSource = InitChoice::DepthBuffers;
@@ -32,6 +34,8 @@ TEST(TrainConfig, RoundTripsEveryField) {
   applyJson(toJson(c), &back, "test");
   EXPECT_EQ(toJson(back), toJson(c));
   EXPECT_EQ(back.batchRays, 777);
+  EXPECT_EQ(back.loss.roughnessFromSpecular, 0.25f);
+  EXPECT_EQ(back.loss.f0FromSpecular, 2.0f);
   EXPECT_EQ(back.trace.exactTail, true);
   EXPECT_EQ(back.farField.count, 1234);
   ASSERT_EQ(back.farField.boxes.size(), 1u);
@@ -54,6 +58,9 @@ TEST(TrainConfig, DefaultsAreThePapers) {
   EXPECT_EQ(c.bounces, 2);
   EXPECT_EQ(c.reflectionWarmup, 750);
   EXPECT_EQ(c.loss.specular, 3.0f);
+  // The paper's detached throughputs: L_r reaches neither roughness nor F0.
+  EXPECT_EQ(c.loss.roughnessFromSpecular, 0.0f);
+  EXPECT_EQ(c.loss.f0FromSpecular, 0.0f);
   EXPECT_EQ(c.farField.count, 75000);
   EXPECT_EQ(c.farField.sigmaFactor, 4.0f);
   EXPECT_EQ(c.farField.truncation, 3.0f);
@@ -124,6 +131,9 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
                  "min must be below max");
   expectRejected("{\"baseline\": \"rgbd\"}", "baseline");
   expectRejected("{\"baseline\": \"rgb\"}", "G-buffer");  // bounces and G-buffer weights left on
+  expectRejected("{\"loss\": {\"roughness_from_specular\": -1}}", "roughness_from_specular");
+  // Leaving F0's tint to L_r needs L_r's gradient into F0.
+  expectRejected("{\"f0_tint_from_reflections\": true}", "loss.f0_from_specular > 0");
 }
 
 // The choices are enums in memory and keep their words in config.json, so runs written

@@ -402,7 +402,8 @@ TEST_F(TrainerTest, WholeImageTrainingImprovesTheTestViewsAndResumesBitExact) {
 // on the CPU, summed hit by hit and by the GPU's own algorithm (records sorted by Gaussian):
 // the jobs the trainer builds give its own gradients and split scores, bit for bit on one
 // thread (the same sums in the same order), to rounding on two (the threads sum apart,
-// then together), through reflected segments and weights.
+// then together), through reflected segments and weights, with L_r's gradient into
+// roughness and F0 on (D15), which the jobs' adjoints carry.
 TEST_F(TrainerTest, BackwardJobsGiveTheThreadsGradients) {
   TrainConfig c = smallConfig();
   c.bounces = 2;
@@ -413,6 +414,23 @@ TEST_F(TrainerTest, BackwardJobsGiveTheThreadsGradients) {
   std::unique_ptr<Trainer> warm = makeTrainer(c);
   for (int i = 0; i < 60; ++i) warm->step();
   const TrainingState state = warm->state();
+  c.loss.roughnessFromSpecular = 1.0f;
+  c.loss.f0FromSpecular = 1.0f;
+  {
+    // The options reach roughness and F0: their gradients move well beyond rounding.
+    TrainConfig off = c;
+    off.loss.roughnessFromSpecular = off.loss.f0FromSpecular = 0.0f;
+    Trainer with(c, *views_, cameraSpheres(*dataset_, dataset_->train()), state);
+    Trainer without(off, *views_, cameraSpheres(*dataset_, dataset_->train()), state);
+    std::vector<BatchRay> batch;
+    views_->drawBatch(c.seed, 3, c.batchRays, c.batchViews, &batch);
+    StepReport a, b;
+    with.forwardBackward(batch, true, &a);
+    without.forwardBackward(batch, true, &b);
+    const GaussianGradients &on = with.lastGradient(), &detached = without.lastGradient();
+    EXPECT_GT(test::relativeDifference(on.of(&GaussianScene::roughness), detached.of(&GaussianScene::roughness)), 0.01);
+    EXPECT_GT(test::relativeDifference(on.of(&GaussianScene::f0), detached.of(&GaussianScene::f0)), 0.01);
+  }
   const std::pair<GradientSum, int> runs[] = {
       {GradientSum::Atomic, 1}, {GradientSum::Atomic, 2}, {GradientSum::Sorted, 1}, {GradientSum::Sorted, 2}};
   for (const auto& [sum, threads] : runs) {
