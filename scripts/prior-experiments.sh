@@ -52,6 +52,7 @@ echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 3.0, "f0_from_specular":
 # L_r's gradient into roughness and F0 (docs/derivations.md D15), alone and with the
 # shift-invariant roughness term (which leaves the roughness level to it).
 echo '{"loss": {"roughness_from_specular": 1.0}}' > "$out/configs/rfs.json"
+echo '{"loss": {"roughness_from_specular": 0.1}}' > "$out/configs/rfs01.json"
 echo '{"roughness_shift_invariant": true}' > "$out/configs/shift.json"
 echo '{"roughness_shift_invariant": true, "loss": {"roughness_from_specular": 1.0}}' > "$out/configs/shift_rfs.json"
 echo '{"loss": {"f0_from_specular": 1.0}}' > "$out/configs/ffs.json"
@@ -77,7 +78,8 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   network_specular3 network_roughness01 network_normal25 monocular_preset_fine_voxels monocular_preset
   monocular_defaults monocular_specular3 monocular_specular3_f0_tint monodepthless_preset
   netnormal_defaults netroughness_defaults netradiance_defaults netdepth_defaults netf0_defaults
-  network_rfs network_shift network_shift_rfs monocular_ffs monocular_f0_tint}"
+  network_rfs network_shift network_shift_rfs monocular_ffs monocular_f0_tint exact_rfs
+  monocular_rfs network_rfs01 exact_rfs01}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"
