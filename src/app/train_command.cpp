@@ -310,10 +310,13 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
   if (o.session.resume && !run.hasConfig())
     throw Error(run.root().string(), "has no config.json: not a training run to resume");
   if (!o.session.resume) run.checkCanCreate(o.force);  // before the lock file goes in
+  // A new run's settings are read and checked before anything is written: a bad --config
+  // leaves no run folder behind.
+  TrainConfig config;
+  if (!o.session.resume) config = newRunConfig(o, cmd);
   // One writer per run folder: a second `train` (or a viewer saving into it) is refused with
   // the holder's PID. In an MPI job the rank that writes alone locks.
   std::unique_ptr<FolderLock> lock = run.lockForWriting("glint train");
-  TrainConfig config;
   if (o.session.resume) {
     if (!run.hasConfig()) throw Error(run.root().string(), "has no config.json: not a training run to resume");
     config = run.readConfig();
@@ -332,7 +335,6 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
   // else, and the folder itself only if this start made it.
   bool undoFailedStart = false, madeFolder = false;
   if (!o.session.resume) {
-    config = newRunConfig(o, cmd);
     madeFolder = !folderExisted;
     undoFailedStart = madeFolder || (fs::is_directory(run.root()) && isEmptyButForLock(run.root())) ||
                       run.isUnfinishedStart();

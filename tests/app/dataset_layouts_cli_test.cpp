@@ -134,6 +134,12 @@ TEST_F(DatasetLayoutsCliTest, AFailedStartLeavesNothingThatBlocksTheRetry) {
   EXPECT_NE(failed.status, 0);
   EXPECT_NE(failed.output.find("r_2.png"), std::string::npos) << failed.output;
   EXPECT_FALSE(fs::exists(path("F"))) << "the failed start left its run folder";
+  // Nor does a setting the config check refuses.
+  std::ofstream(path("bad.json")) << "{\"f0_tint_from_reflections\": true}";
+  Outcome badConfig = runGlint("train " + path("N") + " -o " + path("F") + " --iters 2 --config " + path("bad.json"));
+  EXPECT_NE(badConfig.status, 0);
+  EXPECT_NE(badConfig.output.find("bad.json"), std::string::npos) << badConfig.output;
+  EXPECT_FALSE(fs::exists(path("F"))) << "the refused config left a run folder";
 
   // A folder the user made stays, with the user's files in it.
   fs::create_directories(path("mine"));
