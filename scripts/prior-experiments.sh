@@ -79,7 +79,7 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   monocular_defaults monocular_specular3 monocular_specular3_f0_tint monodepthless_preset
   netnormal_defaults netroughness_defaults netradiance_defaults netdepth_defaults netf0_defaults
   network_rfs network_shift network_shift_rfs monocular_ffs monocular_f0_tint exact_rfs
-  monocular_rfs network_rfs01 exact_rfs01}"
+  monocular_rfs network_rfs01 exact_rfs01 monocular_rfs01}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"
