@@ -34,7 +34,7 @@ struct CookTorranceLobe {
 
   GLINT_CPU_GPU CookTorranceLobe() : CookTorranceLobe(Rgb(0.04f), 0.25f) {}
   // Clamps alpha to kMinGgxAlpha so a perfect mirror stays finite.
-  GLINT_CPU_GPU CookTorranceLobe(const Rgb& F0_, float alpha_) : F0(F0_), alpha(alpha_ > kMinGgxAlpha ? alpha_ : kMinGgxAlpha) {}
+  GLINT_CPU_GPU CookTorranceLobe(const Rgb& F0_, float alpha_) : F0(F0_), alpha(clampGgxAlpha(alpha_)) {}
 
   // f_s(wo, wi) cos(theta_i).
   GLINT_CPU_GPU Rgb eval(const Vec3f& wo, const Vec3f& wi) const {

@@ -19,6 +19,9 @@ namespace glint {
 // than a pixel footprint at any resolution we render, so it looks like a mirror.
 constexpr float kMinGgxAlpha = 1e-3f;
 
+// Alpha as every lobe evaluates it: at least kMinGgxAlpha (NaN becomes kMinGgxAlpha).
+GLINT_CPU_GPU inline float clampGgxAlpha(float alpha) { return alpha > kMinGgxAlpha ? alpha : kMinGgxAlpha; }
+
 // All functions take unit vectors in the local shading frame (normal = +z) and an
 // alpha >= kMinGgxAlpha (callers clamp; see PrincipledBrdf::alphaFromRoughness).
 

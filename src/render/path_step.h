@@ -48,7 +48,8 @@ struct PathKey {
 };
 
 // The GGX alpha of a blended roughness r: max(clamp(r, 0, 1), minRoughness)^2, at least
-// kMinGgxAlpha (CookTorranceLobe's own clamp), and d alpha / d r (0 where a clamp holds).
+// kMinGgxAlpha (clampGgxAlpha, as CookTorranceLobe clamps), and d alpha / d r (0 where a
+// clamp holds).
 struct LobeAlpha {
   float alpha = kMinGgxAlpha;
   float dAlphaDRoughness = 0;
@@ -58,7 +59,7 @@ GLINT_CPU_GPU inline LobeAlpha lobeAlpha(float roughness, float minRoughness) {
   float rho = std::max(std::clamp(roughness, 0.0f, 1.0f), minRoughness);
   float squared = rho * rho;
   LobeAlpha a;
-  a.alpha = squared > kMinGgxAlpha ? squared : kMinGgxAlpha;
+  a.alpha = clampGgxAlpha(squared);
   if (roughness > minRoughness && roughness < 1.0f && squared > kMinGgxAlpha) a.dAlphaDRoughness = 2.0f * roughness;
   return a;
 }

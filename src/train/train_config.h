@@ -128,9 +128,9 @@ struct TrainConfig {
   // step's surface pixels (train/roughness_shift.h), so a prior biased as a whole gives
   // its structure but not its level. No other term sets the level (L_r's gradient never
   // reaches roughness unless loss.roughness_from_specular is set), so it stays where the
-  // first steps leave it. An option beyond the
-  // paper, off: on one predicted capture +1.3 dB of specular at 8000 steps with the depth
-  // loss and nothing without it, on another nothing (docs/captures.md).
+  // first steps leave it. An option beyond the paper, off: on one predicted capture
+  // +1.3 dB of specular at 8000 steps with the depth loss and nothing without it, on
+  // another nothing (docs/captures.md).
   bool roughnessShiftInvariant = false;
   float invalidNormalLength = 0.7f;  // paths end at shorter blended normals
   float backfaceSkip = 0.1f;         // reflection rays ignore back faces this close

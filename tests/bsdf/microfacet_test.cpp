@@ -30,13 +30,12 @@ const float kMicrofacetAlphas[] = {0.05f, 0.2f, 0.5f, 1.0f};
 const Vec3f kMicrofacetViews[] = {Vec3f(0, 0, 1), direction(0.7, 0.4), direction(0.3, 2.0), direction(0.05, -2.5)};
 
 TEST(Microfacet, DMatchesWaltersClosedForm) {
-  // D = alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2), Walter et al. 2007, evaluated in double.
+  // D = alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2), Walter et al. 2007, evaluated in double
+  // (tests/common/ggx_reference.h).
   for (float alpha : {kMinGgxAlpha, 0.05f, 0.3f, 1.0f}) {
     for (double cosTheta : {1.0, 0.9999, 0.95, 0.6, 0.2, 0.01}) {
       Vec3f wm = direction(cosTheta, 1.1);
-      // tan^2 from the float components, so the reference sees the same direction as D_GGX.
-      double c = wm.z, tan2 = (double(wm.x) * wm.x + double(wm.y) * wm.y) / (c * c), a2 = double(alpha) * alpha;
-      double expected = a2 / (kPiD * c * c * c * c * (a2 + tan2) * (a2 + tan2));
+      double expected = test::ggxDReference(Vec3d(wm), alpha);
       EXPECT_NEAR(D_GGX(wm, alpha), expected, 2e-5 * expected) << alpha << " " << cosTheta;
     }
   }
@@ -47,8 +46,7 @@ TEST(Microfacet, LambdaMatchesClosedForm) {
   for (float alpha : {kMinGgxAlpha, 0.05f, 0.3f, 1.0f}) {
     for (double cosTheta : {1.0, 0.9, 0.5, 0.1, 0.001}) {
       Vec3f w = direction(cosTheta, -0.3);
-      double c = w.z, tan2 = (double(w.x) * w.x + double(w.y) * w.y) / (c * c);
-      double expected = (-1 + std::sqrt(1 + double(alpha) * alpha * tan2)) / 2;
+      double expected = test::smithLambdaReference(Vec3d(w), alpha);
       EXPECT_NEAR(lambdaGGX(w, alpha), expected, 1e-5 * expected + 1e-12) << alpha << " " << cosTheta;
     }
   }

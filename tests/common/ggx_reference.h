@@ -1,5 +1,6 @@
 // GGX's D and Smith's Lambda written out in double from their papers' closed forms: the
-// references the finite-difference tests of D15's gradients differentiate.
+// references the microfacet tests compare with and the finite-difference tests of D15's
+// gradients differentiate.
 #pragma once
 
 #include <cmath>
@@ -9,15 +10,18 @@
 
 namespace glint::test {
 
-// D = alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2) of the microfacet normal wm (Walter et al. 2007).
+// D = alpha^2 / (pi cos^4 (alpha^2 + tan^2)^2) of the microfacet normal wm (Walter et al.
+// 2007). tan^2 from wm's components, so a reference given a float direction sees the
+// direction D_GGX sees.
 inline double ggxDReference(const Vec3d& wm, double alpha) {
-  double a2 = alpha * alpha, c2 = wm.z * wm.z, tan2 = (1 - c2) / c2;
-  return a2 / (std::numbers::pi * c2 * c2 * (a2 + tan2) * (a2 + tan2));
+  double c = wm.z, tan2 = (wm.x * wm.x + wm.y * wm.y) / (c * c), a2 = alpha * alpha;
+  return a2 / (std::numbers::pi * c * c * c * c * (a2 + tan2) * (a2 + tan2));
 }
 
 // Lambda = (-1 + sqrt(1 + alpha^2 tan^2)) / 2 (Heitz 2014).
 inline double smithLambdaReference(const Vec3d& w, double alpha) {
-  return (-1 + std::sqrt(1 + alpha * alpha * (w.x * w.x + w.y * w.y) / (w.z * w.z))) / 2;
+  double tan2 = (w.x * w.x + w.y * w.y) / (w.z * w.z);
+  return (-1 + std::sqrt(1 + alpha * alpha * tan2)) / 2;
 }
 
 // D(wm) G2(wo, wi), wm = normalize(wo + wi), with the height-correlated G2 = 1 / (1 + Lambda(wo) + Lambda(wi)).
