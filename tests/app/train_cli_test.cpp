@@ -9,7 +9,10 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -46,12 +49,15 @@ class TrainCliTest : public ::testing::Test {
 
 fs::path* TrainCliTest::root_ = nullptr;
 
-const char* kTrainFlags = " --iters 1500 --batch-rays 512 --save-every 100 --eval-every 500 --threads 2 --seed 3";
+const char* kTrainFlags = " --iters 600 --batch-rays 512 --save-every 100 --eval-every 200 --threads 2 --seed 3";
 
 TEST_F(TrainCliTest, KilledAndResumedRunMatchesTheUninterruptedOne) {
-  // Reflections and the far-field Gaussians (fewer, for a 32x24 dataset) start at step
-  // 750, after the kill.
-  std::ofstream(path("small.json")) << R"({"far_field": {"count": 3000}})";
+  // The default schedule in 600 steps, after the kill at the first checkpoint (step 100):
+  // reflections and the far-field Gaussians (fewer, for a 32x24 dataset) from step 300,
+  // pruning from 400, a densification at 500 and 600.
+  std::ofstream(path("small.json"))
+      << R"({"far_field": {"count": 3000}, "reflection_warmup": 300, "prune": {"start": 400, "every": 50},)"
+      << R"( "densify": {"start": 500, "every": 100}})";
   const std::string flags = std::string(kTrainFlags) + " --config " + path("small.json");
   Outcome straight = runGlint("train " + path("D") + " -o " + path("A") + flags);
   ASSERT_EQ(straight.status, 0) << straight.output;
@@ -71,7 +77,7 @@ TEST_F(TrainCliTest, KilledAndResumedRunMatchesTheUninterruptedOne) {
   ASSERT_EQ(kill(pid, SIGKILL), 0) << "the run ended before it could be killed";
   while (kill(pid, 0) == 0) std::this_thread::sleep_for(std::chrono::milliseconds(5));
   std::string log = readBytes(path("B") + "/log.csv");
-  EXPECT_EQ(log.find("\n1500,"), std::string::npos) << "the run was killed only after it finished";
+  EXPECT_EQ(log.find("\n600,"), std::string::npos) << "the run was killed only after it finished";
 
   Outcome resumed = runGlint("train -o " + path("B") + " --resume");
   ASSERT_EQ(resumed.status, 0) << resumed.output;
@@ -79,7 +85,22 @@ TEST_F(TrainCliTest, KilledAndResumedRunMatchesTheUninterruptedOne) {
   EXPECT_EQ(readBytes(path("A") + "/scene.ply"), readBytes(path("B") + "/scene.ply"));
   // The log has each step once, as if never stopped.
   std::string resumedLog = readBytes(path("B") + "/log.csv");
-  EXPECT_EQ(std::count(resumedLog.begin(), resumedLog.end(), '\n'), 1501);
+  EXPECT_EQ(std::count(resumedLog.begin(), resumedLog.end(), '\n'), 601);
+  // The resumed steps crossed the schedule's changes: the far field joined (the Gaussian
+  // count, the log's ninth column, rose at step 301) and pruning removed Gaussians.
+  std::vector<long> count(1, 0);
+  std::istringstream lines(resumedLog);
+  std::string line;
+  std::getline(lines, line);  // the header
+  while (std::getline(lines, line)) {
+    std::istringstream fields(line);
+    std::string field;
+    for (int column = 0; column < 9; ++column) std::getline(fields, field, ',');
+    count.push_back(std::stol(field));
+  }
+  ASSERT_EQ(count.size(), 601u);
+  EXPECT_GT(count[301], count[300]) << "no far field joined";
+  EXPECT_LT(count[400], count[399]) << "no pruning at step 400";
 
   // The run evaluates and renders.
   Outcome eval = runGlint("eval " + path("A"));
