@@ -57,6 +57,9 @@ echo '{"roughness_shift_invariant": true}' > "$out/configs/shift.json"
 echo '{"roughness_shift_invariant": true, "loss": {"roughness_from_specular": 1.0}}' > "$out/configs/shift_rfs.json"
 echo '{"loss": {"f0_from_specular": 1.0}}' > "$out/configs/ffs.json"
 echo '{"f0_tint_from_reflections": true, "loss": {"f0_from_specular": 1.0}}' > "$out/configs/f0_tint.json"
+# The network kind's best 8000-step setting (normal weight 2.5, depth band 0.1) with L_r's
+# roughness gradient in place of the shift-invariant term.
+echo '{"loss": {"normal": 2.5, "depth_band": 0.1, "roughness_from_specular": 1.0}}' > "$out/configs/n25_band_rfs.json"
 echo '{"loss": {"roughness": 0.1}}' > "$out/configs/roughness01.json"
 echo '{"loss": {"normal": 2.5}}' > "$out/configs/normal25.json"
 # The monocular capture without its depth: initialised from the sparse points instead.
@@ -79,7 +82,7 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   monocular_defaults monocular_specular3 monocular_specular3_f0_tint monodepthless_preset
   netnormal_defaults netroughness_defaults netradiance_defaults netdepth_defaults netf0_defaults
   network_rfs network_shift network_shift_rfs monocular_ffs monocular_f0_tint exact_rfs
-  monocular_rfs network_rfs01 exact_rfs01 monocular_rfs01}"
+  monocular_rfs network_rfs01 exact_rfs01 monocular_rfs01 network_f0_tint network_n25_band_rfs}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"
