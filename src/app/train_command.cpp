@@ -318,8 +318,7 @@ void runTrain(const TrainOptions& o, const CLI::App& cmd) {
   // the holder's PID. In an MPI job the rank that writes alone locks.
   std::unique_ptr<FolderLock> lock = run.lockForWriting("glint train");
   if (o.session.resume) {
-    if (!run.hasConfig()) throw Error(run.root().string(), "has no config.json: not a training run to resume");
-    config = run.readConfig();
+    config = run.readConfig();  // after the lock: no other writer is changing it
     if (cmd.get_option("--iters")->count() > 0) config.iters = o.config.iters;  // a resumed run may run longer
     // A run killed (or failed) before its first checkpoint has its config.json but no
     // state: it starts again from step 0 with that config.

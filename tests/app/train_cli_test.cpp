@@ -9,7 +9,6 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,6 +17,7 @@
 
 #include "app/run_glint.h"
 #include "common/tfrecord_reader.h"
+#include "eval/training_log.h"
 #include "io/temp_folder.h"
 
 namespace glint {
@@ -87,20 +87,12 @@ TEST_F(TrainCliTest, KilledAndResumedRunMatchesTheUninterruptedOne) {
   std::string resumedLog = readBytes(path("B") + "/log.csv");
   EXPECT_EQ(std::count(resumedLog.begin(), resumedLog.end(), '\n'), 601);
   // The resumed steps crossed the schedule's changes: the far field joined (the Gaussian
-  // count, the log's ninth column, rose at step 301) and pruning removed Gaussians.
-  std::vector<long> count(1, 0);
-  std::istringstream lines(resumedLog);
-  std::string line;
-  std::getline(lines, line);  // the header
-  while (std::getline(lines, line)) {
-    std::istringstream fields(line);
-    std::string field;
-    for (int column = 0; column < 9; ++column) std::getline(fields, field, ',');
-    count.push_back(std::stol(field));
-  }
-  ASSERT_EQ(count.size(), 601u);
-  EXPECT_GT(count[301], count[300]) << "no far field joined";
-  EXPECT_LT(count[400], count[399]) << "no pruning at step 400";
+  // count rose at step 301; row i is step i + 1) and pruning removed Gaussians at step 400.
+  const TrainingLog trained = readTrainingLog(path("B") + "/log.csv", {"gaussians"});
+  const std::vector<double>& count = trained.column("gaussians");
+  ASSERT_EQ(count.size(), 600u);
+  EXPECT_GT(count[300], count[299]) << "no far field joined";
+  EXPECT_LT(count[399], count[398]) << "no pruning at step 400";
 
   // The run evaluates and renders.
   Outcome eval = runGlint("eval " + path("A"));
