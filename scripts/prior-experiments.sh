@@ -61,6 +61,23 @@ echo '{"f0_tint_from_reflections": true, "loss": {"f0_from_specular": 1.0}}' > "
 # roughness gradient in place of the shift-invariant term.
 echo '{"loss": {"normal": 2.5, "depth_band": 0.1, "roughness_from_specular": 1.0}}' > "$out/configs/n25_band_rfs.json"
 echo '{"loss": {"roughness": 0.1}}' > "$out/configs/roughness01.json"
+# The network kind's best setting (shift-invariant roughness, depth band 0.1) with the normal
+# weight lowered further: its normals carry 4 degrees of noise, which L_r may shape better.
+for w in 2.5 1 0.5; do
+  echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": $w, \"depth_band\": 0.1}}" \
+    > "$out/configs/n${w/./}_band_shift.json"
+done
+# The normals' learning rate decaying log-linearly to a tenth (nlr) or a hundredth (nlr100)
+# over the run: with noisy normal priors Adam's constant-rate steps keep the normals
+# jittering about their mean (docs/captures.md, "The normals' learning rate").
+nlr() { echo "\"lr\": {\"normal_final\": $1, \"normal_decay_steps\": $iters}"; }
+echo "{$(nlr 0.00025)}" > "$out/configs/nlr.json"
+echo "{\"bounces\": 2, \"loss\": {\"depth\": 0.0, \"specular\": 0.01}, $(nlr 0.00025)}" > "$out/configs/preset_nlr.json"
+for final in 0.00025 0.000025; do
+  name=nlr; [ "$final" = 0.000025 ] && name=nlr100
+  echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1}, $(nlr $final)}" \
+    > "$out/configs/n25_band_shift_$name.json"
+done
 echo '{"loss": {"normal": 2.5}}' > "$out/configs/normal25.json"
 # The monocular capture without its depth: initialised from the sparse points instead.
 if [ ! -d "$out/monodepthless" ]; then
@@ -82,7 +99,9 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   monocular_defaults monocular_specular3 monocular_specular3_f0_tint monodepthless_preset
   netnormal_defaults netroughness_defaults netradiance_defaults netdepth_defaults netf0_defaults
   network_rfs network_shift network_shift_rfs monocular_ffs monocular_f0_tint exact_rfs
-  monocular_rfs network_rfs01 exact_rfs01 monocular_rfs01 network_f0_tint network_n25_band_rfs}"
+  monocular_rfs network_rfs01 exact_rfs01 monocular_rfs01 network_f0_tint network_n25_band_rfs
+  network_n25_band_shift network_n1_band_shift network_n05_band_shift
+  network_n25_band_shift_nlr network_n25_band_shift_nlr100 monocular_nlr network_preset_nlr}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"
