@@ -69,7 +69,7 @@ for w in 2.5 1 0.5; do
 done
 # The normals' learning rate decaying log-linearly to a tenth (nlr) or a hundredth (nlr100)
 # over the run: with noisy normal priors Adam's constant-rate steps keep the normals
-# jittering about their mean (docs/captures.md, "The normals' learning rate").
+# jittering about their mean (docs/captures.md, "The normals' learning rate under noisy priors").
 nlr() { echo "\"lr\": {\"normal_final\": $1, \"normal_decay_steps\": $iters}"; }
 echo "{$(nlr 0.00025)}" > "$out/configs/nlr.json"
 echo "{\"bounces\": 2, \"loss\": {\"depth\": 0.0, \"specular\": 0.01}, $(nlr 0.00025)}" > "$out/configs/preset_nlr.json"
