@@ -72,12 +72,12 @@ done
 # jittering about their mean (docs/captures.md, "The normals' learning rate under noisy priors").
 nlr() { echo "\"lr\": {\"normal_final\": $1, \"normal_decay_steps\": $iters}"; }
 echo "{$(nlr 0.00025)}" > "$out/configs/nlr.json"
-echo "{\"bounces\": 2, \"loss\": {\"depth\": 0.0, \"specular\": 0.01}, $(nlr 0.00025)}" > "$out/configs/preset_nlr.json"
-for final in 0.00025 0.000025; do
-  name=nlr; [ "$final" = 0.000025 ] && name=nlr100
-  echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1}, $(nlr $final)}" \
-    > "$out/configs/n25_band_shift_$name.json"
-done
+# The preset's own values (scripts/real-capture-train.json) with the decay added.
+python3 -c 'import json, sys; c = json.load(open(sys.argv[1])); c["lr"] = json.loads("{" + sys.argv[2] + "}")["lr"]; print(json.dumps(c))' \
+  "$out/configs/preset.json" "$(nlr 0.00025)" > "$out/configs/preset_nlr.json"
+shift_band='"roughness_shift_invariant": true, "loss": {"normal": 2.5, "depth_band": 0.1}'
+echo "{$shift_band, $(nlr 0.00025)}" > "$out/configs/n25_band_shift_nlr.json"
+echo "{$shift_band, $(nlr 0.000025)}" > "$out/configs/n25_band_shift_nlr100.json"
 echo '{"loss": {"normal": 2.5}}' > "$out/configs/normal25.json"
 # The monocular capture without its depth: initialised from the sparse points instead.
 if [ ! -d "$out/monodepthless" ]; then
