@@ -78,6 +78,18 @@ python3 -c 'import json, sys; c = json.load(open(sys.argv[1])); c["lr"] = json.l
 shift_band='"roughness_shift_invariant": true, "loss": {"normal": 2.5, "depth_band": 0.1}'
 echo "{$shift_band, $(nlr 0.00025)}" > "$out/configs/n25_band_shift_nlr.json"
 echo "{$shift_band, $(nlr 0.000025)}" > "$out/configs/n25_band_shift_nlr100.json"
+# The roughness rate decaying the same way (the roughness priors are noisy too), on the best
+# setting.
+rlr100='"roughness_final": 0.000025, "roughness_decay_steps": '"$iters"
+echo "{$shift_band, \"lr\": {\"normal_final\": 0.000025, \"normal_decay_steps\": $iters, $rlr100}}" \
+  > "$out/configs/n25_band_shift_nlr100_rlr100.json"
+# The depth band alone on Glint's defaults (the monocular kind's geometry at 8000 steps).
+echo '{"loss": {"depth_band": 0.1}}' > "$out/configs/band.json"
+echo "{\"loss\": {\"depth_band\": 0.1}, $(nlr 0.000025)}" > "$out/configs/band_nlr100.json"
+# The same decay starting halfway (nlr100late): the normals follow the geometry freely while
+# it still moves, then settle.
+nlr_late="\"lr\": {\"normal_final\": 0.000025, \"normal_decay_start\": $((iters / 2)), \"normal_decay_steps\": $((iters / 2))}"
+echo "{$shift_band, $nlr_late}" > "$out/configs/n25_band_shift_nlr100late.json"
 echo '{"loss": {"normal": 2.5}}' > "$out/configs/normal25.json"
 # The monocular capture without its depth: initialised from the sparse points instead.
 if [ ! -d "$out/monodepthless" ]; then
@@ -101,7 +113,9 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   network_rfs network_shift network_shift_rfs monocular_ffs monocular_f0_tint exact_rfs
   monocular_rfs network_rfs01 exact_rfs01 monocular_rfs01 network_f0_tint network_n25_band_rfs
   network_n25_band_shift network_n1_band_shift network_n05_band_shift
-  network_n25_band_shift_nlr network_n25_band_shift_nlr100 monocular_nlr network_preset_nlr}"
+  network_n25_band_shift_nlr network_n25_band_shift_nlr100 monocular_nlr network_preset_nlr
+  network_n25_band_shift_nlr100_rlr100 monocular_band monocular_band_nlr100
+  monocular_n25_band_shift_nlr100 network_n25_band_shift_nlr100late monocular_n25_band_shift_nlr100late}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"

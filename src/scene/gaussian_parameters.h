@@ -36,8 +36,9 @@ template <typename T>
 constexpr T component(const Quat<T>& q, int k) { return k == 0 ? q.w : k == 1 ? q.x : k == 2 ? q.y : q.z; }
 
 // How Adam's rate of a parameter is found in LearningRates, with the JSON keys (under
-// "lr") of the members. A decaying rate goes log-linearly from `initial` to `final` over
-// `decaySteps` steps (train/adam.h, learningRatesAt); the others stay at `initial`.
+// "lr") of the members. A decaying rate stays at `initial` until step `decayStart`, then
+// goes log-linearly to `final` over `decaySteps` steps (train/adam.h, learningRatesAt); the
+// others stay at `initial`.
 struct ParameterRate {
   float LearningRates::*initial = nullptr;
   const char* key = "";
@@ -45,6 +46,8 @@ struct ParameterRate {
   const char* finalKey = "";
   int LearningRates::*decaySteps = nullptr;
   const char* decayStepsKey = "";
+  int LearningRates::*decayStart = nullptr;
+  const char* decayStartKey = "";
   bool timesSceneExtent = false;  // position: the rate is in units of the scene's radius
 };
 
@@ -72,7 +75,9 @@ constexpr void forEachParameter(F&& f) {
                              .rate = {.initial = &LearningRates::positionInit, .key = "position_init",
                                       .final = &LearningRates::positionFinal, .finalKey = "position_final",
                                       .decaySteps = &LearningRates::positionDecaySteps,
-                                      .decayStepsKey = "position_decay_steps", .timesSceneExtent = true}});
+                                      .decayStepsKey = "position_decay_steps",
+                                      .decayStart = &LearningRates::positionDecayStart,
+                                      .decayStartKey = "position_decay_start", .timesSceneExtent = true}});
   f(GaussianParameter<Quatf>{.index = 1, .name = "rotation", .label = "rotation",
                              .values = &GaussianScene::rotation, .neutral = Quatf{},
                              .plyNames = {"rot_0", "rot_1", "rot_2", "rot_3"}, .plyOrder = 4,
@@ -96,11 +101,18 @@ constexpr void forEachParameter(F&& f) {
                              .rate = {.initial = &LearningRates::normal, .key = "normal",
                                       .final = &LearningRates::normalFinal, .finalKey = "normal_final",
                                       .decaySteps = &LearningRates::normalDecaySteps,
-                                      .decayStepsKey = "normal_decay_steps"}});
+                                      .decayStepsKey = "normal_decay_steps",
+                                      .decayStart = &LearningRates::normalDecayStart,
+                                      .decayStartKey = "normal_decay_start"}});
   f(GaussianParameter<float>{.index = 6, .name = "roughness", .label = "roughness",
                              .values = &GaussianScene::roughness, .neutral = 0.0f,
                              .plyNames = {"roughness"}, .plyOrder = 6, .plyRequired = false,
-                             .rate = {.initial = &LearningRates::roughness, .key = "roughness"}});
+                             .rate = {.initial = &LearningRates::roughness, .key = "roughness",
+                                      .final = &LearningRates::roughnessFinal, .finalKey = "roughness_final",
+                                      .decaySteps = &LearningRates::roughnessDecaySteps,
+                                      .decayStepsKey = "roughness_decay_steps",
+                                      .decayStart = &LearningRates::roughnessDecayStart,
+                                      .decayStartKey = "roughness_decay_start"}});
   f(GaussianParameter<Rgb>{.index = 7, .name = "f0", .label = "F0",
                            .values = &GaussianScene::f0, .neutral = Rgb(0.04f),
                            .plyNames = {"f0_0", "f0_1", "f0_2"}, .plyOrder = 7, .plyRequired = false,

@@ -11,10 +11,10 @@ namespace glint {
 
 namespace {
 
-// From init at step 0 to final at decaySteps (and after): log-linear, or linear when either
-// end is zero.
-double decayedRate(float init, float final, int decaySteps, int64_t step) {
-  double t = std::clamp(double(step) / double(decaySteps), 0.0, 1.0);
+// init until decayStart, then to final at decayStart + decaySteps (and after): log-linear,
+// or linear when either end is zero.
+double decayedRate(float init, float final, int decayStart, int decaySteps, int64_t step) {
+  double t = std::clamp(double(step - decayStart) / double(decaySteps), 0.0, 1.0);
   return init > 0 && final > 0 ? std::exp((1 - t) * std::log(double(init)) + t * std::log(double(final)))
                                : double(init) * (1 - t) + double(final) * t;
 }
@@ -29,7 +29,7 @@ StepLearningRates learningRatesAt(const LearningRates& lr, float extent, int64_t
       rates.rate[p.index] = lr.*r.initial;
       return;
     }
-    double rate = decayedRate(lr.*r.initial, lr.*r.final, lr.*r.decaySteps, step);
+    double rate = decayedRate(lr.*r.initial, lr.*r.final, lr.*r.decayStart, lr.*r.decaySteps, step);
     rates.rate[p.index] = float(r.timesSceneExtent ? rate * extent : rate);
   });
   return rates;

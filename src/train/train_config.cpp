@@ -91,6 +91,7 @@ void forEachField(Config& c, F&& f) {
     if (!p.rate.final) return;
     f("lr", p.rate.finalKey, c.lr.*p.rate.final);
     f("lr", p.rate.decayStepsKey, c.lr.*p.rate.decaySteps);
+    f("lr", p.rate.decayStartKey, c.lr.*p.rate.decayStart);
   });
   f("adam", "beta1", c.adam.beta1);
   f("adam", "beta2", c.adam.beta2);
@@ -185,6 +186,11 @@ nlohmann::json toJson(const TrainConfig& config) {
 
 void applyJson(const nlohmann::json& json, TrainConfig* config, const std::string& source) {
   require(json.is_object(), source, "is not a JSON object of training settings");
+  // Which decaying rates are constant (final equal to initial) before these settings.
+  std::array<bool, kGaussianParameterCount> constantRate{};
+  forEachParameter([&](const auto& p) {
+    constantRate[p.index] = p.rate.final && config->lr.*p.rate.initial == config->lr.*p.rate.final;
+  });
   std::set<std::string> known;
   forEachField(*config, [&](const char* section, const char* key, auto& field) {
     known.insert(keyName(section, key));
@@ -234,6 +240,13 @@ void applyJson(const nlohmann::json& json, TrainConfig* config, const std::strin
       throw Error(source, "\"" + keyName(section, key) + "\": " + e.what());
     }
   });
+  // A constant rate given only its initial value stays constant: {"lr": {"roughness": 1e-3}}
+  // means 1e-3 throughout, not a schedule towards the old final value.
+  if (auto lr = json.find("lr"); lr != json.end())
+    forEachParameter([&](const auto& p) {
+      if (constantRate[p.index] && lr->contains(p.rate.key) && !lr->contains(p.rate.finalKey))
+        config->lr.*p.rate.final = config->lr.*p.rate.initial;
+    });
   for (auto it = json.begin(); it != json.end(); ++it) {
     if (it->is_object()) {
       for (auto inner = it->begin(); inner != it->end(); ++inner)
@@ -298,6 +311,7 @@ void TrainConfig::validate(const std::string& source) const {
     const ParameterRate& r = p.rate;
     if (!r.final) return;
     inRange(lr.*r.decaySteps, kEveryStepsRange, keyName("lr", r.decayStepsKey).c_str());
+    inRange(lr.*r.decayStart, kDecayStartRange, keyName("lr", r.decayStartKey).c_str());
     require(lr.*r.final <= lr.*r.initial, source,
             keyName("lr", r.finalKey) + " must not exceed " + keyName("lr", r.key));
   });

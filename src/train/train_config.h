@@ -93,6 +93,7 @@ inline constexpr IntRange kBatchRaysRange{1, 1 << 24};
 inline constexpr IntRange kBatchViewsRange{1, 1 << 20};
 inline constexpr IntRange kBatchImagesRange{0, 1 << 20};
 inline constexpr IntRange kEveryStepsRange{1, 100'000'000};  // eval_every, save_every, prune.every, decay steps
+inline constexpr IntRange kDecayStartRange{0, 100'000'000};  // the step a learning rate starts to decay
 // Loss weights above this would overflow Adam's second moment (gradients squared in float).
 inline constexpr float kMaxLossWeight = 1e6f;
 // Learning rates are in [0, this): an Adam step moves a parameter by about its rate.

@@ -86,7 +86,8 @@ TEST(GaussianParameters, RatesNameTheirLearningRates) {
   EXPECT_EQ(&(lr.*parameterOf(&GaussianScene::position).rate.initial), &lr.positionInit);
   EXPECT_EQ(&(lr.*parameterOf(&GaussianScene::logScale).rate.initial), &lr.scale);
   EXPECT_EQ(&(lr.*parameterOf(&GaussianScene::normal).rate.final), &lr.normalFinal);
-  EXPECT_EQ(parameterOf(&GaussianScene::roughness).rate.final, nullptr);
+  EXPECT_EQ(&(lr.*parameterOf(&GaussianScene::roughness).rate.final), &lr.roughnessFinal);
+  EXPECT_EQ(parameterOf(&GaussianScene::f0).rate.final, nullptr);
   std::set<std::string> keys;
   forEachParameter([&](const auto& p) { keys.insert(p.rate.key); });
   EXPECT_EQ(keys.size(), kGaussianParameterCount);

@@ -46,7 +46,7 @@ TEST(Adam, MatchesTheAlgorithmStepByStep) {
   EXPECT_EQ(adam.stepCount(), 20);
 }
 
-TEST(Adam, PositionAndNormalRatesDecayLogLinearly) {
+TEST(Adam, PositionNormalAndRoughnessRatesDecayLogLinearlyFromTheirStart) {
   LearningRates lr;
   float extent = 2.5f;
   EXPECT_NEAR(learningRatesAt(lr, extent, 0).of(&GaussianScene::position), 1.6e-4 * 2.5, 1e-9);
@@ -62,6 +62,19 @@ TEST(Adam, PositionAndNormalRatesDecayLogLinearly) {
   EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 0).of(&GaussianScene::normal), lr.normal);
   EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 2000).of(&GaussianScene::normal), lr.normal / 10);
   EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 9000).of(&GaussianScene::normal), lr.normal / 100);
+  // The roughness rate too, on its own schedule.
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 5000).of(&GaussianScene::roughness), lr.roughness);
+  lr.roughnessFinal = lr.roughness / 10;
+  lr.roughnessDecaySteps = 2000;
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 1000).of(&GaussianScene::roughness), lr.roughness / std::sqrt(10.0f));
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 2000).of(&GaussianScene::roughness), lr.roughness / 10);
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 2000).of(&GaussianScene::normal), lr.normal / 10);
+  // A decay that starts late holds the initial rate until its start.
+  lr.roughnessDecayStart = 3000;
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 2999).of(&GaussianScene::roughness), lr.roughness);
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 4000).of(&GaussianScene::roughness), lr.roughness / std::sqrt(10.0f));
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 5000).of(&GaussianScene::roughness), lr.roughness / 10);
+  EXPECT_FLOAT_EQ(learningRatesAt(lr, extent, 9000).of(&GaussianScene::roughness), lr.roughness / 10);
 }
 
 TEST(Adam, FilterKeepsTheMomentsOfKeptGaussians) {

@@ -23,6 +23,7 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.loss.roughnessFromSpecular = 0.25f;
   c.loss.f0FromSpecular = 2.0f;
   c.lr.f0 = 0.01f;
+  c.lr.normalDecayStart = 4000;
   c.prune.start = 17;
   c.initSource = InitChoice::DepthBuffers;
   c.trace.kernelPower = 2.0f;
@@ -36,6 +37,7 @@ TEST(TrainConfig, RoundTripsEveryField) {
   EXPECT_EQ(back.batchRays, 777);
   EXPECT_EQ(back.loss.roughnessFromSpecular, 0.25f);
   EXPECT_EQ(back.loss.f0FromSpecular, 2.0f);
+  EXPECT_EQ(back.lr.normalDecayStart, 4000);
   EXPECT_EQ(back.trace.exactTail, true);
   EXPECT_EQ(back.farField.count, 1234);
   ASSERT_EQ(back.farField.boxes.size(), 1u);
@@ -95,6 +97,25 @@ TEST(TrainConfig, RenderPathFollowsRenderBouncesOnlyForRunsWithReflections) {
   EXPECT_EQ(c.renderPath().invalidNormalLength, c.path().invalidNormalLength);
 }
 
+// A constant rate given only its initial value stays constant; given both, it decays; a
+// decaying rate (position) keeps its own final value.
+TEST(TrainConfig, AConstantRateGivenOnlyItsInitialValueStaysConstant) {
+  TrainConfig c;
+  applyJson(nlohmann::json::parse(R"({"lr": {"roughness": 0.001, "normal": 0.004, "position_init": 0.0002}})"), &c, "test");
+  EXPECT_EQ(c.lr.roughnessFinal, 0.001f);
+  EXPECT_EQ(c.lr.normalFinal, 0.004f);
+  EXPECT_EQ(c.lr.positionFinal, TrainConfig().lr.positionFinal);
+  TrainConfig d;
+  applyJson(nlohmann::json::parse(R"({"lr": {"roughness": 0.001, "roughness_final": 0.0001}})"), &d, "test");
+  EXPECT_EQ(d.lr.roughness, 0.001f);
+  EXPECT_EQ(d.lr.roughnessFinal, 0.0001f);
+  // Only the final value given: a decay from the default initial rate.
+  TrainConfig e;
+  applyJson(nlohmann::json::parse(R"({"lr": {"roughness_final": 0.0001}})"), &e, "test");
+  EXPECT_EQ(e.lr.roughness, TrainConfig().lr.roughness);
+  EXPECT_EQ(e.lr.roughnessFinal, 0.0001f);
+}
+
 // Writes `text` as a config file and expects readTrainConfig to refuse it, naming the file
 // and saying `detail`.
 void expectRejected(const std::string& text, const std::string& detail) {
@@ -119,6 +140,10 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   expectRejected("{\"lr\": {\"position_final\": 1.0}}", "position_final");
   expectRejected("{\"lr\": {\"normal_final\": 1.0}}", "normal_final");
   expectRejected("{\"lr\": {\"normal_decay_steps\": 0}}", "normal_decay_steps");
+  expectRejected("{\"lr\": {\"roughness_final\": 1.0}}", "roughness_final");
+  expectRejected("{\"lr\": {\"roughness\": 0.001, \"roughness_final\": 0.002}}", "roughness_final");
+  expectRejected("{\"lr\": {\"roughness_decay_steps\": 0}}", "roughness_decay_steps");
+  expectRejected("{\"lr\": {\"normal_decay_start\": -1}}", "normal_decay_start");
   expectRejected("{\"far_field\": {\"count\": -5}}", "far_field.count");
   expectRejected("{\"far_field\": {\"boxes\": {\"count\": 5}}}", "\"far_field.boxes\" has the wrong type");
   expectRejected("{\"far_field\": {\"boxes\": [{\"min\": [0, 0], \"max\": [1, 1, 1], \"count\": 5}]}}",
