@@ -70,7 +70,8 @@ done
 # The normals' learning rate decaying log-linearly to a tenth (nlr) or a hundredth (nlr100)
 # over the run: with noisy normal priors Adam's constant-rate steps keep the normals
 # jittering about their mean (docs/captures.md, "The normals' learning rate under noisy priors").
-nlr() { echo "\"lr\": {\"normal_final\": $1, \"normal_decay_steps\": $iters}"; }
+# (A second argument adds further "lr" fields.)
+nlr() { echo "\"lr\": {\"normal_final\": $1, \"normal_decay_steps\": $iters${2:+, $2}}"; }
 echo "{$(nlr 0.00025)}" > "$out/configs/nlr.json"
 # The preset's own values (scripts/real-capture-train.json) with the decay added.
 python3 -c 'import json, sys; c = json.load(open(sys.argv[1])); c["lr"] = json.loads("{" + sys.argv[2] + "}")["lr"]; print(json.dumps(c))' \
@@ -81,8 +82,7 @@ echo "{$shift_band, $(nlr 0.000025)}" > "$out/configs/n25_band_shift_nlr100.json
 # The roughness rate decaying the same way (the roughness priors are noisy too), on the best
 # setting.
 rlr100='"roughness_final": 0.000025, "roughness_decay_steps": '"$iters"
-echo "{$shift_band, \"lr\": {\"normal_final\": 0.000025, \"normal_decay_steps\": $iters, $rlr100}}" \
-  > "$out/configs/n25_band_shift_nlr100_rlr100.json"
+echo "{$shift_band, $(nlr 0.000025 "$rlr100")}" > "$out/configs/n25_band_shift_nlr100_rlr100.json"
 # The depth band alone on Glint's defaults (the monocular kind's geometry at 8000 steps).
 echo '{"loss": {"depth_band": 0.1}}' > "$out/configs/band.json"
 echo "{\"loss\": {\"depth_band\": 0.1}, $(nlr 0.000025)}" > "$out/configs/band_nlr100.json"
