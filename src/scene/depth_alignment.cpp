@@ -1,4 +1,5 @@
-// Least median of squares, then least squares on the inliers, for z = a d + b per view.
+// Least median of squares, then least squares on the inliers, for z = a d + b per view,
+// with residuals measured in the prediction d.
 #include "scene/depth_alignment.h"
 
 #include <algorithm>
@@ -150,38 +151,56 @@ DepthFit fitDepthAffine(std::span<const DepthPair> pairs, const DepthFitOptions&
                            std::to_string(std::max(options.minPairs, 2)) + ")");
   fit.medianAbsResidualBefore = medianAbsZResidual(used, [&](double d) { return zFromFitSpace(d, options.space); });
 
-  auto [minX, maxX] =
+  auto [minD, maxD] =
       std::minmax_element(points.begin(), points.end(), [](const FitPoint& p, const FitPoint& q) { return p.x < q.x; });
-  double rangeX = maxX->x - minX->x;
-  if (!(rangeX > 1e-12 * std::max(1.0, std::abs(maxX->x)))) return refuse(fit, "the predicted depths do not vary");
+  double rangeD = maxD->x - minD->x;
+  if (!(rangeD > 1e-12 * std::max(1.0, std::abs(maxD->x)))) return refuse(fit, "the predicted depths do not vary");
+
+  // The line is fitted as d = c y + e, the prediction against the points' depth, and turned
+  // into z = a d + b (a = 1 / c): the error is the prediction's (the sparse points' depths
+  // are triangulated from many views), so residuals are measured in it. Measured in z they
+  // let a wall the view mostly sees, a few percent deep, choose the slope: across it the
+  // prediction's own error varies more than the true depth, a line nearly flat in z fits it
+  // more tightly than the true one does, and least median of squares, which fits the
+  // tightest half of the pairs, took it (a monocular capture had 5 of 120 views fitted with
+  // a negative scale and 20 more with under half the true one; docs/captures.md). In d, the
+  // wall's spread is the same for every line through it, and the rest of the view decides.
+  std::vector<FitPoint> inverse;
+  inverse.reserve(points.size());
+  for (const FitPoint& p : points) inverse.push_back({p.y, p.x});
+  auto [minY, maxY] =
+      std::minmax_element(inverse.begin(), inverse.end(), [](const FitPoint& p, const FitPoint& q) { return p.x < q.x; });
 
   // Robust start and scale (Rousseeuw and Leroy 1987: the small-sample factor 1 + 5/(n - 2)).
-  auto [line, medianSq] = leastMedianOfSquares(points, options, 1e-9 * rangeX);
-  if (!std::isfinite(medianSq)) return refuse(fit, "no two pairs with distinct predicted depths");
+  auto [line, medianSq] = leastMedianOfSquares(inverse, options, 1e-9 * (maxY->x - minY->x));
+  if (!std::isfinite(medianSq)) return refuse(fit, "no two pairs with distinct sparse-point depths");
   double n = double(points.size());
   double sigma = kMadToSigma * (1.0 + 5.0 / std::max(n - 2.0, 1.0)) * std::sqrt(medianSq);
-  double threshold = options.inlierThreshold > 0 ? options.inlierThreshold : kInlierSigmas * sigma;
+  // The bounds given in fit-space units (z or 1/z) become bounds in d through the slope.
+  const double slope = std::abs(line.a);
+  double threshold = options.inlierThreshold > 0 ? options.inlierThreshold * slope : kInlierSigmas * sigma;
   std::vector<double> absY;
   for (const FitPoint& p : points) absY.push_back(std::abs(p.y));
   double medianY = medianInPlace(absY);
-  if (options.maxRelativeThreshold > 0) threshold = std::min(threshold, options.maxRelativeThreshold * medianY);
+  if (options.maxRelativeThreshold > 0) threshold = std::min(threshold, options.maxRelativeThreshold * medianY * slope);
   // Exact data has sigma 0: keep a bound at rounding level so that its pairs count as inliers.
-  threshold = std::max(threshold, 1e-12 * medianY);
+  threshold = std::max(threshold, 1e-12 * std::max(rangeD, medianY * slope));
 
   // Least squares on the inliers, until the inlier set stops changing.
   std::vector<char> inlier, previous;
-  int count = markInliers(points, line, threshold, &inlier);
+  int count = markInliers(inverse, line, threshold, &inlier);
   for (int iteration = 0; iteration < 20 && inlier != previous; ++iteration) {
     Line refit;
-    if (!leastSquares(points, inlier, &refit)) break;
+    if (!leastSquares(inverse, inlier, &refit)) break;
     line = refit;
     previous = inlier;
-    count = markInliers(points, line, threshold, &inlier);
+    count = markInliers(inverse, line, threshold, &inlier);
   }
 
-  fit.a = line.a, fit.b = line.b;
+  // d = c y + e  <=>  y = d / c - e / c.
+  if (line.a != 0) fit.a = 1.0 / line.a, fit.b = -line.b / line.a;
   fit.inliers = count;
-  fit.inlierThreshold = threshold;
+  fit.inlierThreshold = line.a != 0 ? threshold / std::abs(line.a) : 0.0;
   fit.medianAbsResidualAfter = medianAbsZResidual(used, [&](double d) { return fit.zDepth(d); });
   int minInliers = std::max(3, int(std::ceil(options.minInlierFraction * n)));
   if (count < minInliers)

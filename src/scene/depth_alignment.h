@@ -33,7 +33,7 @@ struct DepthFitOptions {
   int minPairs = 20;               // fewer usable pairs: the fit is refused
   double minInlierFraction = 0.5;  // least median of squares breaks down beyond 50% outliers
   int samplingRounds = 256;        // two-pair samples tried by the least-median-of-squares search
-  double inlierThreshold = 0;      // residual bound for inliers in fit-space units; 0 = 2.5 robust sigmas
+  double inlierThreshold = 0;      // residual bound for inliers in fit-space units (z or 1/z); 0 = 2.5 robust sigmas
   // The bound never exceeds this fraction of the median |z| (or |1/z|): when outliers are
   // the majority the robust sigma grows with them, and this keeps them from all becoming
   // inliers, so such data is refused instead of fitted.
@@ -61,7 +61,10 @@ struct DepthFit {
 };
 
 // Least median of squares over seeded two-pair samples gives a starting line and a robust
-// scale; least squares is then refitted on the inliers until the inlier set settles.
+// scale; least squares is then refitted on the inliers until the inlier set settles. Both
+// measure residuals in the prediction d (the line is fitted as d against z, or 1/z, and
+// inverted): the error is the predictor's, and residuals in z let a view that mostly sees
+// one wall fit the wall's noise instead of the view (see the .cpp).
 // Refused (ok = false, `problem` says why) with fewer than minPairs usable pairs,
 // predicted values that do not vary, too few inliers, or a <= 0 (depth must grow with
 // the prediction in both spaces).

@@ -106,6 +106,51 @@ TEST(DepthAlignment, ExactDataFitsExactly) {
   EXPECT_EQ(fit.inliers, 30);
 }
 
+// Pairs whose error is the prediction's, as a predictor's: z is exact, and the predicted
+// d = (z - b) / a carries noise of `relativeNoise` of z (in z units) and the given outliers.
+DepthPair predictedPair(Rng& rng, double z, double a, double b, double relativeNoise) {
+  return {(z + relativeNoise * z * gaussian(rng) - b) / a, z};
+}
+
+TEST(DepthAlignment, AViewMostlyOfOneWallIsFittedOverItsWholeDepthRange) {
+  // 60% of the points on a wall 4.95 to 5.15 deep, the rest spread from 1.6 to 4.5, and the
+  // prediction off by 4% of the depth: across the wall the prediction's error varies more
+  // than its depth, so a line nearly flat in z fits the wall more tightly than the true one.
+  // Fitted with residuals in z, least median of squares took that line (a scale below 0 or
+  // well under the true one); with residuals in the prediction it finds the true scale.
+  for (uint64_t seed = 1; seed <= 8; ++seed) {
+    Rng rng(seed);
+    const double a = 4.0, b = 1.3;
+    std::vector<DepthPair> pairs;
+    for (int n = 0; n < 700; ++n) {
+      const bool wall = n % 5 < 3;
+      double z = wall ? 4.95 + 0.2 * rng.uniformDouble() : 1.6 + 2.9 * rng.uniformDouble();
+      pairs.push_back(predictedPair(rng, z, a, b, 0.04));
+      if (n % 20 == 0) pairs.back().zDepth = 0.5 + 6.0 * rng.uniformDouble();  // 5% outliers
+    }
+    DepthFit fit = fitDepthAffine(pairs);
+    ASSERT_TRUE(fit.ok) << "seed " << seed << ": " << fit.problem;
+    EXPECT_NEAR(fit.a, a, 0.1 * a) << "seed " << seed;
+    EXPECT_NEAR(fit.zDepth((3.0 - b) / a), 3.0, 0.1) << "seed " << seed;
+  }
+}
+
+TEST(DepthAlignment, TheScaleIsNotShrunkByThePredictionsError) {
+  // Least squares of z on a noisy d shrinks the slope by var(d) / (var(d) + noise^2), here
+  // about 9%; fitted with the prediction as the noisy variable it holds.
+  Rng rng(21);
+  const double a = 3.0, b = 0.5;
+  std::vector<DepthPair> pairs;
+  for (int n = 0; n < 4000; ++n) {
+    double d = 0.05 + 0.9 * rng.uniformDouble();
+    pairs.push_back({d + 0.08 * gaussian(rng), a * d + b});
+  }
+  DepthFit fit = fitDepthAffine(pairs);
+  ASSERT_TRUE(fit.ok) << fit.problem;
+  EXPECT_NEAR(fit.a, a, 0.03 * a);
+  EXPECT_NEAR(fit.b, b, 0.05);
+}
+
 TEST(DepthAlignment, RefusesTooFewPairs) {
   std::vector<DepthPair> pairs = affinePairs(19, 1.0, 0.0, 0.0, 0.0, 1);
   DepthFit fit = fitDepthAffine(pairs);
