@@ -91,6 +91,11 @@ echo "{\"loss\": {\"depth_band\": 0.1}, $(nlr 0.000025)}" > "$out/configs/band_n
 nlr_late="\"lr\": {\"normal_final\": 0.000025, \"normal_decay_start\": $((iters / 2)), \"normal_decay_steps\": $((iters / 2))}"
 echo "{$shift_band, $nlr_late}" > "$out/configs/n25_band_shift_nlr100late.json"
 echo '{"loss": {"normal": 2.5}}' > "$out/configs/normal25.json"
+# The best setting with F0's tint learnt from the reflections (the monocular kind gives
+# metalness only, so its tinted metals start grey): tried at 2000 steps on the monocular
+# kind's geometry of the time, it had misplaced reflections to learn from.
+echo "{\"roughness_shift_invariant\": true, \"f0_tint_from_reflections\": true, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1, \"f0_from_specular\": 1.0}, $(nlr 0.000025)}" \
+  > "$out/configs/n25_band_shift_nlr100_f0_tint.json"
 # The monocular capture without its depth: initialised from the sparse points instead.
 if [ ! -d "$out/monodepthless" ]; then
   mkdir -p "$out/monodepthless/priors"
@@ -115,7 +120,8 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   network_n25_band_shift network_n1_band_shift network_n05_band_shift
   network_n25_band_shift_nlr network_n25_band_shift_nlr100 monocular_nlr network_preset_nlr
   network_n25_band_shift_nlr100_rlr100 monocular_band monocular_band_nlr100
-  monocular_n25_band_shift_nlr100 network_n25_band_shift_nlr100late monocular_n25_band_shift_nlr100late}"
+  monocular_n25_band_shift_nlr100 network_n25_band_shift_nlr100late monocular_n25_band_shift_nlr100late
+  monocular_n25_band_shift_nlr100_f0_tint}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"
