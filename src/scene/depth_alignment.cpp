@@ -14,7 +14,7 @@ namespace glint {
 
 namespace {
 
-// One (x, y) sample of the line fitted: x the prediction, y the z-depth or its inverse.
+// One (x, y) sample of the line fitted: x the z-depth or its inverse, y the prediction.
 struct FitPoint {
   double x = 0, y = 0;
 };
@@ -136,14 +136,14 @@ DepthFit fitDepthAffine(std::span<const DepthPair> pairs, const DepthFitOptions&
   fit.space = options.space;
   fit.pairsGiven = int(pairs.size());
 
-  // Usable pairs, and the same in fit space (y = z, or 1/z for disparity).
+  // Usable pairs, and the same as fit points (x = z, or 1/z for disparity; y = d).
   std::vector<DepthPair> used;
   std::vector<FitPoint> points;
   for (const DepthPair& p : pairs) {
     bool finite = std::isfinite(p.predicted) && std::isfinite(p.zDepth) && p.zDepth > 0;
     if (!finite || (options.space == DepthFitSpace::Disparity && !(p.predicted > 0))) continue;
     used.push_back(p);
-    points.push_back({p.predicted, options.space == DepthFitSpace::Depth ? p.zDepth : 1.0 / p.zDepth});
+    points.push_back({options.space == DepthFitSpace::Depth ? p.zDepth : 1.0 / p.zDepth, p.predicted});
   }
   fit.pairsUsed = int(used.size());
   if (fit.pairsUsed < std::max(options.minPairs, 2))
@@ -152,12 +152,12 @@ DepthFit fitDepthAffine(std::span<const DepthPair> pairs, const DepthFitOptions&
   fit.medianAbsResidualBefore = medianAbsZResidual(used, [&](double d) { return zFromFitSpace(d, options.space); });
 
   auto [minD, maxD] =
-      std::minmax_element(points.begin(), points.end(), [](const FitPoint& p, const FitPoint& q) { return p.x < q.x; });
-  double rangeD = maxD->x - minD->x;
-  if (!(rangeD > 1e-12 * std::max(1.0, std::abs(maxD->x)))) return refuse(fit, "the predicted depths do not vary");
+      std::minmax_element(points.begin(), points.end(), [](const FitPoint& p, const FitPoint& q) { return p.y < q.y; });
+  double rangeD = maxD->y - minD->y;
+  if (!(rangeD > 1e-12 * std::max(1.0, std::abs(maxD->y)))) return refuse(fit, "the predicted depths do not vary");
 
-  // The line is fitted as d = c y + e, the prediction against the points' depth, and turned
-  // into z = a d + b (a = 1 / c): the error is the prediction's (the sparse points' depths
+  // The line is fitted as d = c x + e, the prediction against the points' depth x (z or
+  // 1/z), and turned into x = a d + b (a = 1 / c): the error is the prediction's (the sparse points' depths
   // are triangulated from many views), so residuals are measured in it. Measured in z they
   // let a wall the view mostly sees, a few percent deep, choose the slope: across it the
   // prediction's own error varies more than the true depth, a line nearly flat in z fits it
@@ -165,39 +165,36 @@ DepthFit fitDepthAffine(std::span<const DepthPair> pairs, const DepthFitOptions&
   // tightest half of the pairs, took it (a monocular capture had 5 of 120 views fitted with
   // a negative scale and 20 more with under half the true one; docs/captures.md). In d, the
   // wall's spread is the same for every line through it, and the rest of the view decides.
-  std::vector<FitPoint> inverse;
-  inverse.reserve(points.size());
-  for (const FitPoint& p : points) inverse.push_back({p.y, p.x});
-  auto [minY, maxY] =
-      std::minmax_element(inverse.begin(), inverse.end(), [](const FitPoint& p, const FitPoint& q) { return p.x < q.x; });
+  auto [minX, maxX] =
+      std::minmax_element(points.begin(), points.end(), [](const FitPoint& p, const FitPoint& q) { return p.x < q.x; });
 
   // Robust start and scale (Rousseeuw and Leroy 1987: the small-sample factor 1 + 5/(n - 2)).
-  auto [line, medianSq] = leastMedianOfSquares(inverse, options, 1e-9 * (maxY->x - minY->x));
+  auto [line, medianSq] = leastMedianOfSquares(points, options, 1e-9 * (maxX->x - minX->x));
   if (!std::isfinite(medianSq)) return refuse(fit, "no two pairs with distinct sparse-point depths");
   double n = double(points.size());
   double sigma = kMadToSigma * (1.0 + 5.0 / std::max(n - 2.0, 1.0)) * std::sqrt(medianSq);
   // The bounds given in fit-space units (z or 1/z) become bounds in d through the slope.
   const double slope = std::abs(line.a);
   double threshold = options.inlierThreshold > 0 ? options.inlierThreshold * slope : kInlierSigmas * sigma;
-  std::vector<double> absY;
-  for (const FitPoint& p : points) absY.push_back(std::abs(p.y));
-  double medianY = medianInPlace(absY);
-  if (options.maxRelativeThreshold > 0) threshold = std::min(threshold, options.maxRelativeThreshold * medianY * slope);
+  std::vector<double> absX;
+  for (const FitPoint& p : points) absX.push_back(std::abs(p.x));
+  double medianX = medianInPlace(absX);
+  if (options.maxRelativeThreshold > 0) threshold = std::min(threshold, options.maxRelativeThreshold * medianX * slope);
   // Exact data has sigma 0: keep a bound at rounding level so that its pairs count as inliers.
-  threshold = std::max(threshold, 1e-12 * std::max(rangeD, medianY * slope));
+  threshold = std::max(threshold, 1e-12 * std::max(rangeD, medianX * slope));
 
   // Least squares on the inliers, until the inlier set stops changing.
   std::vector<char> inlier, previous;
-  int count = markInliers(inverse, line, threshold, &inlier);
+  int count = markInliers(points, line, threshold, &inlier);
   for (int iteration = 0; iteration < 20 && inlier != previous; ++iteration) {
     Line refit;
-    if (!leastSquares(inverse, inlier, &refit)) break;
+    if (!leastSquares(points, inlier, &refit)) break;
     line = refit;
     previous = inlier;
-    count = markInliers(inverse, line, threshold, &inlier);
+    count = markInliers(points, line, threshold, &inlier);
   }
 
-  // d = c y + e  <=>  y = d / c - e / c.
+  // d = c x + e  <=>  x = d / c - e / c.
   if (line.a != 0) fit.a = 1.0 / line.a, fit.b = -line.b / line.a;
   fit.inliers = count;
   fit.inlierThreshold = line.a != 0 ? threshold / std::abs(line.a) : 0.0;

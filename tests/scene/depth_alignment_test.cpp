@@ -107,7 +107,7 @@ TEST(DepthAlignment, ExactDataFitsExactly) {
 }
 
 // Pairs whose error is the prediction's, as a predictor's: z is exact, and the predicted
-// d = (z - b) / a carries noise of `relativeNoise` of z (in z units) and the given outliers.
+// d = (z - b) / a carries noise of `relativeNoise` of z (in z units).
 DepthPair predictedPair(Rng& rng, double z, double a, double b, double relativeNoise) {
   return {(z + relativeNoise * z * gaussian(rng) - b) / a, z};
 }
