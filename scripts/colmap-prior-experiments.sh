@@ -57,7 +57,7 @@ train_and_eval() {  # train_and_eval RUN CAPTURE TRUTH CONFIG
   fi
 }
 runs="${RUNS:-monocular_colmap_preset monocular_colmap_best monocular_colmap_preset_band
-  monocular_true_preset monocular_true_preset_band}"
+  monocular_true_preset monocular_true_preset_band network_colmap_preset network_colmap_preset_band}"
 for name in $runs; do
   kind="${name%%_*}"
   rest="${name#*_}"
