@@ -102,6 +102,13 @@ echo "{\"seed\": 1, $shift_band, $(nlr 0.000025)}" > "$out/configs/n25_band_shif
 # cameras the best setting above lost to the preset (docs/captures.md), so the preset may be
 # what to build on.
 echo '{"bounces": 2, "loss": {"depth_band": 0.1, "specular": 0.01}}' > "$out/configs/preset_band.json"
+# And with the depth only where 2 of each view's 8 neighbours agree within 2%
+# (train/depth_consistency.h): issue 44's multi-view consistency lever.
+echo '{"bounces": 2, "loss": {"depth_band": 0.1, "specular": 0.01, "depth_consistency": 0.02}}' \
+  > "$out/configs/preset_band_consistent.json"
+# The best setting with that check added.
+echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1, \"depth_consistency\": 0.02}, $(nlr 0.000025)}" \
+  > "$out/configs/n25_band_shift_nlr100_consistent.json"
 # The monocular capture without its depth: initialised from the sparse points instead.
 if [ ! -d "$out/monodepthless" ]; then
   mkdir -p "$out/monodepthless/priors"
@@ -128,7 +135,8 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   network_n25_band_shift_nlr100_rlr100 monocular_band monocular_band_nlr100
   monocular_n25_band_shift_nlr100 network_n25_band_shift_nlr100late monocular_n25_band_shift_nlr100late
   monocular_n25_band_shift_nlr100_f0_tint monocular_n25_band_shift_nlr100_seed1
-  monocular_preset_band}"
+  monocular_preset_band monocular_preset_band_consistent monocular_n25_band_shift_nlr100_consistent
+  network_n25_band_shift_nlr100_consistent}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"

@@ -12,6 +12,7 @@
 #include "core/printable_text.h"
 #include "io/json_file.h"
 #include "scene/gaussian_parameters.h"
+#include "train/depth_consistency.h"
 
 namespace glint {
 
@@ -83,6 +84,8 @@ void forEachField(Config& c, F&& f) {
   f("loss", "f0", c.loss.f0);
   f("loss", "specular", c.loss.specular);
   f("loss", "depth_band", c.loss.depthBand);
+  f("loss", "depth_consistency", c.loss.depthConsistency);
+  f("loss", "depth_consistency_views", c.loss.depthConsistencyViews);
   f("loss", "roughness_from_specular", c.loss.roughnessFromSpecular);
   f("loss", "f0_from_specular", c.loss.f0FromSpecular);
   // The learning rates, named by the parameter table.
@@ -291,6 +294,10 @@ void TrainConfig::validate(const std::string& source) const {
   checkDensifySettings(densify, source);
   require(reflectionWarmup >= 0, source, "reflection_warmup must be non-negative");
   require(loss.depthBand >= 0, source, "loss.depth_band must be non-negative (0 = off)");
+  require(loss.depthConsistency >= 0 && loss.depthConsistency < 1, source,
+          "loss.depth_consistency must be in [0, 1) (a fraction of the depth; 0 = off)");
+  require(loss.depthConsistencyViews >= 1 && loss.depthConsistencyViews <= kDepthConsistencyNeighbours, source,
+          "loss.depth_consistency_views must be in [1, 8] (of the 8 neighbouring views each view is checked against)");
   for (float w : {loss.roughnessFromSpecular, loss.f0FromSpecular})
     require(w >= 0 && w <= kMaxLossWeight, source,
             "loss.roughness_from_specular and loss.f0_from_specular must be in [0, 1e6] (0 = off)");

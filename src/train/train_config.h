@@ -37,6 +37,13 @@ struct LossWeights {
   // weight; an option beyond the paper, off: at 0.1 it gained 0.4 dB of specular on one
   // predicted capture and lost 0.3 on another (docs/captures.md).
   float depthBand = 0.0f;
+  // When positive, the depth term also leaves out every pixel whose depth fewer than
+  // depthConsistencyViews of its view's 8 most overlapping views confirm within this
+  // fraction (train/depth_consistency.h), checked once when the views load: multi-view
+  // consistency of the priors, beside the band's agreement with the geometry. Not a weight;
+  // an option beyond the paper, off (docs/captures.md).
+  float depthConsistency = 0.0f;
+  int depthConsistencyViews = 2;
   // Weights of L_r's gradient into the roughness and the F0 of the surfaces a path reflects
   // off, through each step's sample weight with its direction and density held fixed
   // (render/gaussian_path.h, PathGradientSettings; docs/derivations.md D15). 0, the paper's

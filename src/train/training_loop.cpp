@@ -188,6 +188,19 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
                                             config.baseline == Baseline::Rgb ? ColourTarget::Render
                                                                              : ColourTarget::Diffuse,
                                             config.f0TintFromReflections);
+  if (config.loss.depthConsistency > 0 && views.supervised().depth) {
+    activity.describe("checking each training view's depth against its neighbours'");
+    const DepthConsistency found = views.keepConsistentDepth(
+        {.tolerance = config.loss.depthConsistency, .minAgreeing = config.loss.depthConsistencyViews});
+    char message[300];
+    std::snprintf(message, sizeof(message),
+                  "depth consistency: %.1f%% of the depth pixels agree with %d or more of their view's %d "
+                  "neighbours within %g%%; the depth term leaves out the other %lld",
+                  found.depthPixels > 0 ? 100.0 * double(found.trustedPixels) / double(found.depthPixels) : 0.0,
+                  config.loss.depthConsistencyViews, kDepthConsistencyNeighbours,
+                  100.0 * double(config.loss.depthConsistency), (long long)views.untrustedDepthPixels());
+    if (run.writes()) observer.note(message);
+  }
   std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);
   // The test views are scored where the run is written (into log.csv).
   TestViews testViews = TestViews::load(dataset, dataset.test(), run.writes() ? session.evalViews : 0);

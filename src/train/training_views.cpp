@@ -120,7 +120,7 @@ PixelTarget TrainingViews::target(size_t view, size_t pixel) const {
   t.roughness = unpackUnorm8(p.roughness);
   t.f0 = Rgb(unpackUnorm8(p.f0[0]), unpackUnorm8(p.f0[1]), unpackUnorm8(p.f0[2]));
   t.hasSpecular = supervised_.specular;
-  t.hasDepth = supervised_.depth;
+  t.hasDepth = supervised_.depth && (depthTrusted_.empty() || depthTrusted_[firstPixel_[view] + pixel] != 0);
   t.hasNormal = supervised_.normal;
   t.hasRoughness = supervised_.roughness;
   t.hasF0 = supervised_.f0;
@@ -131,7 +131,7 @@ PixelTarget TrainingViews::target(size_t view, size_t pixel) const {
 
 size_t TrainingViews::memoryBytes() const {
   return targets_.capacity() * sizeof(PackedTarget) + cameras_.capacity() * sizeof(Camera) +
-         firstPixel_.capacity() * sizeof(size_t);
+         firstPixel_.capacity() * sizeof(size_t) + depthTrusted_.capacity();
 }
 
 TraceRay TrainingViews::pixelRay(size_t view, size_t pixel) const {
@@ -193,6 +193,24 @@ void TrainingViews::drawWholeImages(uint64_t seed, int64_t step, int images, std
     const uint32_t pixels = uint32_t(pixelCount(view));
     for (uint32_t p = 0; p < pixels; ++p) batch->push_back({pixelRay(view, p), view, p});
   }
+}
+
+DepthConsistency TrainingViews::keepConsistentDepth(const DepthConsistencyOptions& options) {
+  auto depth = [this](size_t view, size_t pixel) {
+    const uint16_t packed = targets_[firstPixel_[view] + pixel].depth;
+    return packed == 0 ? 0.0f : unpackDepth(packed);
+  };
+  if (!supervised_.depth) return {};  // every pixel then holds a placeholder depth of 1
+  DepthConsistency found = checkDepthConsistency(cameras_, depth, options);
+  depthTrusted_.assign(targets_.size(), 1);
+  untrustedDepthPixels_ = 0;
+  for (size_t v = 0; v < viewCount(); ++v)
+    for (size_t pixel = 0; pixel < pixelCount(v); ++pixel)
+      if (targets_[firstPixel_[v] + pixel].depth != 0 && found.agreeing[v][pixel] < options.minAgreeing) {
+        depthTrusted_[firstPixel_[v] + pixel] = 0;
+        ++untrustedDepthPixels_;
+      }
+  return found;
 }
 
 }  // namespace glint

@@ -10,6 +10,7 @@
 #include "raytrace/gaussian_tracer.h"
 #include "scene/camera.h"
 #include "scene/dataset.h"
+#include "train/depth_consistency.h"
 #include "train/packed_target.h"
 #include "train/ray_loss.h"
 
@@ -62,6 +63,14 @@ class TrainingViews {
   // target(view, pixel).surface without decoding the rest.
   bool surfaceAt(size_t view, size_t pixel) const { return targets_[firstPixel_[view] + pixel].depth != 0; }
   const SupervisedBuffers& supervised() const { return supervised_; }
+
+  // Leaves out of the depth term every pixel whose depth fewer than options.minAgreeing of
+  // its view's neighbours confirm (train/depth_consistency.h): a predicted depth that the
+  // other views' predictions contradict, or a camera whose pose puts its depth where the
+  // others' is not. Returns what was checked; target() then says hasDepth = false there.
+  DepthConsistency keepConsistentDepth(const DepthConsistencyOptions& options);
+  // Pixels left out of the depth term by keepConsistentDepth (0 before it).
+  int64_t untrustedDepthPixels() const { return untrustedDepthPixels_; }
   // Bytes held for the targets and cameras.
   size_t memoryBytes() const;
 
@@ -87,6 +96,8 @@ class TrainingViews {
   std::vector<size_t> firstPixel_;     // view v's targets are [firstPixel_[v], firstPixel_[v + 1])
   std::vector<PackedTarget> targets_;  // view-major, then row-major pixels
   SupervisedBuffers supervised_;
+  std::vector<uint8_t> depthTrusted_;  // per target: 0 = out of the depth term (empty: all in)
+  int64_t untrustedDepthPixels_ = 0;
 };
 
 }  // namespace glint

@@ -22,6 +22,8 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.loss.normal = 0.5f;
   c.loss.roughnessFromSpecular = 0.25f;
   c.loss.f0FromSpecular = 2.0f;
+  c.loss.depthConsistency = 0.03f;
+  c.loss.depthConsistencyViews = 3;
   c.lr.f0 = 0.01f;
   c.lr.normalDecayStart = 4000;
   c.prune.start = 17;
@@ -37,6 +39,8 @@ TEST(TrainConfig, RoundTripsEveryField) {
   EXPECT_EQ(back.batchRays, 777);
   EXPECT_EQ(back.loss.roughnessFromSpecular, 0.25f);
   EXPECT_EQ(back.loss.f0FromSpecular, 2.0f);
+  EXPECT_EQ(back.loss.depthConsistency, 0.03f);
+  EXPECT_EQ(back.loss.depthConsistencyViews, 3);
   EXPECT_EQ(back.lr.normalDecayStart, 4000);
   EXPECT_EQ(back.trace.exactTail, true);
   EXPECT_EQ(back.farField.count, 1234);
@@ -157,6 +161,9 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   expectRejected("{\"baseline\": \"rgbd\"}", "baseline");
   expectRejected("{\"baseline\": \"rgb\"}", "G-buffer");  // bounces and G-buffer weights left on
   expectRejected("{\"loss\": {\"roughness_from_specular\": -1}}", "roughness_from_specular");
+  expectRejected("{\"loss\": {\"depth_consistency\": 1.5}}", "loss.depth_consistency must be in [0, 1)");
+  expectRejected("{\"loss\": {\"depth_consistency_views\": 9}}", "loss.depth_consistency_views must be in [1, 8]");
+  expectRejected("{\"loss\": {\"depth_consistency_views\": 0}}", "loss.depth_consistency_views");
   // Leaving F0's tint to L_r needs L_r's gradient into F0.
   expectRejected("{\"f0_tint_from_reflections\": true}", "loss.f0_from_specular > 0");
 }
