@@ -22,6 +22,7 @@
 #include "train/camera_culling.h"
 #include "train/checkpoint.h"
 #include "train/dense_init.h"
+#include "train/depth_consistency.h"
 #include "train/divergence_monitor.h"
 #include "train/scene_extent.h"
 
