@@ -6,6 +6,7 @@
 #include <numeric>
 
 #include "core/parallel.h"
+#include "scene/predicted_buffers.h"
 
 namespace glint {
 
@@ -18,13 +19,6 @@ Vec3d depthPoint(const Camera& camera, size_t pixel, double depth) {
   const size_t x = pixel % size_t(camera.width), y = pixel / size_t(camera.width);
   const Ray ray = camera.generateRay(double(x) + 0.5, double(y) + 0.5);
   return ray.origin + ray.direction * depth;
-}
-
-// The length of generateRay's camera-space direction at (px, py) before normalising: ray
-// distance over z-depth.
-double rayLengthPerDepth(const Camera& camera, double px, double py) {
-  const double u = (px - camera.cx) / camera.fx, v = (py - camera.cy) / camera.fy;
-  return std::sqrt(1.0 + u * u + v * v);
 }
 
 // View u's depth (ray distance) at the continuous pixel position p. Where the four pixel
@@ -47,13 +41,13 @@ double depthAt(const Camera& camera, const DepthLookup& depth, size_t u, const V
     if (surface) {
       const double lo = std::min({d[0], d[1], d[2], d[3]}), hi = std::max({d[0], d[1], d[2], d[3]});
       if (hi <= lo * (1.0 + kOneSurfaceSpread)) {
+        const RayIntrinsics k{camera.fx, camera.fy, camera.cx, camera.cy};
         double inverseZ[4];
-        for (int k = 0; k < 4; ++k)
-          inverseZ[k] = rayLengthPerDepth(camera, x0 + k % 2 + 0.5, y0 + k / 2 + 0.5) / d[k];
+        for (int c = 0; c < 4; ++c) inverseZ[c] = rayLengthPerZ(k, x0 + c % 2, y0 + c / 2) / d[c];
         const double fx = gx - x0, fy = gy - y0;
         const double inverseZAtP = (inverseZ[0] * (1 - fx) + inverseZ[1] * fx) * (1 - fy) +
                                    (inverseZ[2] * (1 - fx) + inverseZ[3] * fx) * fy;
-        return rayLengthPerDepth(camera, p.x, p.y) / inverseZAtP;
+        return length(cameraRay(k, p.x, p.y)) / inverseZAtP;
       }
     }
   }

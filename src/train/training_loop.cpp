@@ -199,7 +199,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
                   "neighbours within %g%%; the depth term leaves out the other %lld",
                   found.depthPixels > 0 ? 100.0 * double(found.trustedPixels) / double(found.depthPixels) : 0.0,
                   config.loss.depthConsistencyViews, kDepthConsistencyNeighbours,
-                  100.0 * double(config.loss.depthConsistency), (long long)views.untrustedDepthPixels());
+                  100.0 * double(config.loss.depthConsistency), (long long)(found.depthPixels - found.trustedPixels));
     if (run.writes()) observer.note(message);
   }
   std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);

@@ -200,16 +200,14 @@ DepthConsistency TrainingViews::keepConsistentDepth(const DepthConsistencyOption
     const uint16_t packed = targets_[firstPixel_[view] + pixel].depth;
     return packed == 0 ? 0.0f : unpackDepth(packed);
   };
-  if (!supervised_.depth) return {};  // every pixel then holds a placeholder depth of 1
+  // Without depth buffers every pixel is packed as a surface at depth 1 (load): nothing to check.
+  if (!supervised_.depth) return {};
   DepthConsistency found = checkDepthConsistency(cameras_, depth, options);
   depthTrusted_.assign(targets_.size(), 1);
-  untrustedDepthPixels_ = 0;
   for (size_t v = 0; v < viewCount(); ++v)
     for (size_t pixel = 0; pixel < pixelCount(v); ++pixel)
-      if (targets_[firstPixel_[v] + pixel].depth != 0 && found.agreeing[v][pixel] < options.minAgreeing) {
+      if (targets_[firstPixel_[v] + pixel].depth != 0 && found.agreeing[v][pixel] < options.minAgreeing)
         depthTrusted_[firstPixel_[v] + pixel] = 0;
-        ++untrustedDepthPixels_;
-      }
   return found;
 }
 

@@ -67,10 +67,9 @@ class TrainingViews {
   // Leaves out of the depth term every pixel whose depth fewer than options.minAgreeing of
   // its view's neighbours confirm (train/depth_consistency.h): a predicted depth that the
   // other views' predictions contradict, or a camera whose pose puts its depth where the
-  // others' is not. Returns what was checked; target() then says hasDepth = false there.
+  // others' is not; target() then says hasDepth = false there. Returns what was checked
+  // (depthPixels - trustedPixels are left out).
   DepthConsistency keepConsistentDepth(const DepthConsistencyOptions& options);
-  // Pixels left out of the depth term by keepConsistentDepth (0 before it).
-  int64_t untrustedDepthPixels() const { return untrustedDepthPixels_; }
   // Bytes held for the targets and cameras.
   size_t memoryBytes() const;
 
@@ -97,7 +96,6 @@ class TrainingViews {
   std::vector<PackedTarget> targets_;  // view-major, then row-major pixels
   SupervisedBuffers supervised_;
   std::vector<uint8_t> depthTrusted_;  // per target: 0 = out of the depth term (empty: all in)
-  int64_t untrustedDepthPixels_ = 0;
 };
 
 }  // namespace glint
