@@ -43,12 +43,16 @@ make_capture exact
 
 # 2. The settings: the preset (scripts/real-capture-train.json), the preset with the depth
 # loss back through the band (and with it only where 2 of 8 neighbouring views agree within
-# 2%: train/depth_consistency.h), and the best setting of the true-camera runs on builtin:room
-# (scripts/prior-experiments.sh, docs/captures.md).
+# 2%: train/depth_consistency.h, in the loss alone and in the initialisation too), and the
+# best setting of the true-camera runs on builtin:room (scripts/prior-experiments.sh,
+# docs/captures.md).
 cp "$here/real-capture-train.json" "$out/configs/preset.json"
 echo '{"bounces": 2, "loss": {"depth_band": 0.1, "specular": 0.01}}' > "$out/configs/preset_band.json"
 echo '{"bounces": 2, "loss": {"depth_band": 0.1, "specular": 0.01, "depth_consistency": 0.02}}' \
   > "$out/configs/preset_band_consistent.json"
+# The same with the dense initialisation leaving out the untrusted depth too.
+echo '{"bounces": 2, "init": {"consistent_depth_only": true}, "loss": {"depth_band": 0.1, "specular": 0.01, "depth_consistency": 0.02}}' \
+  > "$out/configs/preset_band_consistent_init.json"
 echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1}, \"lr\": {\"normal_final\": 0.000025, \"normal_decay_steps\": $iters}}" \
   > "$out/configs/best.json"
 
@@ -61,7 +65,8 @@ train_and_eval() {  # train_and_eval RUN CAPTURE TRUTH CONFIG
 }
 runs="${RUNS:-monocular_colmap_preset monocular_colmap_best monocular_colmap_preset_band
   monocular_true_preset monocular_true_preset_band network_colmap_preset network_colmap_preset_band
-  monocular_colmap_preset_band_consistent network_colmap_preset_band_consistent monocular_true_preset_band_consistent}"
+  monocular_colmap_preset_band_consistent network_colmap_preset_band_consistent monocular_true_preset_band_consistent
+  monocular_colmap_preset_band_consistent_init}"
 for name in $runs; do
   kind="${name%%_*}"
   rest="${name#*_}"

@@ -167,7 +167,7 @@ GaussianScene gaussiansAtPoints(const ColouredPoints& points, const DenseInitSet
   return scene;
 }
 
-DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& settings) {
+DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& settings, const DepthTrust& trusted) {
   checkSettings(settings);
   const DatasetSplit& split = dataset.train();
   DenseInit result;
@@ -185,11 +185,23 @@ DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& 
   // Views are independent; concatenating them in view order keeps the sample order, and
   // so everything after it, independent of the thread count.
   std::vector<ColouredPoints> perView(split.views.size());
+  std::vector<int64_t> untrusted(split.views.size(), 0);
   parallelFor(int64_t(split.views.size()), 1, [&](int64_t i) {
     Image depth = dataset.loadBuffer(split, size_t(i), Buffer::Depth);
     Image diffuse = dataset.loadBuffer(split, size_t(i), colour);
+    if (trusted) {
+      // An untrusted pixel becomes a pixel without surface; only those the stride samples
+      // are counted, the samples it would have given.
+      for (int y = 0; y < depth.height; ++y)
+        for (int x = 0; x < depth.width; ++x)
+          if (hasSurface(depth.at(x, y)) && !trusted(size_t(i), size_t(y) * size_t(depth.width) + size_t(x))) {
+            depth.at(x, y) = 0.0f;
+            untrusted[size_t(i)] += (x % stride == stride / 2 && y % stride == stride / 2) ? 1 : 0;
+          }
+    }
     perView[size_t(i)] = unprojectDepth(depth, diffuse, split.camera(size_t(i)), stride);
   });
+  for (int64_t n : untrusted) result.stats.samplesUntrusted += n;
   ColouredPoints samples;
   for (ColouredPoints& view : perView) {
     samples.positions.insert(samples.positions.end(), view.positions.begin(), view.positions.end());
@@ -198,6 +210,11 @@ DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& 
   }
   result.stats.pointsUnprojected = int64_t(samples.positions.size());
   const std::string depthFolder = (dataset.root() / "train" / "depth").string();
+  if (samples.positions.empty() && result.stats.samplesUntrusted > 0)
+    throw Error(depthFolder, "the multi-view consistency check trusts none of the " +
+                                 std::to_string(result.stats.samplesUntrusted) +
+                                 " sampled surface pixels of the training depth buffers: nothing to initialise the "
+                                 "scene from (raise loss.depth_consistency, or set init.consistent_depth_only false)");
   if (samples.positions.empty())
     throw Error(depthFolder, "no sampled pixel of the training depth buffers has a surface (depth 0 or >= 1e9 "
                              "everywhere): nothing to initialise the scene from");
@@ -268,14 +285,14 @@ DenseInit initFromSparsePoints(const Dataset& dataset, const DenseInitSettings& 
   return init;
 }
 
-DenseInit denseInitialisation(const Dataset& dataset, const DenseInitSettings& settings) {
+DenseInit denseInitialisation(const Dataset& dataset, const DenseInitSettings& settings, const DepthTrust& trusted) {
   if (!settings.forceDepthBuffers && dataset.pointCloudPath()) return initFromPointCloud(dataset, settings);
   const bool hasDepth = dataset.findBufferFile(dataset.train().views.at(0), Buffer::Depth).has_value();
   if (!hasDepth && dataset.capture() && !dataset.capture()->points.empty())
     return initFromSparsePoints(dataset, settings);
   // --init depth on a dataset without depth goes on to the error naming the missing buffers.
   if (!hasDepth && !settings.forceDepthBuffers) return initInCameraVolume(dataset, settings);
-  return initFromDepthBuffers(dataset, settings);
+  return initFromDepthBuffers(dataset, settings, trusted);
 }
 
 }  // namespace glint

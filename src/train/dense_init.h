@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "io/image.h"
@@ -59,6 +60,7 @@ struct DenseInitStats {
   float depthResidual = 0.0f;     // depth buffers of a capture: the fits' median residual (0: none)
   float sceneExtent = 0.0f;
   int64_t shellGaussians = 0;     // camera volume only: the background shell
+  int64_t samplesUntrusted = 0;   // depth buffers only: sampled surface pixels the DepthTrust left out
 };
 
 struct DenseInit {
@@ -72,13 +74,22 @@ struct ColouredPoints {
   std::vector<Rgb> colours;
 };
 
+// Whether a training view's depth at a row-major pixel may be unprojected: the multi-view
+// consistency check's verdict (TrainingViews::depthTrusted, TrainConfig::initConsistentDepthOnly).
+// Empty: every surface pixel may.
+using DepthTrust = std::function<bool(size_t view, size_t pixel)>;
+
 // Uses point_cloud_dense.ply when present (unless settings.forceDepthBuffers), else the
 // training depth buffers, else (a capture without depth) the sparse points, else (final
 // images only) random points in the cameras' view volume.
-DenseInit denseInitialisation(const Dataset& dataset, const DenseInitSettings& settings = {});
+// `trusted` applies to the depth buffers only.
+DenseInit denseInitialisation(const Dataset& dataset, const DenseInitSettings& settings = {},
+                              const DepthTrust& trusted = {});
 // The two sources on their own. Throw Error naming the file for unusable input (no
 // surface pixels at all, an empty or colourless or non-finite point cloud).
-DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& settings = {});
+// initFromDepthBuffers unprojects only the pixels `trusted` allows (all when it is empty).
+DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& settings = {},
+                               const DepthTrust& trusted = {});
 DenseInit initFromPointCloud(const Dataset& dataset, const DenseInitSettings& settings = {});
 // A capture's sparse points (COLMAP's points3D), for captures without depth buffers.
 DenseInit initFromSparsePoints(const Dataset& dataset, const DenseInitSettings& settings = {});

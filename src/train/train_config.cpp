@@ -116,6 +116,7 @@ void forEachField(Config& c, F&& f) {
   f("init", "voxel_fraction", c.init.voxelFraction);
   f("init", "min_samples_per_voxel", c.init.minSamplesPerVoxel);
   f("init", "depth_residual_voxels", c.init.depthResidualVoxels);
+  f("init", "consistent_depth_only", c.initConsistentDepthOnly);
   f("init", "neighbours", c.init.neighbours);
   f("init", "opacity", c.init.opacity);
   f("init", "roughness", c.init.roughness);
@@ -298,6 +299,11 @@ void TrainConfig::validate(const std::string& source) const {
           "loss.depth_consistency must be in [0, 1) (a fraction of the depth; 0 = off)");
   require(loss.depthConsistencyViews >= 1 && loss.depthConsistencyViews <= kDepthConsistencyNeighbours, source,
           "loss.depth_consistency_views must be in [1, 8] (of the 8 neighbouring views each view is checked against)");
+  require(!initConsistentDepthOnly || loss.depthConsistency > 0, source,
+          "init.consistent_depth_only needs loss.depth_consistency > 0: the check's tolerance decides which depth "
+          "pixels are trusted");
+  require(!initConsistentDepthOnly || initSource != InitChoice::PointCloud, source,
+          "init.consistent_depth_only applies to the depth buffers; init.source \"point-cloud\" does not read them");
   for (float w : {loss.roughnessFromSpecular, loss.f0FromSpecular})
     require(w >= 0 && w <= kMaxLossWeight, source,
             "loss.roughness_from_specular and loss.f0_from_specular must be in [0, 1e6] (0 = off)");

@@ -161,6 +161,11 @@ struct TrainConfig {
   // the depth buffers), "depth" or "point-cloud", and the settings of either.
   InitChoice initSource = InitChoice::Auto;
   DenseInitSettings init;
+  // With loss.depth_consistency on, the initialisation from depth buffers also leaves out
+  // the pixels the check does not trust, instead of unprojecting every depth pixel: the
+  // Gaussians a contradicted prior would place are never made. An option beyond the
+  // paper, off (docs/captures.md).
+  bool initConsistentDepthOnly = false;
   FarFieldSettings farField;  // added when reflections start (bounces > 0)
   // Early termination, as in rendering: the exact final transmittance of the A.2 tail
   // estimate needs every hit behind the termination point, through walls and into the

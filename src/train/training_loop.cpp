@@ -103,11 +103,15 @@ std::string logRow(const StepReport& r, double wall, const std::optional<TestSco
   return line;
 }
 
-GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config, TrainingObserver& observer) {
+GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config, const TrainingViews& views,
+                           TrainingObserver& observer) {
   DenseInitSettings settings = config.init;
   settings.forceDepthBuffers = config.initSource == InitChoice::DepthBuffers;
+  DepthTrust trusted;
+  if (config.initConsistentDepthOnly && views.supervised().depth)
+    trusted = [&views](size_t view, size_t pixel) { return views.depthTrusted(view, pixel); };
   DenseInit init = config.initSource == InitChoice::PointCloud ? initFromPointCloud(dataset, settings)
-                                                                : denseInitialisation(dataset, settings);
+                                                                : denseInitialisation(dataset, settings, trusted);
   const DenseInitStats& st = init.stats;
   char voxelNote[96] = "";
   if (st.depthResidual > 0.0f && st.voxelSize <= settings.depthResidualVoxels * st.depthResidual)
@@ -130,11 +134,13 @@ GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config, Tr
                   init.scene.size(), (long long)st.pointsUnprojected);
   else
     std::snprintf(message, sizeof(message),
-                  "initialised %zu Gaussians from the depth buffers (stride %d, %lld samples, voxel %.4g%s, %lld of "
+                  "initialised %zu Gaussians from the depth buffers (stride %d, %lld samples%s, voxel %.4g%s, %lld of "
                   "%lld voxels kept)",
-                  init.scene.size(), st.pixelStride, (long long)st.pointsUnprojected, st.voxelSize,
-                  voxelNote,
-                  (long long)st.voxelsKept, (long long)st.voxelsOccupied);
+                  init.scene.size(), st.pixelStride, (long long)st.pointsUnprojected,
+                  st.samplesUntrusted > 0 ? (", " + std::to_string(st.samplesUntrusted) +
+                                             " more the consistency check does not trust left out").c_str()
+                                          : "",
+                  st.voxelSize, voxelNote, (long long)st.voxelsKept, (long long)st.voxelsOccupied);
   observer.note(message);
   return std::move(init.scene);
 }
@@ -165,7 +171,7 @@ double setUpTrainer(const RunFolder& run, const TrainConfig& config, const Train
     return wallOffset;
   }
   float extent = sceneExtent(dataset.train());
-  GaussianScene initial = initialScene(dataset, config, observer);
+  GaussianScene initial = initialScene(dataset, config, views, observer);
   *trainer = std::make_unique<Trainer>(config, views, std::move(spheres), std::move(initial), extent, session.tracer);
   writeTextAtomically(run.logFile(), kLogHeader);
   return 0;

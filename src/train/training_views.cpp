@@ -120,7 +120,7 @@ PixelTarget TrainingViews::target(size_t view, size_t pixel) const {
   t.roughness = unpackUnorm8(p.roughness);
   t.f0 = Rgb(unpackUnorm8(p.f0[0]), unpackUnorm8(p.f0[1]), unpackUnorm8(p.f0[2]));
   t.hasSpecular = supervised_.specular;
-  t.hasDepth = supervised_.depth && (depthTrusted_.empty() || depthTrusted_[firstPixel_[view] + pixel] != 0);
+  t.hasDepth = depthTrusted(view, pixel);
   t.hasNormal = supervised_.normal;
   t.hasRoughness = supervised_.roughness;
   t.hasF0 = supervised_.f0;

@@ -70,6 +70,11 @@ class TrainingViews {
   // others' is not; target() then says hasDepth = false there. Returns what was checked
   // (depthPixels - trustedPixels are left out).
   DepthConsistency keepConsistentDepth(const DepthConsistencyOptions& options);
+  // target(view, pixel).hasDepth without decoding the rest: false without depth buffers and
+  // where keepConsistentDepth left the pixel out.
+  bool depthTrusted(size_t view, size_t pixel) const {
+    return supervised_.depth && (depthTrusted_.empty() || depthTrusted_[firstPixel_[view] + pixel] != 0);
+  }
   // Bytes held for the targets and cameras.
   size_t memoryBytes() const;
 

@@ -257,6 +257,50 @@ TEST_F(DenseInitDataset, NoSurfaceAnywhereIsAnError) {
   test::expectErrorNaming([&] { initFromDepthBuffers(dataset); }, folder / "train" / "depth", "no sampled pixel");
 }
 
+// The multi-view consistency check's verdict (init.consistent_depth_only): a view whose depth
+// is 30% too far puts points below the plane, and leaving its pixels out removes them, with
+// every untrusted sample counted and nothing else changed.
+TEST_F(DenseInitDataset, UntrustedDepthIsNotUnprojected) {
+  test::PlaneDataset data = test::writePlaneDataset(folder.path(), test::ringOfEyes(6));
+  ViewBuffers wrong = data.trainBuffers[0];
+  for (float& d : wrong[Buffer::Depth].pixels) d *= 1.3f;
+  writeViewBuffers(folder.path(), data.train.views[0], wrong, ImageFormat::Exr);
+  Dataset dataset = Dataset::open(folder.path());
+  DenseInitSettings settings;
+  settings.pixelStride = 1;
+  settings.voxelFraction = 1.0f / 8.0f;
+  settings.minSamplesPerVoxel = 1;  // else the wrong view's sparser points fall below it on their own
+  auto offPlane = [](const GaussianScene& scene) {
+    int count = 0;
+    for (size_t i = 0; i < scene.size(); ++i) count += std::abs(scene.position[i].z) > 0.05f ? 1 : 0;
+    return count;
+  };
+  const DenseInit all = initFromDepthBuffers(dataset, settings);
+  EXPECT_GT(offPlane(all.scene), 0);
+  EXPECT_EQ(all.stats.samplesUntrusted, 0);
+
+  // View 0 and the right half of view 1 untrusted.
+  const DepthTrust trusted = [](size_t view, size_t pixel) {
+    return view != 0 && !(view == 1 && pixel % kPlaneWidth >= kPlaneWidth / 2);
+  };
+  const DenseInit kept = initFromDepthBuffers(dataset, settings, trusted);
+  const int64_t untrusted = kPlaneWidth * kPlaneHeight + (kPlaneWidth / 2) * kPlaneHeight;
+  EXPECT_EQ(kept.stats.samplesUntrusted, untrusted);
+  EXPECT_EQ(kept.stats.pointsUnprojected, 6 * kPlaneWidth * kPlaneHeight - untrusted);
+  ASSERT_GT(kept.scene.size(), 0u);
+  EXPECT_EQ(offPlane(kept.scene), 0);
+  // denseInitialisation passes the verdict on.
+  EXPECT_EQ(denseInitialisation(dataset, settings, trusted).stats.samplesUntrusted, untrusted);
+
+  // At stride 2 only the sampled pixels count: 8x6 of view 0, 4x6 of view 1.
+  settings.pixelStride = 2;
+  EXPECT_EQ(initFromDepthBuffers(dataset, settings, trusted).stats.samplesUntrusted,
+            (kPlaneWidth / 2) * (kPlaneHeight / 2) + (kPlaneWidth / 4) * (kPlaneHeight / 2));
+
+  test::expectErrorNaming([&] { initFromDepthBuffers(dataset, settings, [](size_t, size_t) { return false; }); },
+                          folder / "train" / "depth", "consistency check trusts none");
+}
+
 // A capture's relative depth aligned to its sparse points is only as accurate as the fit:
 // the voxels follow the fits' median residual, so that the views' depths of one surface
 // meet in one voxel; a synthetic dataset's metric depth keeps the extent's fraction.

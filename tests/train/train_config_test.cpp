@@ -24,6 +24,7 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.loss.f0FromSpecular = 2.0f;
   c.loss.depthConsistency = 0.03f;
   c.loss.depthConsistencyViews = 3;
+  c.initConsistentDepthOnly = true;
   c.lr.f0 = 0.01f;
   c.lr.normalDecayStart = 4000;
   c.prune.start = 17;
@@ -41,6 +42,7 @@ TEST(TrainConfig, RoundTripsEveryField) {
   EXPECT_EQ(back.loss.f0FromSpecular, 2.0f);
   EXPECT_EQ(back.loss.depthConsistency, 0.03f);
   EXPECT_EQ(back.loss.depthConsistencyViews, 3);
+  EXPECT_TRUE(back.initConsistentDepthOnly);
   EXPECT_EQ(back.lr.normalDecayStart, 4000);
   EXPECT_EQ(back.trace.exactTail, true);
   EXPECT_EQ(back.farField.count, 1234);
@@ -164,6 +166,12 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   expectRejected("{\"loss\": {\"depth_consistency\": 1.5}}", "loss.depth_consistency must be in [0, 1)");
   expectRejected("{\"loss\": {\"depth_consistency_views\": 9}}", "loss.depth_consistency_views must be in [1, 8]");
   expectRejected("{\"loss\": {\"depth_consistency_views\": 0}}", "loss.depth_consistency_views");
+  // The initialisation's filter is the check's verdict: nothing to filter with the check off,
+  // nor in a point cloud.
+  expectRejected("{\"init\": {\"consistent_depth_only\": true}}", "needs loss.depth_consistency > 0");
+  expectRejected("{\"init\": {\"consistent_depth_only\": true, \"source\": \"point-cloud\"}, "
+                 "\"loss\": {\"depth_consistency\": 0.02}}",
+                 "applies to the depth buffers");
   // Leaving F0's tint to L_r needs L_r's gradient into F0.
   expectRejected("{\"f0_tint_from_reflections\": true}", "loss.f0_from_specular > 0");
 }
