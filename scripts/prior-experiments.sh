@@ -113,6 +113,8 @@ echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": 2.5, \"depth_
 # (init.consistent_depth_only): the Gaussians a contradicted prior would place never made.
 echo "{\"roughness_shift_invariant\": true, \"init\": {\"consistent_depth_only\": true}, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1, \"depth_consistency\": 0.02}, $(nlr 0.000025)}" \
   > "$out/configs/n25_band_shift_nlr100_consistent_init.json"
+echo "{\"seed\": 1, \"roughness_shift_invariant\": true, \"init\": {\"consistent_depth_only\": true}, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1, \"depth_consistency\": 0.02}, $(nlr 0.000025)}" \
+  > "$out/configs/n25_band_shift_nlr100_consistent_init_seed1.json"
 # The monocular capture without its depth: initialised from the sparse points instead.
 if [ ! -d "$out/monodepthless" ]; then
   mkdir -p "$out/monodepthless/priors"
@@ -140,7 +142,8 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   monocular_n25_band_shift_nlr100 network_n25_band_shift_nlr100late monocular_n25_band_shift_nlr100late
   monocular_n25_band_shift_nlr100_f0_tint monocular_n25_band_shift_nlr100_seed1
   monocular_preset_band monocular_preset_band_consistent monocular_n25_band_shift_nlr100_consistent
-  network_n25_band_shift_nlr100_consistent monocular_n25_band_shift_nlr100_consistent_init}"
+  network_n25_band_shift_nlr100_consistent monocular_n25_band_shift_nlr100_consistent_init
+  network_n25_band_shift_nlr100_consistent_init monocular_n25_band_shift_nlr100_consistent_init_seed1}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"
