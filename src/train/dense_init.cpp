@@ -84,19 +84,26 @@ int automaticPixelStride(int64_t totalPixels, int64_t maxSamples) {
   return stride;
 }
 
-ColouredPoints unprojectDepth(const Image& depth, const Image& diffuse, const Camera& camera, int stride) {
+ColouredPoints unprojectDepth(const Image& depth, const Image& diffuse, const Camera& camera, int stride,
+                              const std::function<bool(size_t pixel)>& trusted, int64_t* untrusted) {
   GLINT_CHECK(stride >= 1, "unprojectDepth: stride must be positive");
   GLINT_CHECK(depth.width == diffuse.width && depth.height == diffuse.height,
               "unprojectDepth: depth and diffuse sizes differ");
   ColouredPoints out;
+  int64_t refused = 0;
   for (int y = stride / 2; y < depth.height; y += stride)
     for (int x = stride / 2; x < depth.width; x += stride) {
       float d = depth.at(x, y);
       if (!hasSurface(d)) continue;
+      if (trusted && !trusted(size_t(y) * size_t(depth.width) + size_t(x))) {
+        ++refused;
+        continue;
+      }
       Ray ray = camera.generateRay(x + 0.5, y + 0.5);
       out.positions.push_back(Vec3f(ray.origin + ray.direction * double(d)));
       out.colours.push_back(diffuse.rgb(x, y));
     }
+  if (untrusted) *untrusted = refused;
   return out;
 }
 
@@ -189,17 +196,10 @@ DenseInit initFromDepthBuffers(const Dataset& dataset, const DenseInitSettings& 
   parallelFor(int64_t(split.views.size()), 1, [&](int64_t i) {
     Image depth = dataset.loadBuffer(split, size_t(i), Buffer::Depth);
     Image diffuse = dataset.loadBuffer(split, size_t(i), colour);
-    if (trusted) {
-      // An untrusted pixel becomes a pixel without surface; only those the stride samples
-      // are counted, the samples it would have given.
-      for (int y = 0; y < depth.height; ++y)
-        for (int x = 0; x < depth.width; ++x)
-          if (hasSurface(depth.at(x, y)) && !trusted(size_t(i), size_t(y) * size_t(depth.width) + size_t(x))) {
-            depth.at(x, y) = 0.0f;
-            untrusted[size_t(i)] += (x % stride == stride / 2 && y % stride == stride / 2) ? 1 : 0;
-          }
-    }
-    perView[size_t(i)] = unprojectDepth(depth, diffuse, split.camera(size_t(i)), stride);
+    std::function<bool(size_t)> viewTrusted;
+    if (trusted) viewTrusted = [&trusted, i](size_t pixel) { return trusted(size_t(i), pixel); };
+    perView[size_t(i)] =
+        unprojectDepth(depth, diffuse, split.camera(size_t(i)), stride, viewTrusted, &untrusted[size_t(i)]);
   });
   for (int64_t n : untrusted) result.stats.samplesUntrusted += n;
   ColouredPoints samples;

@@ -99,8 +99,10 @@ DenseInit initFromSparsePoints(const Dataset& dataset, const DenseInitSettings& 
 int automaticPixelStride(int64_t totalPixels, int64_t maxSamples);
 // Surface points of the pixels (x, y) with x % stride == y % stride == stride / 2: along
 // the pixel-centre ray at the stored depth (a distance along the ray), coloured by the
-// diffuse buffer. No-surface pixels are skipped.
-ColouredPoints unprojectDepth(const Image& depth, const Image& diffuse, const Camera& camera, int stride);
+// diffuse buffer. No-surface pixels are skipped, and so are those `trusted` (given the
+// row-major pixel) refuses; `untrusted`, if given, receives how many it refused.
+ColouredPoints unprojectDepth(const Image& depth, const Image& diffuse, const Camera& camera, int stride,
+                              const std::function<bool(size_t pixel)>& trusted = {}, int64_t* untrusted = nullptr);
 // Bins points in a world-aligned voxel grid of edge voxelSize and returns, for each voxel
 // holding at least minSamples points, the mean position and mean colour of its points
 // (ordered by voxel coordinates). occupiedVoxels, if given, receives the number of
