@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "math/cholesky.h"
 
 namespace glint {
 
@@ -34,30 +35,10 @@ bool ShFit::solve(double lambda, Vec3d* constant, Vec3d* rest) const {
     for (int c = 0; c <= r; ++c) a[r][c] = normal_[size_t(r * N + c)];
   a[0][0] += 1e-12 * weight_;
   for (int k = 1; k < count_; ++k) a[k][k] += std::max(lambda, 1e-12) * weight_;
-  // Cholesky A = L L^T in place (lower triangle).
-  for (int j = 0; j < count_; ++j) {
-    double diagonal = a[j][j];
-    for (int k = 0; k < j; ++k) diagonal -= a[j][k] * a[j][k];
-    if (!(diagonal > 0)) return false;
-    a[j][j] = std::sqrt(diagonal);
-    for (int i = j + 1; i < count_; ++i) {
-      double s = a[i][j];
-      for (int k = 0; k < j; ++k) s -= a[i][k] * a[j][k];
-      a[i][j] = s / a[j][j];
-    }
-  }
-  // L z = rhs, then L^T f = z.
+  if (!choleskyFactor(&a[0][0], count_, N)) return false;
   Vec3d f[N];
-  for (int i = 0; i < count_; ++i) {
-    Vec3d s = rhs_[size_t(i)];
-    for (int k = 0; k < i; ++k) s -= f[k] * a[i][k];
-    f[i] = s / a[i][i];
-  }
-  for (int i = count_ - 1; i >= 0; --i) {
-    Vec3d s = f[i];
-    for (int k = i + 1; k < count_; ++k) s -= f[k] * a[k][i];
-    f[i] = s / a[i][i];
-  }
+  for (int i = 0; i < count_; ++i) f[i] = rhs_[size_t(i)];
+  choleskySolve(&a[0][0], count_, N, f);
   *constant = f[0];
   for (int k = 1; k < count_; ++k) rest[k - 1] = f[k];
   return true;

@@ -18,9 +18,10 @@ namespace {
 
 constexpr char kMagic[8] = {'G', 'L', 'I', 'N', 'T', 'C', 'K', 'P'};
 // Version 2 added the densification score after the prune weight, version 3 the roughness
-// shift after it; older files are read with a zero score (they come from runs that did not
-// densify) and a zero shift (the shift-invariant roughness loss did not exist).
-constexpr uint32_t kVersion = 3;
+// shift after it, version 4 the refined camera poses after that; older files are read with a
+// zero score (they come from runs that did not densify), a zero shift (the shift-invariant
+// roughness loss did not exist) and no poses (nor did camera refinement).
+constexpr uint32_t kVersion = 4;
 
 class Writer {
  public:
@@ -101,7 +102,7 @@ std::vector<char> encodeCheckpoint(const TrainingState& state) {
   const size_t n = state.scene.size();
   size_t floatsPerGaussian = 2;
   forEachParameter([&](const auto& p) { floatsPerGaussian += 3 * p.components; });
-  Writer w(128 + state.configJson.size() + (3 * kGaussianParameterCount + 2) * sizeof(uint64_t) +
+  Writer w(128 + state.configJson.size() + state.cameraPoses.size() * sizeof(Mat4) + (3 * kGaussianParameterCount + 2) * sizeof(uint64_t) +
            n * floatsPerGaussian * sizeof(float));
   w.bytes(kMagic, sizeof(kMagic));
   w.value(kVersion);
@@ -119,6 +120,9 @@ std::vector<char> encodeCheckpoint(const TrainingState& state) {
   w.array(state.pruneWeight.data(), state.pruneWeight.size(), sizeof(float));
   w.array(state.densifyScore.data(), state.densifyScore.size(), sizeof(float));
   w.value(state.roughnessShift);
+  w.value(uint64_t(state.cameraPoses.size()));
+  for (const Mat4& pose : state.cameraPoses)
+    for (const auto& row : pose.m) w.bytes(row.data(), row.size() * sizeof(double));
   uint64_t checksum = fnv1a(w.data().data(), w.data().size());
   w.value(checksum);
   return w.take();
@@ -175,6 +179,13 @@ TrainingState decodeCheckpoint(std::span<const char> data, const std::string& na
   state.densifyScore.assign(n, 0.0f);
   if (version >= 2) r.array(state.densifyScore.data(), n, sizeof(float));
   if (version >= 3) state.roughnessShift = r.value<float>();
+  if (version >= 4) {
+    const uint64_t poses = r.value<uint64_t>();
+    if (poses > body / sizeof(Mat4)) throw Error(name, "is corrupt: bad camera pose count");
+    state.cameraPoses.resize(poses);
+    for (Mat4& pose : state.cameraPoses)
+      for (auto& row : pose.m) r.bytes(row.data(), row.size() * sizeof(double));
+  }
   if (!r.atEnd()) throw Error(name, "is corrupt: unexpected bytes after the last array");
   return state;
 }

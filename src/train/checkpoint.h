@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "math/mat4.h"
 #include "scene/gaussians.h"
 #include "train/adam.h"
 
@@ -23,6 +24,9 @@ struct TrainingState {
   std::vector<float> densifyScore;  // split score since the last densify step (train/densify.h)
   float roughnessShift = 0;        // the shift-invariant roughness loss's offset (train/trainer.h)
   std::string configJson;          // the run's config, to refuse resuming with another
+  // The training views' camera-to-world poses once camera refinement moved them (in the
+  // views' order; empty: the dataset's cameras, unchanged).
+  std::vector<Mat4> cameraPoses;
 };
 
 void writeCheckpoint(const std::filesystem::path& file, const TrainingState& state);

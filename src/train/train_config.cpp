@@ -121,6 +121,8 @@ void forEachField(Config& c, F&& f) {
   f("init", "opacity", c.init.opacity);
   f("init", "roughness", c.init.roughness);
   f("init", "f0", c.init.f0);
+  f("cameras", "refine_every", c.cameras.every);
+  f("cameras", "refine_until", c.cameras.until);
   f("far_field", "count", c.farField.count);
   f("far_field", "sigma_factor", c.farField.sigmaFactor);
   f("far_field", "truncation", c.farField.truncation);
@@ -304,6 +306,10 @@ void TrainConfig::validate(const std::string& source) const {
           "pixels are trusted");
   require(!initConsistentDepthOnly || initSource != InitChoice::PointCloud, source,
           "init.consistent_depth_only applies to the depth buffers; init.source \"point-cloud\" does not read them");
+  require(cameras.every >= 0 && cameras.every <= kEveryStepsRange.max, source,
+          "cameras.refine_every must be in [0, " + std::to_string(kEveryStepsRange.max) + "] (0 = off)");
+  require(cameras.until >= 0 && cameras.until <= kItersRange.max, source,
+          "cameras.refine_until must be in [0, " + std::to_string(kItersRange.max) + "] (0 = three quarters of iters)");
   for (float w : {loss.roughnessFromSpecular, loss.f0FromSpecular})
     require(w >= 0 && w <= kMaxLossWeight, source,
             "loss.roughness_from_specular and loss.f0_from_specular must be in [0, 1e6] (0 = off)");

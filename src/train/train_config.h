@@ -83,6 +83,17 @@ struct PruneSettings {
   CullRegion cameraCullRegion = CullRegion::SphereInView;
 };
 
+// Camera pose refinement (train/camera_refinement.h): every `every` steps, up to step `until`,
+// each training view's pose is aligned to the model's render by direct image alignment of its
+// colour target. For cameras estimated from the photographs (COLMAP's), whose error of a
+// degree or so puts each view's depth and colours where the others' are not. 0 = off.
+struct CameraRefinementSettings {
+  int every = 0;
+  int until = 0;  // 0: three quarters of the run's steps, so the last poses settle before it ends
+  // The step of the last refinement of a run of `iters` steps.
+  int lastStep(int iters) const { return until > 0 ? until : iters / 4 * 3; }
+};
+
 // The allowed range of an integer setting, shared by the flag of `glint train` and the
 // field of a config file, so that neither path accepts what the other refuses. Every other
 // range is checked in TrainConfig::validate alone.
@@ -166,6 +177,9 @@ struct TrainConfig {
   // Gaussians a contradicted prior would place are never made. An option beyond the
   // paper, off (docs/captures.md).
   bool initConsistentDepthOnly = false;
+  // Camera pose refinement during training, off (0): an option beyond the paper
+  // (docs/captures.md).
+  CameraRefinementSettings cameras;
   FarFieldSettings farField;  // added when reflections start (bounces > 0)
   // Early termination, as in rendering: the exact final transmittance of the A.2 tail
   // estimate needs every hit behind the termination point, through walls and into the

@@ -20,6 +20,7 @@
 #include "scene/capture_summary.h"
 #include "scene/gaussian_ply.h"
 #include "train/camera_culling.h"
+#include "train/camera_refinement.h"
 #include "train/checkpoint.h"
 #include "train/dense_init.h"
 #include "train/depth_consistency.h"
@@ -145,9 +146,53 @@ GaussianScene initialScene(const Dataset& dataset, const TrainConfig& config, co
   return std::move(init.scene);
 }
 
-void saveRun(const RunFolder& run, const Trainer& trainer) {
+// Whether a dataset's normal targets came from camera-space priors, which turn with a
+// refined camera (TrainingViews::setCamera).
+bool normalsFromCamera(const Dataset& dataset) {
+  return dataset.capture() && !dataset.capture()->decoding.worldNormals;
+}
+
+// The trainer's state with the training views' poses, when refinement moved them.
+TrainingState runState(const Trainer& trainer, const TrainingViews& views) {
+  TrainingState state = trainer.state();
+  if (views.camerasMoved())
+    for (size_t v = 0; v < views.viewCount(); ++v) state.cameraPoses.push_back(views.camera(v).cameraToWorld);
+  return state;
+}
+
+// Puts a checkpoint's refined poses back on the training views.
+void restoreCameraPoses(const TrainingState& state, const Dataset& dataset, TrainingViews* views,
+                        const std::string& source) {
+  if (state.cameraPoses.empty()) return;
+  if (state.cameraPoses.size() != views->viewCount())
+    throw Error(source, "holds " + std::to_string(state.cameraPoses.size()) + " refined camera poses for " +
+                            std::to_string(views->viewCount()) + " training views (was the dataset changed?)");
+  for (size_t v = 0; v < views->viewCount(); ++v) {
+    Camera camera = views->camera(v);
+    camera.cameraToWorld = state.cameraPoses[v];
+    views->setCamera(v, camera, normalsFromCamera(dataset));
+  }
+}
+
+// Runs the multi-view depth check (TrainConfig::loss.depthConsistency) over the views'
+// current cameras and says what it kept.
+void checkDepthConsistency(const TrainConfig& config, const RunFolder& run, TrainingViews* views,
+                           TrainingObserver& observer) {
+  const DepthConsistency found = views->keepConsistentDepth(
+      {.tolerance = config.loss.depthConsistency, .minAgreeing = config.loss.depthConsistencyViews});
+  char message[300];
+  std::snprintf(message, sizeof(message),
+                "depth consistency: %.1f%% of the depth pixels agree with %d or more of their view's %d "
+                "neighbours within %g%%; the depth term leaves out the other %lld",
+                found.depthPixels > 0 ? 100.0 * double(found.trustedPixels) / double(found.depthPixels) : 0.0,
+                config.loss.depthConsistencyViews, kDepthConsistencyNeighbours,
+                100.0 * double(config.loss.depthConsistency), (long long)(found.depthPixels - found.trustedPixels));
+  if (run.writes()) observer.note(message);
+}
+
+void saveRun(const RunFolder& run, const Trainer& trainer, const TrainingViews& views) {
   if (!run.writes()) return;
-  writeCheckpoint(run.checkpointFile(), trainer.state());
+  writeCheckpoint(run.checkpointFile(), runState(trainer, views));
   writeGaussianPly(run.sceneFile(), trainer.scene());
 }
 
@@ -155,7 +200,7 @@ void saveRun(const RunFolder& run, const Trainer& trainer) {
 // written with must be the config's but for iters), else from the dense initialisation,
 // with log.csv started or cut back to the checkpoint. Returns the wall time already spent.
 double setUpTrainer(const RunFolder& run, const TrainConfig& config, const TrainingSession& session,
-                    const Dataset& dataset, const TrainingViews& views, std::vector<CameraSphere> spheres,
+                    const Dataset& dataset, TrainingViews& views, std::vector<CameraSphere> spheres,
                     TrainingObserver& observer, std::unique_ptr<Trainer>* trainer) {
   if (session.resume && run.hasCheckpoint()) {
     TrainingState state = readCheckpoint(run.checkpointFile());
@@ -167,6 +212,9 @@ double setUpTrainer(const RunFolder& run, const TrainConfig& config, const Train
                   "was written with other settings than " + run.configFile().string() + "; they must not change");
     observer.note("resuming " + run.root().string() + " at step " + std::to_string(state.step));
     double wallOffset = truncateLog(run.logFile(), state.step);
+    restoreCameraPoses(state, dataset, &views, run.checkpointFile().string());
+    if (views.camerasMoved() && config.loss.depthConsistency > 0 && views.supervised().depth)
+      checkDepthConsistency(config, run, &views, observer);
     *trainer = std::make_unique<Trainer>(config, views, std::move(spheres), std::move(state), session.tracer);
     return wallOffset;
   }
@@ -197,16 +245,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
                                             config.f0TintFromReflections);
   if (config.loss.depthConsistency > 0 && views.supervised().depth) {
     activity.describe("checking each training view's depth against its neighbours'");
-    const DepthConsistency found = views.keepConsistentDepth(
-        {.tolerance = config.loss.depthConsistency, .minAgreeing = config.loss.depthConsistencyViews});
-    char message[300];
-    std::snprintf(message, sizeof(message),
-                  "depth consistency: %.1f%% of the depth pixels agree with %d or more of their view's %d "
-                  "neighbours within %g%%; the depth term leaves out the other %lld",
-                  found.depthPixels > 0 ? 100.0 * double(found.trustedPixels) / double(found.depthPixels) : 0.0,
-                  config.loss.depthConsistencyViews, kDepthConsistencyNeighbours,
-                  100.0 * double(config.loss.depthConsistency), (long long)(found.depthPixels - found.trustedPixels));
-    if (run.writes()) observer.note(message);
+    checkDepthConsistency(config, run, &views, observer);
   }
   std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);
   // The test views are scored where the run is written (into log.csv).
@@ -224,7 +263,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     if (cluster::distributed()) {
       // The other ranks of an MPI job start from rank 0's state, the same bytes a
       // checkpoint holds.
-      std::vector<char> bytes = encodeCheckpoint(trainer->state());
+      std::vector<char> bytes = encodeCheckpoint(runState(*trainer, views));
       std::vector<std::byte> message(bytes.size());
       std::memcpy(message.data(), bytes.data(), bytes.size());
       cluster::broadcast(&message);
@@ -234,8 +273,11 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     cluster::broadcast(&message);
     std::vector<char> bytes(message.size());
     std::memcpy(bytes.data(), message.data(), message.size());
-    trainer = std::make_unique<Trainer>(config, views, std::move(spheres),
-                                        decodeCheckpoint(bytes, "the state rank 0 sent"), session.tracer);
+    TrainingState state = decodeCheckpoint(bytes, "the state rank 0 sent");
+    restoreCameraPoses(state, dataset, &views, "the state rank 0 sent");
+    if (views.camerasMoved() && config.loss.depthConsistency > 0 && views.supervised().depth)
+      checkDepthConsistency(config, run, &views, observer);
+    trainer = std::make_unique<Trainer>(config, views, std::move(spheres), std::move(state), session.tracer);
   }
   trainer->setExchangeMode(session.exchange);
   observer.started(*trainer, dataset, views);
@@ -261,6 +303,16 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
                                            ". Likely cause: learning rates (lr.* in --config) or loss weights too "
                                            "large for this scene; start again with smaller ones");
     }
+    if (config.cameras.every > 0 && r.step % config.cameras.every == 0 &&
+        r.step <= config.cameras.lastStep(config.iters) && r.step < config.iters) {
+      activity.describe("refining the training cameras at step " + std::to_string(r.step) + " of " +
+                        run.root().string());
+      const CameraRefinementRound round =
+          refineTrainingCameras(trainer->tracer(), config.path(), &views, normalsFromCamera(dataset));
+      if (run.writes()) observer.note("step " + std::to_string(r.step) + ": " + round.summary());
+      if (round.moved > 0 && config.loss.depthConsistency > 0 && views.supervised().depth)
+        checkDepthConsistency(config, run, &views, observer);
+    }
     double wall = wallOffset + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::optional<TestScore> score;
     if (!testViews.empty() && (r.step % config.evalEvery == 0 || r.step == config.iters))
@@ -273,7 +325,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     observer.stepped(r, score);
     saveDue = saveDue || r.step % config.saveEvery == 0 || r.step == config.iters;
     if (saveDue && (divergence.clean() || r.step == config.iters)) {
-      saveRun(run, *trainer);
+      saveRun(run, *trainer, views);
       saveDue = false;
       lastSaved = r.step;
       checkpointOnDisk = true;
@@ -282,11 +334,11 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     // Every rank stops at the step rank 0 heard Ctrl-C (mpirun forwards it to all, but not
     // necessarily between the same steps).
     if (cluster::broadcastFlag(observer.stopRequested())) {
-      saveRun(run, *trainer);
+      saveRun(run, *trainer, views);
       return {true, r.step, trainer->scene().size()};
     }
   }
-  if (trainer->stepCount() >= config.iters && !fs::exists(run.sceneFile())) saveRun(run, *trainer);
+  if (trainer->stepCount() >= config.iters && !fs::exists(run.sceneFile())) saveRun(run, *trainer, views);
   return {false, trainer->stepCount(), trainer->scene().size()};
 }
 

@@ -117,6 +117,7 @@ PixelTarget TrainingViews::target(size_t view, size_t pixel) const {
   t.depth = unpackDepth(p.depth);
   t.surface = p.depth != 0;
   t.normal = unpackOctahedral(p.normal);
+  if (!normalTurn_.empty()) t.normal = normalTurn_[view] * t.normal;
   t.roughness = unpackUnorm8(p.roughness);
   t.f0 = Rgb(unpackUnorm8(p.f0[0]), unpackUnorm8(p.f0[1]), unpackUnorm8(p.f0[2]));
   t.hasSpecular = supervised_.specular;
@@ -129,9 +130,21 @@ PixelTarget TrainingViews::target(size_t view, size_t pixel) const {
   return t;
 }
 
+void TrainingViews::setCamera(size_t view, const Camera& camera, bool normalsFromCamera) {
+  GLINT_CHECK(view < viewCount() && camera.width == cameras_[view].width && camera.height == cameras_[view].height,
+              "TrainingViews::setCamera: a view's camera keeps its size");
+  if (loadedCameras_.empty()) loadedCameras_ = cameras_;
+  cameras_[view] = camera;
+  if (!normalsFromCamera || !supervised_.normal) return;
+  if (normalTurn_.empty()) normalTurn_.resize(viewCount());  // identity
+  const Mat3d turn = camera.rotation() * loadedCameras_[view].rotation().transposed();
+  for (int i = 0; i < 3; ++i) normalTurn_[view].m[i] = Vec3f(turn.m[i]);
+}
+
 size_t TrainingViews::memoryBytes() const {
   return targets_.capacity() * sizeof(PackedTarget) + cameras_.capacity() * sizeof(Camera) +
-         firstPixel_.capacity() * sizeof(size_t) + depthTrusted_.capacity();
+         firstPixel_.capacity() * sizeof(size_t) + depthTrusted_.capacity() +
+         loadedCameras_.capacity() * sizeof(Camera) + normalTurn_.capacity() * sizeof(Mat3f);
 }
 
 TraceRay TrainingViews::pixelRay(size_t view, size_t pixel) const {

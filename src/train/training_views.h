@@ -75,6 +75,15 @@ class TrainingViews {
   bool depthTrusted(size_t view, size_t pixel) const {
     return supervised_.depth && (depthTrusted_.empty() || depthTrusted_[firstPixel_[view] + pixel] != 0);
   }
+  // Replaces a view's camera (its intrinsics must stay; train/camera_refinement.h moves
+  // poses). With normalsFromCamera the view's normal targets came from camera-space priors
+  // turned into the world by the camera as loaded, so they turn with the camera: target()
+  // then rotates them by the new rotation times the loaded one's inverse. World-space
+  // normals (a surface's own) do not turn. Checked depth (keepConsistentDepth) is not
+  // checked again here.
+  void setCamera(size_t view, const Camera& camera, bool normalsFromCamera);
+  // Whether setCamera moved any view's camera since loading.
+  bool camerasMoved() const { return !loadedCameras_.empty(); }
   // Bytes held for the targets and cameras.
   size_t memoryBytes() const;
 
@@ -101,6 +110,8 @@ class TrainingViews {
   std::vector<PackedTarget> targets_;  // view-major, then row-major pixels
   SupervisedBuffers supervised_;
   std::vector<uint8_t> depthTrusted_;  // per target: 0 = out of the depth term (empty: all in)
+  std::vector<Camera> loadedCameras_;   // the cameras as loaded, once setCamera moved one (else empty)
+  std::vector<Mat3f> normalTurn_;       // per view: how its normal targets turn (empty: none do)
 };
 
 }  // namespace glint

@@ -43,6 +43,10 @@ TrainingState randomState() {
   s.densifyScore.resize(s.scene.size());
   for (float& w : s.densifyScore) w = r();
   s.roughnessShift = 0.0731f;
+  for (int v = 0; v < 3; ++v) {
+    Mat4 pose = Mat4::lookAt(Vec3d(r(), r(), 2.0 + r()), Vec3d(0, 0, 0), Vec3d(0, 0, 1));
+    s.cameraPoses.push_back(pose);
+  }
   return s;
 }
 
@@ -76,12 +80,15 @@ TEST(Checkpoint, RoundTripIsBitExact) {
   EXPECT_TRUE(sameBytes(back.pruneWeight, s.pruneWeight));
   EXPECT_TRUE(sameBytes(back.densifyScore, s.densifyScore));
   EXPECT_EQ(back.roughnessShift, s.roughnessShift);
+  ASSERT_EQ(back.cameraPoses.size(), 3u);
+  for (size_t v = 0; v < 3; ++v) EXPECT_EQ(back.cameraPoses[v].m, s.cameraPoses[v].m) << v;
 }
 
 // A checkpoint written before the parameter table (scene/gaussian_parameters.h) chose its
 // arrays (tests/data/README.md) loads with every array in its place and a zero
-// densification score (version 1 had none) and roughness shift; written again as version 3 it
-// differs from the old file only in the version and the appended score and shift.
+// densification score (version 1 had none), roughness shift and no camera poses; written again
+// as version 4 it differs from the old file only in the version and the appended score, shift
+// and pose count.
 TEST(Checkpoint, VersionOneFileLoadsAndRewritesWithOnlyTheScoreAndShiftAdded) {
   const std::filesystem::path folder = std::filesystem::path(GLINT_TEST_DATA) / "version1_run";
   TrainingState state = readCheckpoint(folder / "state.bin");
@@ -106,16 +113,17 @@ TEST(Checkpoint, VersionOneFileLoadsAndRewritesWithOnlyTheScoreAndShiftAdded) {
 
   EXPECT_EQ(state.densifyScore, std::vector<float>(state.scene.size(), 0.0f));
   EXPECT_EQ(state.roughnessShift, 0.0f);
+  EXPECT_TRUE(state.cameraPoses.empty());
 
   test::TempFolder temp;
   writeCheckpoint(temp.path() / "state.bin", state);
   const auto written = test::readBytes(temp.path() / "state.bin");
   auto old = test::readBytes(folder / "state.bin");
-  // Version 3: the version word becomes 3, and before the checksum come the score's count,
-  // its zero floats and the zero shift.
+  // Version 4: the version word becomes 4, and before the checksum come the score's count,
+  // its zero floats, the zero shift and a pose count of 0.
   const size_t checksum = sizeof(uint64_t), scoreBytes = sizeof(uint64_t) + state.scene.size() * sizeof(float);
-  ASSERT_EQ(written.size(), old.size() + scoreBytes + sizeof(float));
-  old[8] = 3;
+  ASSERT_EQ(written.size(), old.size() + scoreBytes + sizeof(float) + sizeof(uint64_t));
+  old[8] = 4;
   const auto body = [](const auto& bytes, size_t end) { return std::vector<char>(bytes.begin(), bytes.begin() + end); };
   EXPECT_EQ(body(written, old.size() - checksum), body(old, old.size() - checksum));
 }

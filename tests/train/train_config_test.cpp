@@ -25,6 +25,8 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.loss.depthConsistency = 0.03f;
   c.loss.depthConsistencyViews = 3;
   c.initConsistentDepthOnly = true;
+  c.cameras.every = 500;
+  c.cameras.until = 4500;
   c.lr.f0 = 0.01f;
   c.lr.normalDecayStart = 4000;
   c.prune.start = 17;
@@ -43,6 +45,8 @@ TEST(TrainConfig, RoundTripsEveryField) {
   EXPECT_EQ(back.loss.depthConsistency, 0.03f);
   EXPECT_EQ(back.loss.depthConsistencyViews, 3);
   EXPECT_TRUE(back.initConsistentDepthOnly);
+  EXPECT_EQ(back.cameras.every, 500);
+  EXPECT_EQ(back.cameras.until, 4500);
   EXPECT_EQ(back.lr.normalDecayStart, 4000);
   EXPECT_EQ(back.trace.exactTail, true);
   EXPECT_EQ(back.farField.count, 1234);
@@ -172,6 +176,8 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   expectRejected("{\"init\": {\"consistent_depth_only\": true, \"source\": \"point-cloud\"}, "
                  "\"loss\": {\"depth_consistency\": 0.02}}",
                  "applies to the depth buffers");
+  expectRejected("{\"cameras\": {\"refine_every\": -5}}", "cameras.refine_every must be in [0, ");
+  expectRejected("{\"cameras\": {\"refine_until\": -1}}", "cameras.refine_until must be in [0, ");
   // Leaving F0's tint to L_r needs L_r's gradient into F0.
   expectRejected("{\"f0_tint_from_reflections\": true}", "loss.f0_from_specular > 0");
 }

@@ -1,0 +1,185 @@
+// How far a capture's training cameras (COLMAP's, or those a training run refined) are from the
+// true cameras of the same photographs, up to the similarity that structure from motion cannot
+// know (origin, orientation, scale): per view the angle between the rotations and the distance
+// between the centres after the similarity, in the truth's units. Issue 44: whether camera
+// refinement brings COLMAP's cameras nearer the truth. Prints a table and writes JSON (--json).
+//
+//   camera_error TRUTH ESTIMATE [--run RUN]... [--holdout N] [--json FILE]
+//
+// TRUTH and ESTIMATE are captures of the same photographs (e.g. `glint synth --layout capture`
+// and `glint capture` of it); each --run is a training run of ESTIMATE whose checkpoint holds
+// the refined poses (train/camera_refinement.h).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "core/error.h"
+#include "math/mat3.h"
+#include "math/percentile.h"
+#include "scene/dataset.h"
+#include "train/checkpoint.h"
+
+using namespace glint;
+
+namespace {
+
+Mat3d rotationOf(const Mat4& m) {
+  Mat3d r;
+  for (int i = 0; i < 3; ++i) r.m[i] = {m.m[i][0], m.m[i][1], m.m[i][2]};
+  return r;
+}
+
+Vec3d centreOf(const Mat4& m) { return {m.m[0][3], m.m[1][3], m.m[2][3]}; }
+
+Mat3d inverse(const Mat3d& a) {
+  const Vec3d c0 = cross(a.m[1], a.m[2]), c1 = cross(a.m[2], a.m[0]), c2 = cross(a.m[0], a.m[1]);
+  const double det = dot(a.m[0], c0);
+  Mat3d r;
+  for (int i = 0; i < 3; ++i) r.m[i] = Vec3d(c0[i], c1[i], c2[i]) / det;
+  return r;
+}
+
+// The rotation nearest M (its polar factor), by Higham's iteration M <- (M + M^-T) / 2.
+Mat3d nearestRotation(Mat3d m) {
+  for (int k = 0; k < 30; ++k) {
+    const Mat3d inverseTransposed = inverse(m).transposed();
+    for (int i = 0; i < 3; ++i) m.m[i] = (m.m[i] + inverseTransposed.m[i]) * 0.5;
+  }
+  return m;
+}
+
+double angleDegrees(const Mat3d& r) {
+  const double cosine = std::clamp((r.m[0].x + r.m[1].y + r.m[2].z - 1.0) * 0.5, -1.0, 1.0);
+  return std::acos(cosine) * 180.0 / std::numbers::pi;
+}
+
+struct CameraErrors {
+  std::vector<float> degrees, distances;  // per view, the distance in the truth's units
+  double ringSize = 0;                    // RMS distance of the true centres from their mean
+  double frameDegrees = 0, frameScale = 1;  // the similarity's rotation angle and scale
+};
+
+// Errors of `estimate` against `truth` (camera-to-world poses of the same views, in order)
+// after the similarity: its rotation from the mean of the rotations' differences, then scale
+// and offset by least squares on the centres.
+CameraErrors compare(const std::vector<Mat4>& truth, const std::vector<Mat4>& estimate) {
+  const size_t n = truth.size();
+  Mat3d sum;
+  for (int i = 0; i < 3; ++i) sum.m[i] = Vec3d(0.0);
+  Vec3d meanTrue(0.0), meanEstimate(0.0);
+  for (size_t v = 0; v < n; ++v) {
+    const Mat3d d = rotationOf(estimate[v]) * rotationOf(truth[v]).transposed();
+    for (int i = 0; i < 3; ++i) sum.m[i] += d.m[i];
+    meanTrue += centreOf(truth[v]) / double(n);
+    meanEstimate += centreOf(estimate[v]) / double(n);
+  }
+  const Mat3d g = nearestRotation(sum);
+  double numerator = 0, denominator = 0;
+  for (size_t v = 0; v < n; ++v) {
+    const Vec3d t = g * (centreOf(truth[v]) - meanTrue), e = centreOf(estimate[v]) - meanEstimate;
+    numerator += dot(e, t);
+    denominator += dot(t, t);
+  }
+  const double scale = numerator / denominator;
+  CameraErrors errors;
+  errors.ringSize = std::sqrt(denominator / double(n));
+  errors.frameDegrees = angleDegrees(g);
+  errors.frameScale = scale;
+  for (size_t v = 0; v < n; ++v) {
+    // The estimate brought into the truth's frame.
+    const Vec3d centre = g.transposeTimes(centreOf(estimate[v]) - meanEstimate) / scale + meanTrue;
+    errors.distances.push_back(float(length(centre - centreOf(truth[v]))));
+    errors.degrees.push_back(
+        float(angleDegrees(g.transposed() * rotationOf(estimate[v]) * rotationOf(truth[v]).transposed())));
+  }
+  return errors;
+}
+
+double mean(const std::vector<float>& v) {
+  double s = 0;
+  for (float x : v) s += x;
+  return v.empty() ? 0.0 : s / double(v.size());
+}
+
+std::vector<Mat4> posesOf(const DatasetSplit& split) {
+  std::vector<Mat4> poses;
+  for (size_t v = 0; v < split.views.size(); ++v) poses.push_back(split.camera(v).cameraToWorld);
+  return poses;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Scores a capture's training cameras, or a run's refined ones, against the true cameras"};
+  std::string truthPath, estimatePath, jsonPath;
+  std::vector<std::string> runs;
+  int holdout = Dataset::kDefaultHoldout;
+  app.add_option("truth", truthPath, "Capture with the true cameras")->required();
+  app.add_option("estimate", estimatePath, "Capture of the same photographs with estimated cameras")->required();
+  app.add_option("--run", runs, "Training run of ESTIMATE whose checkpoint holds refined poses (repeatable)");
+  app.add_option("--holdout", holdout, "Every N-th view is a test view (as glint train --holdout)")
+      ->check(CLI::Range(2, 1000));
+  app.add_option("--json", jsonPath, "Write the errors here");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const Dataset truth = Dataset::open(truthPath, false, holdout), estimate = Dataset::open(estimatePath, false, holdout);
+    const DatasetSplit& trueSplit = truth.train();
+    const DatasetSplit& estimateSplit = estimate.train();
+    if (trueSplit.views.size() != estimateSplit.views.size())
+      throw Error(estimatePath, "has " + std::to_string(estimateSplit.views.size()) + " training views, " + truthPath +
+                                    " " + std::to_string(trueSplit.views.size()) + " (the same photographs are needed)");
+    for (size_t v = 0; v < trueSplit.views.size(); ++v)
+      if (std::filesystem::path(trueSplit.views[v].filePath).filename() !=
+          std::filesystem::path(estimateSplit.views[v].filePath).filename())
+        throw Error(estimatePath, "training view " + std::to_string(v) + " is " + estimateSplit.views[v].filePath +
+                                      ", the truth's " + trueSplit.views[v].filePath);
+    const std::vector<Mat4> truePoses = posesOf(trueSplit);
+
+    std::vector<std::pair<std::string, std::vector<Mat4>>> rows{{"estimate", posesOf(estimateSplit)}};
+    for (const std::string& run : runs) {
+      const std::filesystem::path file = std::filesystem::path(run) / "checkpoint" / "state.bin";
+      TrainingState state = readCheckpoint(file);
+      if (state.cameraPoses.empty()) state.cameraPoses = rows.front().second;  // never refined
+      if (state.cameraPoses.size() != truePoses.size())
+        throw Error(file.string(), "holds " + std::to_string(state.cameraPoses.size()) + " poses for " +
+                                       std::to_string(truePoses.size()) + " training views");
+      rows.emplace_back(run, state.cameraPoses);
+    }
+    nlohmann::json out = nlohmann::json::array();
+    std::printf("%d training views; position errors in the truth's units\n", int(truePoses.size()));
+    // "frame": the similarity's rotation and scale; between two runs of one capture they say
+    // how far the cameras moved together (a drift of the whole frame) rather than apart.
+    std::printf("%-40s %9s %9s %9s %10s %10s %10s %8s %10s %10s\n", "cameras", "deg mean", "deg med", "deg max",
+                "pos mean", "pos med", "pos max", "% ring", "frame deg", "frame scl");
+    for (const auto& [name, poses] : rows) {
+      const CameraErrors e = compare(truePoses, poses);
+      const double positionMean = mean(e.distances);
+      std::printf("%-40s %9.3f %9.3f %9.3f %10.4f %10.4f %10.4f %8.2f %10.4f %10.5f\n", name.c_str(),
+                  mean(e.degrees), percentileOf(e.degrees, 0.5), percentileOf(e.degrees, 1.0), positionMean,
+                  percentileOf(e.distances, 0.5), percentileOf(e.distances, 1.0), 100.0 * positionMean / e.ringSize,
+                  e.frameDegrees, e.frameScale);
+      out.push_back({{"cameras", name},
+                     {"degrees_mean", mean(e.degrees)},
+                     {"degrees_median", percentileOf(e.degrees, 0.5)},
+                     {"degrees_max", percentileOf(e.degrees, 1.0)},
+                     {"position_mean", positionMean},
+                     {"position_median", percentileOf(e.distances, 0.5)},
+                     {"position_max", percentileOf(e.distances, 1.0)},
+                     {"ring_size", e.ringSize},
+                     {"frame_degrees", e.frameDegrees},
+                     {"frame_scale", e.frameScale}});
+    }
+    if (!jsonPath.empty()) std::ofstream(jsonPath) << out.dump(2) << "\n";
+  } catch (const Error& e) {
+    std::fprintf(stderr, "camera_error: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}

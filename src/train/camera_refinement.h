@@ -1,0 +1,37 @@
+// Camera pose refinement during training: each training view's pose aligned to the model's
+// render of it (train/pose_alignment.h), so that cameras estimated from the photographs,
+// each a degree or so off, come to agree with the scene the views build together.
+#pragma once
+
+#include <string>
+
+#include "raytrace/gaussian_tracer.h"
+#include "render/path_step.h"
+#include "train/pose_alignment.h"
+#include "train/training_views.h"
+
+namespace glint {
+
+// What one round did, for the line `glint train` prints.
+struct CameraRefinementRound {
+  int views = 0;
+  int moved = 0;                    // views whose alignment was accepted
+  double medianDegrees = 0, maxDegrees = 0;     // of the accepted changes
+  double medianDistance = 0, maxDistance = 0;   // in the scene's units
+  double costBefore = 0, costAfter = 0;         // mean robust cost over the moved views
+  int refusedBeyondBounds = 0;      // refused as a turn or move beyond the bounds (a wrong basin)
+  // "cameras refined: 97 of 100 views moved, median 0.21 deg and 0.9 cm (at most ...)".
+  std::string summary() const;
+};
+
+// Renders every training view from the model (pixel centres; the diffuse pass, or the final
+// image where the views' colour target is the render buffer, along `path`), aligns its pose
+// to its colour target and sets the views' camera where the alignment is accepted.
+// normalsFromCamera: the views' normal targets came from camera-space priors (they turn
+// with the camera, TrainingViews::setCamera). Deterministic: every view is aligned on its own,
+// so each rank of an MPI job computes the same poses.
+CameraRefinementRound refineTrainingCameras(const GaussianTracer& tracer, const PathSettings& path,
+                                            TrainingViews* views, bool normalsFromCamera,
+                                            const PoseAlignmentOptions& options = {});
+
+}  // namespace glint
