@@ -22,6 +22,7 @@
 
 #include "core/error.h"
 #include "math/mat3.h"
+#include "math/nearest_rotation.h"
 #include "math/percentile.h"
 #include "scene/dataset.h"
 #include "train/checkpoint.h"
@@ -37,23 +38,6 @@ Mat3d rotationOf(const Mat4& m) {
 }
 
 Vec3d centreOf(const Mat4& m) { return {m.m[0][3], m.m[1][3], m.m[2][3]}; }
-
-Mat3d inverse(const Mat3d& a) {
-  const Vec3d c0 = cross(a.m[1], a.m[2]), c1 = cross(a.m[2], a.m[0]), c2 = cross(a.m[0], a.m[1]);
-  const double det = dot(a.m[0], c0);
-  Mat3d r;
-  for (int i = 0; i < 3; ++i) r.m[i] = Vec3d(c0[i], c1[i], c2[i]) / det;
-  return r;
-}
-
-// The rotation nearest M (its polar factor), by Higham's iteration M <- (M + M^-T) / 2.
-Mat3d nearestRotation(Mat3d m) {
-  for (int k = 0; k < 30; ++k) {
-    const Mat3d inverseTransposed = inverse(m).transposed();
-    for (int i = 0; i < 3; ++i) m.m[i] = (m.m[i] + inverseTransposed.m[i]) * 0.5;
-  }
-  return m;
-}
 
 double angleDegrees(const Mat3d& r) {
   const double cosine = std::clamp((r.m[0].x + r.m[1].y + r.m[2].z - 1.0) * 0.5, -1.0, 1.0);

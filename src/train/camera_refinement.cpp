@@ -2,10 +2,14 @@
 #include "train/camera_refinement.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <numbers>
+#include <tuple>
 #include <vector>
 
 #include "core/parallel.h"
+#include "math/nearest_rotation.h"
 #include "math/percentile.h"
 #include "render/gaussian_renderer.h"
 #include "train/training_eval.h"
@@ -16,12 +20,46 @@ namespace {
 constexpr int kAlignmentSpp = 4;
 }  // namespace
 
+std::pair<double, double> removeCommonMotion(const std::vector<Camera>& before, std::vector<Camera>* after) {
+  const size_t n = before.size();
+  if (n < 3) return {0.0, 1.0};  // a similarity needs three centres
+  Mat3d sum;
+  for (int i = 0; i < 3; ++i) sum.m[i] = Vec3d(0.0);
+  Vec3d meanBefore(0.0), meanAfter(0.0);
+  for (size_t v = 0; v < n; ++v) {
+    const Mat3d change = (*after)[v].rotation() * before[v].rotation().transposed();
+    for (int i = 0; i < 3; ++i) sum.m[i] += change.m[i];
+    meanBefore += before[v].position() / double(n);
+    meanAfter += (*after)[v].position() / double(n);
+  }
+  const Mat3d g = nearestRotation(sum);
+  double numerator = 0, denominator = 0;
+  for (size_t v = 0; v < n; ++v) {
+    const Vec3d b = g * (before[v].position() - meanBefore), a = (*after)[v].position() - meanAfter;
+    numerator += dot(a, b);
+    denominator += dot(b, b);
+  }
+  const double scale = denominator > 0 && numerator > 0 ? numerator / denominator : 1.0;
+  for (size_t v = 0; v < n; ++v) {
+    Camera& c = (*after)[v];
+    const Mat3d r = g.transposed() * c.rotation();
+    const Vec3d centre = g.transposeTimes(c.position() - meanAfter) / scale + meanBefore;
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) c.cameraToWorld.m[i][j] = r.m[i][j];
+      c.cameraToWorld.m[i][3] = centre[i];
+    }
+  }
+  const double cosine = std::clamp((g.m[0].x + g.m[1].y + g.m[2].z - 1.0) * 0.5, -1.0, 1.0);
+  return {std::acos(cosine) * 180.0 / std::numbers::pi, scale};
+}
+
 std::string CameraRefinementRound::summary() const {
   char line[400];
   std::snprintf(line, sizeof(line),
                 "cameras refined: %d of %d views moved, median %.3f deg and %.4g (at most %.3f deg and %.4g), "
-                "image cost %.3g -> %.3g%s",
+                "image cost %.3g -> %.3g, common motion taken out %.3f deg and scale %.4f%s",
                 moved, views, medianDegrees, medianDistance, maxDegrees, maxDistance, costBefore, costAfter,
+                commonDegrees, commonScale,
                 refusedBeyondBounds > 0
                     ? (", " + std::to_string(refusedBeyondBounds) + " refused beyond the bounds").c_str()
                     : "");
@@ -67,23 +105,33 @@ CameraRefinementRound refineTrainingCameras(const GaussianTracer& tracer, const 
 
   CameraRefinementRound round;
   round.views = int(count);
-  std::vector<float> degrees, distances;
+  std::vector<size_t> moved;
+  std::vector<Camera> before, after;
   for (size_t v = 0; v < count; ++v) {
     const PoseAlignment& a = aligned[v];
     if (a.refusal == "a turn beyond the bound" || a.refusal == "a move beyond the bound") ++round.refusedBeyondBounds;
     if (!a.accepted) continue;
-    views->setCamera(v, a.camera, normalsFromCamera);
-    ++round.moved;
-    degrees.push_back(float(a.rotationDegrees));
-    distances.push_back(float(a.translation));
-    round.maxDegrees = std::max(round.maxDegrees, a.rotationDegrees);
-    round.maxDistance = std::max(round.maxDistance, a.translation);
-    round.costBefore += a.costBefore / double(count);
-    round.costAfter += a.costAfter / double(count);
+    moved.push_back(v);
+    before.push_back(views->camera(v));
+    after.push_back(a.camera);
+    round.costBefore += a.costBefore;
+    round.costAfter += a.costAfter;
+  }
+  std::tie(round.commonDegrees, round.commonScale) = removeCommonMotion(before, &after);
+  round.moved = int(moved.size());
+  std::vector<float> degrees, distances;
+  for (size_t k = 0; k < moved.size(); ++k) {
+    const Mat3d change = after[k].rotation() * before[k].rotation().transposed();
+    const double cosine = std::clamp((change.m[0].x + change.m[1].y + change.m[2].z - 1.0) * 0.5, -1.0, 1.0);
+    degrees.push_back(float(std::acos(cosine) * 180.0 / std::numbers::pi));
+    distances.push_back(float(length(after[k].position() - before[k].position())));
+    round.maxDegrees = std::max(round.maxDegrees, double(degrees.back()));
+    round.maxDistance = std::max(round.maxDistance, double(distances.back()));
+    views->setCamera(moved[k], after[k], normalsFromCamera);
   }
   if (round.moved > 0) {
-    round.costBefore *= double(count) / round.moved;
-    round.costAfter *= double(count) / round.moved;
+    round.costBefore /= round.moved;
+    round.costAfter /= round.moved;  // of the alignments, before the common motion was taken out
   }
   round.medianDegrees = percentileOf(degrees, 0.5);
   round.medianDistance = percentileOf(distances, 0.5);

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "raytrace/gaussian_tracer.h"
 #include "render/path_step.h"
@@ -20,13 +22,24 @@ struct CameraRefinementRound {
   double medianDistance = 0, maxDistance = 0;   // in the scene's units
   double costBefore = 0, costAfter = 0;         // mean robust cost over the moved views
   int refusedBeyondBounds = 0;      // refused as a turn or move beyond the bounds (a wrong basin)
+  // The motion the moved views shared, taken out (removeCommonMotion): its angle and scale.
+  double commonDegrees = 0, commonScale = 1;
   // "cameras refined: 97 of 100 views moved, median 0.21 deg and 0.9 cm (at most ...)".
   std::string summary() const;
 };
 
+// Takes out of `after` the similarity (rotation, uniform scale, offset) that best carries the
+// poses `before` onto it: the rotation the mean of the views' rotation changes, then scale and
+// offset by least squares on the centres. What is left is each view's own change. Returns the
+// rotation's angle in degrees and the scale.
+std::pair<double, double> removeCommonMotion(const std::vector<Camera>& before, std::vector<Camera>* after);
+
 // Renders every training view from the model (pixel centres; the diffuse pass, or the final
 // image where the views' colour target is the render buffer, along `path`), aligns its pose
-// to its colour target and sets the views' camera where the alignment is accepted.
+// to its colour target and sets the views' camera where the alignment is accepted, less the
+// motion the moved views share (removeCommonMotion): the model was built in the frame the
+// cameras had, so a turn, scale or shift of them all is the alignments' drift, not the
+// cameras' error, and the test views, which are not refined, would see the model moved by it.
 // normalsFromCamera: the views' normal targets came from camera-space priors (they turn
 // with the camera, TrainingViews::setCamera). Deterministic: every view is aligned on its own,
 // so each rank of an MPI job computes the same poses.
