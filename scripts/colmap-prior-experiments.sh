@@ -53,6 +53,11 @@ echo '{"bounces": 2, "loss": {"depth_band": 0.1, "specular": 0.01, "depth_consis
 # The same with the dense initialisation leaving out the untrusted depth too.
 echo '{"bounces": 2, "init": {"consistent_depth_only": true}, "loss": {"depth_band": 0.1, "specular": 0.01, "depth_consistency": 0.02}}' \
   > "$out/configs/preset_band_consistent_init.json"
+# Camera refinement (train/camera_refinement.h): every eighth of the run, up to three quarters.
+echo "{\"bounces\": 2, \"loss\": {\"depth\": 0, \"specular\": 0.01}, \"cameras\": {\"refine_every\": $((iters / 8))}}" \
+  > "$out/configs/preset_refine.json"
+echo "{\"bounces\": 2, \"loss\": {\"depth_band\": 0.1, \"specular\": 0.01, \"depth_consistency\": 0.02}, \"cameras\": {\"refine_every\": $((iters / 8))}}" \
+  > "$out/configs/preset_band_consistent_refine.json"
 echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1}, \"lr\": {\"normal_final\": 0.000025, \"normal_decay_steps\": $iters}}" \
   > "$out/configs/best.json"
 
@@ -66,7 +71,8 @@ train_and_eval() {  # train_and_eval RUN CAPTURE TRUTH CONFIG
 runs="${RUNS:-monocular_colmap_preset monocular_colmap_best monocular_colmap_preset_band
   monocular_true_preset monocular_true_preset_band network_colmap_preset network_colmap_preset_band
   monocular_colmap_preset_band_consistent network_colmap_preset_band_consistent monocular_true_preset_band_consistent
-  monocular_colmap_preset_band_consistent_init}"
+  monocular_colmap_preset_band_consistent_init monocular_colmap_preset_refine
+  monocular_colmap_preset_band_consistent_refine}"
 for name in $runs; do
   kind="${name%%_*}"
   rest="${name#*_}"
