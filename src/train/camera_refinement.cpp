@@ -20,6 +20,13 @@ namespace {
 constexpr int kAlignmentSpp = 4;
 }  // namespace
 
+ViewBuffers renderForAlignment(const GaussianTracer& tracer, const Camera& camera, const PathSettings& path,
+                               bool finalColour, uint64_t viewKey) {
+  PathSettings colourPath = path;
+  if (!finalColour) colourPath.bounces = 0;  // the diffuse pass is the first segment's
+  return renderScoredView(tracer, camera, scoringSettings(kAlignmentSpp, colourPath), viewKey);
+}
+
 std::pair<double, double> removeCommonMotion(const std::vector<Camera>& before, std::vector<Camera>* after) {
   const size_t n = before.size();
   if (n < 3) return {0.0, 1.0};  // a similarity needs three centres
@@ -82,13 +89,7 @@ CameraRefinementRound refineTrainingCameras(const GaussianTracer& tracer, const 
     std::vector<Image> targets(last - first);
     for (size_t v = first; v < last; ++v) {
       const Camera& camera = views->camera(v);
-      // The targets average their pixels (radiance buffers cover the whole pixel), so the
-      // colour is rendered so too, from kAlignmentSpp jittered samples; the depth that carries
-      // the pixels into the target comes from the pixel centre (renderScoredView). Centre
-      // samples alone alias the model's pixel-sized Gaussians into a biased alignment.
-      PathSettings colourPath = path;
-      if (!finalColour) colourPath.bounces = 0;  // the diffuse pass is the first segment's
-      rendered[v - first] = renderScoredView(tracer, camera, scoringSettings(kAlignmentSpp, colourPath), uint64_t(v));
+      rendered[v - first] = renderForAlignment(tracer, camera, path, finalColour, uint64_t(v));
       Image& target = targets[v - first];
       target = Image(camera.width, camera.height, 3);
       for (int y = 0; y < camera.height; ++y)
@@ -97,8 +98,7 @@ CameraRefinementRound refineTrainingCameras(const GaussianTracer& tracer, const 
     }
     parallelFor(int64_t(last - first), 1, [&](int64_t k) {
       const ViewBuffers& r = rendered[size_t(k)];
-      aligned[first + size_t(k)] = alignCameraPose(views->camera(first + size_t(k)),
-                                                   r[finalColour ? Buffer::Render : Buffer::Diffuse],
+      aligned[first + size_t(k)] = alignCameraPose(views->camera(first + size_t(k)), alignmentColour(r, finalColour),
                                                    r[Buffer::Depth], targets[size_t(k)], options);
     });
   }

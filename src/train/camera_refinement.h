@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "raytrace/gaussian_tracer.h"
+#include "scene/buffers.h"
 #include "render/path_step.h"
 #include "train/pose_alignment.h"
 #include "train/training_views.h"
@@ -27,6 +28,17 @@ struct CameraRefinementRound {
   // "cameras refined: 97 of 100 views moved, median 0.21 deg and 0.9 cm (at most ...)".
   std::string summary() const;
 };
+
+// The model's render of a view for aligning its camera: colour averaged over a few jittered
+// samples per pixel, as a dataset's radiance buffers average their pixels (centre samples
+// alone alias the model's pixel-sized Gaussians into a biased alignment), the first segment's
+// diffuse, or with finalColour the final image along `path`; depth from the pixel centre.
+// alignmentColour() picks the colour buffer to align.
+ViewBuffers renderForAlignment(const GaussianTracer& tracer, const Camera& camera, const PathSettings& path,
+                               bool finalColour, uint64_t viewKey);
+inline const Image& alignmentColour(const ViewBuffers& rendered, bool finalColour) {
+  return rendered[finalColour ? Buffer::Render : Buffer::Diffuse];
+}
 
 // Takes out of `after` the similarity (rotation, uniform scale, offset) that best carries the
 // poses `before` onto it: the rotation the mean of the views' rotation changes, then scale and
