@@ -9,6 +9,7 @@
 #include "core/atomic_file.h"
 #include "common/tiny_run.h"
 #include "io/temp_folder.h"
+#include "train/checkpoint.h"
 
 namespace glint {
 namespace {
@@ -103,6 +104,35 @@ TEST(RunFolder, ANewRunRefusesAFolderThatIsNotEmpty) {
   test::expectErrorNaming([&] { run.create(TrainConfig(), false); }, folder.path(), "is not empty");
   run.create(TrainConfig(), true);
   EXPECT_EQ(toJson(run.readConfig()), toJson(TrainConfig()));
+}
+
+// Camera refinement's poses are part of the run's state: a run stopped between rounds and
+// resumed ends where the straight run ends, poses and all.
+TEST_F(TrainingLoopTest, ARefinedRunResumesBitForBitWithItsPoses) {
+  TrainConfig config = smallConfig();
+  config.cameras.every = 2;
+  config.cameras.until = 6;
+  TrainingSession session;
+  session.evalViews = 2;
+
+  const RunFolder straight(folder_->path() / "refined_straight");
+  straight.create(config, false);
+  CountingObserver all;
+  trainRun(straight, config, session, all);
+  const TrainingState finished = readCheckpoint(straight.checkpointFile());
+  ASSERT_EQ(finished.cameraPoses.size(), 4u);  // refinement moved at least one of the 4 views
+
+  const RunFolder stopped(folder_->path() / "refined_stopped");
+  stopped.create(config, false);
+  CountingObserver early(5);
+  trainRun(stopped, config, session, early);
+  ASSERT_EQ(readCheckpoint(stopped.checkpointFile()).cameraPoses.size(), 4u);
+  session.resume = true;
+  CountingObserver rest;
+  trainRun(stopped, stopped.readConfig(), session, rest);
+  EXPECT_EQ(rest.firstStep, 5);
+  EXPECT_EQ(readTextFile(stopped.checkpointFile()), readTextFile(straight.checkpointFile()));
+  EXPECT_EQ(readTextFile(stopped.sceneFile()), readTextFile(straight.sceneFile()));
 }
 
 }  // namespace
