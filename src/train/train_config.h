@@ -179,7 +179,8 @@ struct TrainConfig {
   bool initConsistentDepthOnly = false;
   // Camera pose refinement during training, off (0): an option beyond the paper. Measured
   // on COLMAP's cameras of a synthesized capture it moved them further from the truth and
-  // cost 1.7 dB of held-out diffuse by step 2000 (docs/captures.md): kept to measure again.
+  // cost 1.3 dB of held-out specular and 2.6 of diffuse (docs/captures.md): kept to measure
+  // again, not to use.
   CameraRefinementSettings cameras;
   FarFieldSettings farField;  // added when reflections start (bounces > 0)
   // Early termination, as in rendering: the exact final transmittance of the A.2 tail
