@@ -13,7 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <numbers>
+#include <tuple>
 #include <string>
 #include <vector>
 
@@ -21,28 +21,15 @@
 #include <nlohmann/json.hpp>
 
 #include "core/error.h"
-#include "math/mat3.h"
 #include "math/nearest_rotation.h"
 #include "math/percentile.h"
 #include "scene/dataset.h"
+#include "train/camera_refinement.h"
 #include "train/checkpoint.h"
 
 using namespace glint;
 
 namespace {
-
-Mat3d rotationOf(const Mat4& m) {
-  Mat3d r;
-  for (int i = 0; i < 3; ++i) r.m[i] = {m.m[i][0], m.m[i][1], m.m[i][2]};
-  return r;
-}
-
-Vec3d centreOf(const Mat4& m) { return {m.m[0][3], m.m[1][3], m.m[2][3]}; }
-
-double angleDegrees(const Mat3d& r) {
-  const double cosine = std::clamp((r.m[0].x + r.m[1].y + r.m[2].z - 1.0) * 0.5, -1.0, 1.0);
-  return std::acos(cosine) * 180.0 / std::numbers::pi;
-}
 
 struct CameraErrors {
   std::vector<float> degrees, distances;  // per view, the distance in the truth's units
@@ -50,39 +37,21 @@ struct CameraErrors {
   double frameDegrees = 0, frameScale = 1;  // the similarity's rotation angle and scale
 };
 
-// Errors of `estimate` against `truth` (camera-to-world poses of the same views, in order)
-// after the similarity: its rotation from the mean of the rotations' differences, then scale
-// and offset by least squares on the centres.
-CameraErrors compare(const std::vector<Mat4>& truth, const std::vector<Mat4>& estimate) {
-  const size_t n = truth.size();
-  Mat3d sum;
-  for (int i = 0; i < 3; ++i) sum.m[i] = Vec3d(0.0);
-  Vec3d meanTrue(0.0), meanEstimate(0.0);
-  for (size_t v = 0; v < n; ++v) {
-    const Mat3d d = rotationOf(estimate[v]) * rotationOf(truth[v]).transposed();
-    for (int i = 0; i < 3; ++i) sum.m[i] += d.m[i];
-    meanTrue += centreOf(truth[v]) / double(n);
-    meanEstimate += centreOf(estimate[v]) / double(n);
-  }
-  const Mat3d g = nearestRotation(sum);
-  double numerator = 0, denominator = 0;
-  for (size_t v = 0; v < n; ++v) {
-    const Vec3d t = g * (centreOf(truth[v]) - meanTrue), e = centreOf(estimate[v]) - meanEstimate;
-    numerator += dot(e, t);
-    denominator += dot(t, t);
-  }
-  const double scale = numerator / denominator;
+// Errors of `estimate` against `truth` (the same views, in order) after the similarity
+// between them, taken out as camera refinement takes a round's common motion out
+// (removeCommonMotion): the estimate brought into the truth's frame.
+CameraErrors compare(const std::vector<Camera>& truth, std::vector<Camera> estimate) {
   CameraErrors errors;
-  errors.ringSize = std::sqrt(denominator / double(n));
-  errors.frameDegrees = angleDegrees(g);
-  errors.frameScale = scale;
-  for (size_t v = 0; v < n; ++v) {
-    // The estimate brought into the truth's frame.
-    const Vec3d centre = g.transposeTimes(centreOf(estimate[v]) - meanEstimate) / scale + meanTrue;
-    errors.distances.push_back(float(length(centre - centreOf(truth[v]))));
-    errors.degrees.push_back(
-        float(angleDegrees(g.transposed() * rotationOf(estimate[v]) * rotationOf(truth[v]).transposed())));
+  std::tie(errors.frameDegrees, errors.frameScale) = removeCommonMotion(truth, &estimate);
+  Vec3d meanTrue(0.0);
+  for (const Camera& c : truth) meanTrue += c.position() / double(truth.size());
+  double spread = 0;
+  for (size_t v = 0; v < truth.size(); ++v) {
+    spread += dot(truth[v].position() - meanTrue, truth[v].position() - meanTrue);
+    errors.distances.push_back(float(length(estimate[v].position() - truth[v].position())));
+    errors.degrees.push_back(float(rotationAngleDegrees(estimate[v].rotation() * truth[v].rotation().transposed())));
   }
+  errors.ringSize = std::sqrt(spread / double(truth.size()));
   return errors;
 }
 
@@ -92,10 +61,10 @@ double mean(const std::vector<float>& v) {
   return v.empty() ? 0.0 : s / double(v.size());
 }
 
-std::vector<Mat4> posesOf(const DatasetSplit& split) {
-  std::vector<Mat4> poses;
-  for (size_t v = 0; v < split.views.size(); ++v) poses.push_back(split.camera(v).cameraToWorld);
-  return poses;
+std::vector<Camera> camerasOf(const DatasetSplit& split) {
+  std::vector<Camera> cameras;
+  for (size_t v = 0; v < split.views.size(); ++v) cameras.push_back(split.camera(v));
+  return cameras;
 }
 
 }  // namespace
@@ -124,26 +93,27 @@ int main(int argc, char** argv) {
           std::filesystem::path(estimateSplit.views[v].filePath).filename())
         throw Error(estimatePath, "training view " + std::to_string(v) + " is " + estimateSplit.views[v].filePath +
                                       ", the truth's " + trueSplit.views[v].filePath);
-    const std::vector<Mat4> truePoses = posesOf(trueSplit);
+    const std::vector<Camera> trueCameras = camerasOf(trueSplit);
 
-    std::vector<std::pair<std::string, std::vector<Mat4>>> rows{{"estimate", posesOf(estimateSplit)}};
+    std::vector<std::pair<std::string, std::vector<Camera>>> rows{{"estimate", camerasOf(estimateSplit)}};
     for (const std::string& run : runs) {
       const std::filesystem::path file = std::filesystem::path(run) / "checkpoint" / "state.bin";
       TrainingState state = readCheckpoint(file);
-      if (state.cameraPoses.empty()) state.cameraPoses = rows.front().second;  // never refined
-      if (state.cameraPoses.size() != truePoses.size())
+      std::vector<Camera> refined = rows.front().second;  // as COLMAP left them when never refined
+      if (!state.cameraPoses.empty() && state.cameraPoses.size() != refined.size())
         throw Error(file.string(), "holds " + std::to_string(state.cameraPoses.size()) + " poses for " +
-                                       std::to_string(truePoses.size()) + " training views");
-      rows.emplace_back(run, state.cameraPoses);
+                                       std::to_string(refined.size()) + " training views");
+      for (size_t v = 0; v < state.cameraPoses.size(); ++v) refined[v].cameraToWorld = state.cameraPoses[v];
+      rows.emplace_back(run, refined);
     }
     nlohmann::json out = nlohmann::json::array();
-    std::printf("%d training views; position errors in the truth's units\n", int(truePoses.size()));
+    std::printf("%d training views; position errors in the truth's units\n", int(trueCameras.size()));
     // "frame": the similarity's rotation and scale; between two runs of one capture they say
     // how far the cameras moved together (a drift of the whole frame) rather than apart.
     std::printf("%-40s %9s %9s %9s %10s %10s %10s %8s %10s %10s\n", "cameras", "deg mean", "deg med", "deg max",
                 "pos mean", "pos med", "pos max", "% ring", "frame deg", "frame scl");
-    for (const auto& [name, poses] : rows) {
-      const CameraErrors e = compare(truePoses, poses);
+    for (const auto& [name, cameras] : rows) {
+      const CameraErrors e = compare(trueCameras, cameras);
       const double positionMean = mean(e.distances);
       std::printf("%-40s %9.3f %9.3f %9.3f %10.4f %10.4f %10.4f %8.2f %10.4f %10.5f\n", name.c_str(),
                   mean(e.degrees), percentileOf(e.degrees, 0.5), percentileOf(e.degrees, 1.0), positionMean,

@@ -1,6 +1,10 @@
-// The rotation nearest a 3x3 matrix: the mean of rotations that differ by a few degrees
-// (camera frames compared or refined together).
+// The rotation nearest a 3x3 matrix (the mean of rotations that differ by a few degrees) and a
+// rotation's angle: camera frames compared or refined together.
 #pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "math/mat3.h"
 
@@ -24,6 +28,12 @@ inline Mat3d nearestRotation(Mat3d m) {
     for (int i = 0; i < 3; ++i) m.m[i] = (m.m[i] + inverseTransposed.m[i]) * 0.5;
   }
   return m;
+}
+
+// The angle of rotation r in degrees, from its trace: 1 + 2 cos(angle).
+inline double rotationAngleDegrees(const Mat3d& r) {
+  const double cosine = std::clamp((r.m[0].x + r.m[1].y + r.m[2].z - 1.0) * 0.5, -1.0, 1.0);
+  return std::acos(cosine) * 180.0 / std::numbers::pi;
 }
 
 }  // namespace glint

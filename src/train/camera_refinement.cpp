@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <numbers>
 #include <tuple>
 #include <vector>
 
@@ -56,8 +55,7 @@ std::pair<double, double> removeCommonMotion(const std::vector<Camera>& before, 
       c.cameraToWorld.m[i][3] = centre[i];
     }
   }
-  const double cosine = std::clamp((g.m[0].x + g.m[1].y + g.m[2].z - 1.0) * 0.5, -1.0, 1.0);
-  return {std::acos(cosine) * 180.0 / std::numbers::pi, scale};
+  return {rotationAngleDegrees(g), scale};
 }
 
 std::string CameraRefinementRound::summary() const {
@@ -109,7 +107,7 @@ CameraRefinementRound refineTrainingCameras(const GaussianTracer& tracer, const 
   std::vector<Camera> before, after;
   for (size_t v = 0; v < count; ++v) {
     const PoseAlignment& a = aligned[v];
-    if (a.refusal == "a turn beyond the bound" || a.refusal == "a move beyond the bound") ++round.refusedBeyondBounds;
+    if (a.beyondBounds) ++round.refusedBeyondBounds;
     if (!a.accepted) continue;
     moved.push_back(v);
     before.push_back(views->camera(v));
@@ -121,9 +119,7 @@ CameraRefinementRound refineTrainingCameras(const GaussianTracer& tracer, const 
   round.moved = int(moved.size());
   std::vector<float> degrees, distances;
   for (size_t k = 0; k < moved.size(); ++k) {
-    const Mat3d change = after[k].rotation() * before[k].rotation().transposed();
-    const double cosine = std::clamp((change.m[0].x + change.m[1].y + change.m[2].z - 1.0) * 0.5, -1.0, 1.0);
-    degrees.push_back(float(std::acos(cosine) * 180.0 / std::numbers::pi));
+    degrees.push_back(float(rotationAngleDegrees(after[k].rotation() * before[k].rotation().transposed())));
     distances.push_back(float(length(after[k].position() - before[k].position())));
     round.maxDegrees = std::max(round.maxDegrees, double(degrees.back()));
     round.maxDistance = std::max(round.maxDistance, double(distances.back()));

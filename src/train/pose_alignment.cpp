@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
 #include <vector>
 
 #include "math/cholesky.h"
+#include "math/nearest_rotation.h"
 #include "math/percentile.h"
 #include "scene/buffers.h"
 
@@ -196,23 +196,22 @@ Level makeLevel(const Camera& camera, int level, const Image& target, const Imag
   const double scale = std::ldexp(1.0, -level);
   l.width = target.width, l.height = target.height;
   l.fx = camera.fx * scale, l.fy = camera.fy * scale, l.cx = camera.cx * scale, l.cy = camera.cy * scale;
+  // The level's camera at the origin: its rays' directions are camera coordinates.
+  Camera local = camera;
+  local.cameraToWorld = Mat4::identity();
+  local.width = l.width, local.height = l.height;
+  local.fx = l.fx, local.fy = l.fy, local.cx = l.cx, local.cy = l.cy;
   l.target = target;
   imageGradients(target, &l.gradientX, &l.gradientY);
   for (int y = 0; y < depth.height; ++y)
     for (int x = 0; x < depth.width; ++x) {
       const float d = depth.at(x, y);
       if (!hasSurface(d)) continue;
-      const Vec3d local = normalize(Vec3d((x + 0.5 - l.cx) / l.fx, -(y + 0.5 - l.cy) / l.fy, -1.0));
-      l.points.push_back(local * double(d));
+      l.points.push_back(local.generateRay(x + 0.5, y + 0.5).direction * double(d));
       const Rgb c = colour.rgb(x, y);
       l.colours.push_back(Vec3f(c.x, c.y, c.z));
     }
   return l;
-}
-
-double rotationAngleDegrees(const Mat3d& r) {
-  const double cosine = std::clamp((r.m[0].x + r.m[1].y + r.m[2].z - 1.0) * 0.5, -1.0, 1.0);
-  return std::acos(cosine) * 180.0 / std::numbers::pi;
 }
 
 }  // namespace
@@ -307,9 +306,9 @@ PoseAlignment alignCameraPose(const Camera& camera, const Image& renderColour, c
   if (!(result.costAfter < result.costBefore * (1.0 - options.minImprovement)))
     result.refusal = "the cost did not fall";
   else if (result.rotationDegrees > options.maxRotationDegrees)
-    result.refusal = "a turn beyond the bound";
+    result.refusal = "a turn beyond the bound", result.beyondBounds = true;
   else if (result.translation > options.maxTranslation * medianDepth)
-    result.refusal = "a move beyond the bound";
+    result.refusal = "a move beyond the bound", result.beyondBounds = true;
   if (!result.refusal.empty()) return result;
   result.accepted = true;
   result.camera = movedCamera(camera, pose.r, pose.t);

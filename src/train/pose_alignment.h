@@ -31,6 +31,7 @@ struct PoseAlignment {
   double costBefore = 0, costAfter = 0;  // mean robust cost per residual at full resolution
   int pixels = 0;             // render pixels with a surface
   std::string refusal;        // why not accepted ("" when accepted)
+  bool beyondBounds = false;  // refused as a turn or move beyond the options' bounds
 };
 
 // The camera pose at which `target` (a view's colour target, linear radiance, the size of

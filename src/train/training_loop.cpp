@@ -176,7 +176,7 @@ void restoreCameraPoses(const TrainingState& state, const Dataset& dataset, Trai
 
 // Runs the multi-view depth check (TrainConfig::loss.depthConsistency) over the views'
 // current cameras and says what it kept.
-void checkDepthConsistency(const TrainConfig& config, const RunFolder& run, TrainingViews* views,
+void keepConsistentDepthAndSay(const TrainConfig& config, const RunFolder& run, TrainingViews* views,
                            TrainingObserver& observer) {
   const DepthConsistency found = views->keepConsistentDepth(
       {.tolerance = config.loss.depthConsistency, .minAgreeing = config.loss.depthConsistencyViews});
@@ -214,7 +214,7 @@ double setUpTrainer(const RunFolder& run, const TrainConfig& config, const Train
     double wallOffset = truncateLog(run.logFile(), state.step);
     restoreCameraPoses(state, dataset, &views, run.checkpointFile().string());
     if (views.camerasMoved() && config.loss.depthConsistency > 0 && views.supervised().depth)
-      checkDepthConsistency(config, run, &views, observer);
+      keepConsistentDepthAndSay(config, run, &views, observer);
     *trainer = std::make_unique<Trainer>(config, views, std::move(spheres), std::move(state), session.tracer);
     return wallOffset;
   }
@@ -245,7 +245,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
                                             config.f0TintFromReflections);
   if (config.loss.depthConsistency > 0 && views.supervised().depth) {
     activity.describe("checking each training view's depth against its neighbours'");
-    checkDepthConsistency(config, run, &views, observer);
+    keepConsistentDepthAndSay(config, run, &views, observer);
   }
   std::vector<CameraSphere> spheres = cameraSpheres(dataset, dataset.train(), config.prune.cameraSphereFactor);
   // The test views are scored where the run is written (into log.csv).
@@ -276,7 +276,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
     TrainingState state = decodeCheckpoint(bytes, "the state rank 0 sent");
     restoreCameraPoses(state, dataset, &views, "the state rank 0 sent");
     if (views.camerasMoved() && config.loss.depthConsistency > 0 && views.supervised().depth)
-      checkDepthConsistency(config, run, &views, observer);
+      keepConsistentDepthAndSay(config, run, &views, observer);
     trainer = std::make_unique<Trainer>(config, views, std::move(spheres), std::move(state), session.tracer);
   }
   trainer->setExchangeMode(session.exchange);
@@ -311,7 +311,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
           refineTrainingCameras(trainer->tracer(), config.path(), &views, normalsFromCamera(dataset));
       if (run.writes()) observer.note("step " + std::to_string(r.step) + ": " + round.summary());
       if (round.moved > 0 && config.loss.depthConsistency > 0 && views.supervised().depth)
-        checkDepthConsistency(config, run, &views, observer);
+        keepConsistentDepthAndSay(config, run, &views, observer);
     }
     double wall = wallOffset + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::optional<TestScore> score;

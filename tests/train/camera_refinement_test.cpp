@@ -11,6 +11,7 @@
 
 #include "common/corner_scene.h"
 #include "io/temp_folder.h"
+#include "math/nearest_rotation.h"
 #include "render/gaussian_renderer.h"
 #include "scene/dataset.h"
 #include "train/train_config.h"
@@ -27,8 +28,7 @@ using test::kCornerViews;
 using test::kCornerWidth;
 
 double degreesBetween(const Camera& a, const Camera& b) {
-  const Mat3d r = a.rotation().transposed() * b.rotation();
-  return std::acos(std::clamp((r.m[0].x + r.m[1].y + r.m[2].z - 1.0) * 0.5, -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  return rotationAngleDegrees(a.rotation().transposed() * b.rotation());
 }
 
 // The mean distance in pixels between where the corner's visible points project through

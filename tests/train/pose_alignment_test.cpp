@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "math/nearest_rotation.h"
 #include "math/rng.h"
 
 namespace glint {
@@ -58,9 +59,7 @@ Camera cornerCamera() {
 }
 
 double angleBetweenDegrees(const Camera& a, const Camera& b) {
-  const Mat3d r = a.rotation().transposed() * b.rotation();
-  const double cosine = std::clamp((r.m[0].x + r.m[1].y + r.m[2].z - 1.0) * 0.5, -1.0, 1.0);
-  return std::acos(cosine) * 180.0 / std::numbers::pi;
+  return rotationAngleDegrees(a.rotation().transposed() * b.rotation());
 }
 
 TEST(PoseAlignment, WarpJacobianMatchesFiniteDifferences) {
