@@ -1,6 +1,7 @@
-// L1 losses of one ray and their gradient.
+// The losses of one ray (L1; the normal term optionally Huber) and their gradient.
 #include "train/ray_loss.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace glint {
@@ -35,14 +36,30 @@ Rgb fittedColour(const RayResult& r, const PixelTarget& t, const Rgb& pathSpecul
   return t.finalColour ? r.diffuse + pathSpecular : r.diffuse;
 }
 
+double normalError(const Vec3f& e, float width) {
+  return normalPenalty(e.x, width) + normalPenalty(e.y, width) + normalPenalty(e.z, width);
+}
+
 }  // namespace
 
-LossTerms rayLoss(const RayResult& r, const PixelTarget& t, const LossNormalisation& n, const Rgb& pathSpecular) {
+double normalPenalty(float x, float width) {
+  const double a = std::abs(double(x));
+  if (width <= 0 || a >= width) return a - 0.5 * std::max(double(width), 0.0);
+  return a * a / (2.0 * width);
+}
+
+float normalPenalty_vjp(float x, float width) {
+  if (width <= 0) return sign(x);
+  return std::clamp(x / width, -1.0f, 1.0f);
+}
+
+LossTerms rayLoss(const RayResult& r, const PixelTarget& t, const LossNormalisation& n, const Rgb& pathSpecular,
+                  float normalHuber) {
   LossTerms terms;
   terms.diffuse = absSum(fittedColour(r, t, pathSpecular) - t.diffuse) / (3 * n.diffuseRays);
   if (t.surface) {
     if (t.hasDepth) terms.depth = std::abs(double(r.depth) - t.depth) / n.surfaceRays;
-    if (t.hasNormal) terms.normal = absSum(r.normal - t.normal) / (3 * n.surfaceRays);
+    if (t.hasNormal) terms.normal = normalError(r.normal - t.normal, normalHuber) / (3 * n.surfaceRays);
     if (t.hasRoughness) terms.roughness = std::abs(double(r.roughness) - t.roughness) / n.surfaceRays;
     if (t.hasF0) terms.f0 = f0Error(r.f0, t) / n.surfaceRays;
   }
@@ -55,7 +72,12 @@ RayResultAdjoint rayLoss_vjp(const RayResult& r, const PixelTarget& t, const Los
   v.v_diffuse = sign(fittedColour(r, t, pathSpecular) - t.diffuse) * float(w.diffuse / (3 * n.diffuseRays));
   if (t.surface) {
     if (t.hasDepth) v.v_depth = sign(r.depth - t.depth) * float(w.depth / n.surfaceRays);
-    if (t.hasNormal) v.v_normal = sign(r.normal - t.normal) * float(w.normal / (3 * n.surfaceRays));
+    if (t.hasNormal) {
+      const Vec3f e = r.normal - t.normal;
+      const Vec3f slope(normalPenalty_vjp(e.x, w.normalHuber), normalPenalty_vjp(e.y, w.normalHuber),
+                        normalPenalty_vjp(e.z, w.normalHuber));
+      v.v_normal = slope * float(w.normal / (3 * n.surfaceRays));
+    }
     if (t.hasRoughness) v.v_roughness = sign(r.roughness - t.roughness) * float(w.roughness / n.surfaceRays);
     if (t.hasF0) v.v_f0 = f0Error_vjp(r.f0, t) * float(w.f0 / n.surfaceRays);
   }

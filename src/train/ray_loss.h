@@ -1,6 +1,6 @@
 // The per-ray L1 losses of the first segment (paper section 3.2): diffuse, and the G-buffer
-// terms depth, normal, roughness and F0, masked where the pixel has no surface; with the
-// _vjp that starts the backward pass.
+// terms depth, normal (optionally Huber, LossWeights::normalHuber), roughness and F0,
+// masked where the pixel has no surface; with the _vjp that starts the backward pass.
 #pragma once
 
 #include <cmath>
@@ -61,10 +61,17 @@ inline bool withinDepthBand(float rendered, float prior, float band) {
   return band <= 0.0f || std::abs(rendered - prior) <= band * prior;
 }
 
+// The normal term's per-component penalty: |x| with width 0, else Huber's, x^2 / (2 width)
+// within the width and |x| - width / 2 beyond (the L1 slope, so that a weight means the same
+// for large errors); and its derivative.
+double normalPenalty(float x, float width);
+float normalPenalty_vjp(float x, float width);
+
 // One ray's contribution to each term. pathSpecular is the path's specular sum (0 before
 // reflections are trained): with target.finalColour the colour term fits diffuse + specular.
+// normalHuber is LossWeights::normalHuber (0: the L1 of every term).
 LossTerms rayLoss(const RayResult& r, const PixelTarget& target, const LossNormalisation& n,
-                  const Rgb& pathSpecular = Rgb(0.0f));
+                  const Rgb& pathSpecular = Rgb(0.0f), float normalHuber = 0.0f);
 
 // The reflection term L_r = mean |specular - target| over the batch's rays and channels,
 // and its gradient with respect to the path's specular sum (weights.specular included).

@@ -86,6 +86,7 @@ void forEachField(Config& c, F&& f) {
   f("loss", "depth_band", c.loss.depthBand);
   f("loss", "depth_consistency", c.loss.depthConsistency);
   f("loss", "depth_consistency_views", c.loss.depthConsistencyViews);
+  f("loss", "normal_huber", c.loss.normalHuber);
   f("loss", "roughness_from_specular", c.loss.roughnessFromSpecular);
   f("loss", "f0_from_specular", c.loss.f0FromSpecular);
   // The learning rates, named by the parameter table.
@@ -297,6 +298,8 @@ void TrainConfig::validate(const std::string& source) const {
   checkDensifySettings(densify, source);
   require(reflectionWarmup >= 0, source, "reflection_warmup must be non-negative");
   require(loss.depthBand >= 0, source, "loss.depth_band must be non-negative (0 = off)");
+  require(loss.normalHuber >= 0 && loss.normalHuber <= 2, source,
+          "loss.normal_huber must be in [0, 2] (the Huber width of a normal component; 0 = L1)");
   require(loss.depthConsistency >= 0 && loss.depthConsistency < 1, source,
           "loss.depth_consistency must be in [0, 1) (a fraction of the depth; 0 = off)");
   require(loss.depthConsistencyViews >= 1 && loss.depthConsistencyViews <= kDepthConsistencyNeighbours, source,

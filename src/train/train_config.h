@@ -44,6 +44,12 @@ struct LossWeights {
   // an option beyond the paper, off (docs/captures.md).
   float depthConsistency = 0.0f;
   int depthConsistencyViews = 2;
+  // When positive, the normal term is a Huber loss of this width per component (quadratic
+  // within it, the L1 slope beyond): the minimum over many views' priors is then near their
+  // mean rather than their median, which for noise spread about the true normal scatters
+  // less (a mean's variance is 2/pi of a median's for Gaussian noise), while outliers beyond
+  // the width still pull only as L1. 0, the paper's L1. An option beyond the paper, off.
+  float normalHuber = 0.0f;
   // Weights of L_r's gradient into the roughness and the F0 of the surfaces a path reflects
   // off, through each step's sample weight with its direction and density held fixed
   // (render/gaussian_path.h, PathGradientSettings; docs/derivations.md D15). 0, the paper's

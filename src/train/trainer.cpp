@@ -209,7 +209,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
           if (shiftInvariant) target.roughness -= roughnessShift_;
         }
         const Rgb specular = reflections ? paths_[size_t(r)].specular : Rgb(0.0f);
-        slot.terms += rayLoss(result, target, norm, specular);
+        slot.terms += rayLoss(result, target, norm, specular, config_.loss.normalHuber);
         slot.hitCount += int64_t(path[0].hits.hits.size());
         Rgb v_specular(0.0f);
         if (reflections) {

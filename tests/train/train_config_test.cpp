@@ -24,6 +24,7 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.loss.f0FromSpecular = 2.0f;
   c.loss.depthConsistency = 0.03f;
   c.loss.depthConsistencyViews = 3;
+  c.loss.normalHuber = 0.2f;
   c.initConsistentDepthOnly = true;
   c.cameras.every = 500;
   c.cameras.until = 4500;
@@ -44,6 +45,7 @@ TEST(TrainConfig, RoundTripsEveryField) {
   EXPECT_EQ(back.loss.f0FromSpecular, 2.0f);
   EXPECT_EQ(back.loss.depthConsistency, 0.03f);
   EXPECT_EQ(back.loss.depthConsistencyViews, 3);
+  EXPECT_EQ(back.loss.normalHuber, 0.2f);
   EXPECT_TRUE(back.initConsistentDepthOnly);
   EXPECT_EQ(back.cameras.every, 500);
   EXPECT_EQ(back.cameras.until, 4500);
@@ -73,6 +75,7 @@ TEST(TrainConfig, DefaultsAreThePapers) {
   // The paper's detached throughputs: L_r reaches neither roughness nor F0.
   EXPECT_EQ(c.loss.roughnessFromSpecular, 0.0f);
   EXPECT_EQ(c.loss.f0FromSpecular, 0.0f);
+  EXPECT_EQ(c.loss.normalHuber, 0.0f);  // the paper's L1 normal term
   EXPECT_EQ(c.farField.count, 75000);
   EXPECT_EQ(c.farField.sigmaFactor, 4.0f);
   EXPECT_EQ(c.farField.truncation, 3.0f);
@@ -170,6 +173,7 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   expectRejected("{\"loss\": {\"depth_consistency\": 1.5}}", "loss.depth_consistency must be in [0, 1)");
   expectRejected("{\"loss\": {\"depth_consistency_views\": 9}}", "loss.depth_consistency_views must be in [1, 8]");
   expectRejected("{\"loss\": {\"depth_consistency_views\": 0}}", "loss.depth_consistency_views");
+  expectRejected("{\"loss\": {\"normal_huber\": -0.1}}", "loss.normal_huber must be in [0, 2]");
   // The initialisation's filter is the check's verdict: nothing to filter with the check off,
   // nor in a point cloud.
   expectRejected("{\"init\": {\"consistent_depth_only\": true}}", "needs loss.depth_consistency > 0");
