@@ -44,8 +44,8 @@ double normalError(const Vec3f& e, float width) {
 
 double normalPenalty(float x, float width) {
   const double a = std::abs(double(x));
-  if (width <= 0 || a >= width) return a - 0.5 * std::max(double(width), 0.0);
-  return a * a / (2.0 * width);
+  if (width <= 0) return a;
+  return a >= width ? a - 0.5 * width : a * a / (2.0 * width);
 }
 
 float normalPenalty_vjp(float x, float width) {
