@@ -52,12 +52,13 @@ class ByteReader {
     pos_ += sizeof(T);
     return value;
   }
-  void skip(uint64_t count, size_t size, const char* what) {
-    // count comes from the file: compare by division so that count * size cannot overflow.
+  // Refuses count records of size bytes that the bytes left cannot hold, before anything is
+  // allocated for them. count comes from the file: compared by division so that count * size
+  // cannot overflow.
+  void checkFits(uint64_t count, size_t size, const char* what) {
     if (count > remaining() / size)
       fail(std::to_string(count) + " " + what + " of " + std::to_string(size) + " bytes each do not fit in the " +
            std::to_string(remaining()) + " bytes left (truncated or corrupt file)");
-    pos_ += size_t(count * size);
   }
   // A NUL-terminated string.
   std::string readString(const char* what) {
@@ -162,9 +163,15 @@ std::vector<ColmapImage> parseColmapImagesBinary(const std::string& bytes, const
     if (!ids.insert(image.id).second) in.fail("image id " + std::to_string(image.id) + " is used twice");
     if (!names.insert(image.name).second)
       in.fail(which + "the name \"" + printableText(image.name) + "\" is used by an earlier image too");
-    // POINTS2D[] as (X, Y, POINT3D_ID): not kept.
+    // POINTS2D[] as (X, Y, POINT3D_ID), -1 for a keypoint without a 3D point.
     uint64_t points2D = in.read<uint64_t>("the number of 2D points");
-    in.skip(points2D, kPoint2DBytes, "2D points");
+    in.checkFits(points2D, kPoint2DBytes, "2D points");
+    image.points2D.resize(size_t(points2D));
+    for (ColmapPoint2D& p : image.points2D) {
+      p.xy.x = in.read<double>("2D point X");
+      p.xy.y = in.read<double>("2D point Y");
+      p.point3DId = in.read<uint64_t>("POINT3D_ID");
+    }
     images.push_back(std::move(image));
   }
   in.expectEnd();
@@ -189,9 +196,14 @@ std::vector<ColmapPoint> parseColmapPointsBinary(const std::string& bytes, const
     std::string problem = colmapPointProblem(point);
     if (!problem.empty()) in.fail("point " + std::to_string(point.id) + ": " + problem);
     if (!ids.insert(point.id).second) in.fail("point id " + std::to_string(point.id) + " is used twice");
-    // TRACK[] as (IMAGE_ID, POINT2D_IDX): not kept.
+    // TRACK[] as (IMAGE_ID, POINT2D_IDX).
     uint64_t trackLength = in.read<uint64_t>("the track length");
-    in.skip(trackLength, kTrackElementBytes, "track elements");
+    in.checkFits(trackLength, kTrackElementBytes, "track elements");
+    point.track.resize(size_t(trackLength));
+    for (ColmapTrackElement& e : point.track) {
+      e.imageId = in.read<uint32_t>("track IMAGE_ID");
+      e.point2DIndex = in.read<uint32_t>("track POINT2D_IDX");
+    }
     points.push_back(point);
   }
   in.expectEnd();
@@ -222,7 +234,12 @@ std::string formatColmapImagesBinary(const std::vector<ColmapImage>& images) {
       put<double>(out, v);
     put<uint32_t>(out, image.cameraId);
     out.append(image.name.c_str(), image.name.size() + 1);  // with its NUL
-    put<uint64_t>(out, 0);                                   // no 2D points
+    put<uint64_t>(out, image.points2D.size());
+    for (const ColmapPoint2D& p : image.points2D) {
+      put<double>(out, p.xy.x);
+      put<double>(out, p.xy.y);
+      put<uint64_t>(out, p.point3DId);
+    }
   }
   return out;
 }
@@ -235,7 +252,11 @@ std::string formatColmapPointsBinary(const std::vector<ColmapPoint>& points) {
     for (double v : {point.xyz.x, point.xyz.y, point.xyz.z}) put<double>(out, v);
     for (uint8_t c : point.rgb) put<uint8_t>(out, c);
     put<double>(out, point.error);
-    put<uint64_t>(out, 0);  // empty track
+    put<uint64_t>(out, point.track.size());
+    for (const ColmapTrackElement& e : point.track) {
+      put<uint32_t>(out, e.imageId);
+      put<uint32_t>(out, e.point2DIndex);
+    }
   }
   return out;
 }

@@ -13,12 +13,12 @@ namespace glint {
 // records (io/colmap_records.h), and that ids (and image names) are unique. fileName is
 // for messages ("<fileName>: record N at byte B: ...").
 std::vector<ColmapCamera> parseColmapCamerasBinary(const std::string& bytes, const std::string& fileName);
-// The 2D points of each image are checked for length and skipped.
+// Each image with its 2D points.
 std::vector<ColmapImage> parseColmapImagesBinary(const std::string& bytes, const std::string& fileName);
-// The track of each point is checked for length and skipped.
+// Each point with its track.
 std::vector<ColmapPoint> parseColmapPointsBinary(const std::string& bytes, const std::string& fileName);
 
-// COLMAP's binary layout, with no 2D points and empty tracks.
+// COLMAP's binary layout, with the 2D points and tracks the model holds.
 std::string formatColmapCamerasBinary(const std::vector<ColmapCamera>& cameras);
 std::string formatColmapImagesBinary(const std::vector<ColmapImage>& images);
 std::string formatColmapPointsBinary(const std::vector<ColmapPoint>& points);

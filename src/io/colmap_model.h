@@ -21,23 +21,39 @@ struct ColmapCamera {
   std::vector<double> params;  // as many as the model takes (io/colmap_camera_models.h)
 };
 
+// One keypoint of an image: its position in pixels (COLMAP's: the top-left corner of the
+// image is (0, 0), so the first pixel's centre is (0.5, 0.5)) and the 3D point it observes.
+// COLMAP's POINT3D_ID of a keypoint without a 3D point (written -1 in text form).
+constexpr uint64_t kColmapNoPoint3D = ~uint64_t(0);
+struct ColmapPoint2D {
+  Vec2d xy;
+  uint64_t point3DId = kColmapNoPoint3D;
+};
+
 // One image's pose. COLMAP stores world-to-camera: x_camera = R(qvec) x_world + tvec, with
-// OpenCV camera axes (x right, y down, z forward). The 2D points of the image are checked
-// and skipped.
+// OpenCV camera axes (x right, y down, z forward).
 struct ColmapImage {
   uint32_t id = 0;
   Quatd qvec;  // (w, x, y, z), Hamilton; kept as stored, its norm checked to be 1 within 1e-3
   Vec3d tvec;
   uint32_t cameraId = 0;
   std::string name;  // relative to the project's image folder
+  std::vector<ColmapPoint2D> points2D;
 };
 
-// One 3D point of points3D; its track is checked and skipped.
+// One observation of a 3D point: the image that saw it and which of its 2D points it is.
+struct ColmapTrackElement {
+  uint32_t imageId = 0;
+  uint32_t point2DIndex = 0;
+};
+
+// One 3D point of points3D with its track: the images that observed it.
 struct ColmapPoint {
   uint64_t id = 0;
   Vec3d xyz;
   std::array<uint8_t, 3> rgb{};
   double error = 0;  // mean reprojection error in pixels; COLMAP writes -1 when not computed
+  std::vector<ColmapTrackElement> track;
 };
 
 enum class ColmapFormat { Text, Binary };
@@ -73,8 +89,8 @@ ColmapModel readColmapModel(const std::filesystem::path& folder);
 // capture, which reads COLMAP's own output before undistorting it).
 ColmapModel readColmapModelAnyCamera(const std::filesystem::path& folder);
 
-// The three files of a model in COLMAP's text form (with COLMAP's header comments,
-// numbers at full round-trip precision, empty 2D point lines and tracks) or binary form.
+// The three files of a model in COLMAP's text form (with COLMAP's header comments, numbers
+// at full round-trip precision) or binary form, 2D points and tracks as the model holds them.
 ColmapFiles formatColmapModel(const ColmapModel& model, ColmapFormat format);
 // Writes cameras, images and points3D (.txt or .bin) into folder, each atomically,
 // creating the folder if needed.

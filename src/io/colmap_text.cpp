@@ -200,12 +200,13 @@ std::vector<ColmapImage> parseColmapImagesText(const std::string& text, const st
     std::string_view points;
     if (lines.next(&points)) {
       Fields point(points, fileName, lines.number());
-      size_t count = 0;
       while (!point.atEnd()) {
-        point.number("2D point X");
-        if (point.atEnd()) point.fail(which + "2D point " + std::to_string(count) + " has no Y");
-        point.number("2D point Y");
-        if (point.atEnd()) point.fail(which + "2D point " + std::to_string(count) + " has no POINT3D_ID");
+        const std::string count = std::to_string(image.points2D.size());
+        ColmapPoint2D p;
+        p.xy.x = point.number("2D point X");
+        if (point.atEnd()) point.fail(which + "2D point " + count + " has no Y");
+        p.xy.y = point.number("2D point Y");
+        if (point.atEnd()) point.fail(which + "2D point " + count + " has no POINT3D_ID");
         // -1 marks a point without a 3D point; ids are otherwise unsigned 64-bit.
         std::string_view id = point.word("POINT3D_ID");
         if (id != "-1") {
@@ -213,8 +214,9 @@ std::vector<ColmapImage> parseColmapImagesText(const std::string& text, const st
           auto [end, error] = std::from_chars(id.data(), id.data() + id.size(), value);
           if (error != std::errc() || end != id.data() + id.size())
             point.fail(which + "POINT3D_ID \"" + printableText(id) + "\" is neither -1 nor an unsigned integer");
+          p.point3DId = value;
         }
-        ++count;
+        image.points2D.push_back(p);
       }
     }
     images.push_back(std::move(image));
@@ -240,9 +242,11 @@ std::vector<ColmapPoint> parseColmapPointsText(const std::string& text, const st
     point.error = fields.number("ERROR");
     // TRACK[] as (IMAGE_ID, POINT2D_IDX).
     while (!fields.atEnd()) {
-      fields.integer<uint32_t>("track IMAGE_ID");
+      ColmapTrackElement element;
+      element.imageId = fields.integer<uint32_t>("track IMAGE_ID");
       if (fields.atEnd()) fields.fail("point " + std::to_string(point.id) + ": the track ends inside a pair");
-      fields.integer<uint32_t>("track POINT2D_IDX");
+      element.point2DIndex = fields.integer<uint32_t>("track POINT2D_IDX");
+      point.track.push_back(element);
     }
     std::string problem = colmapPointProblem(point);
     if (!problem.empty()) fields.fail("point " + std::to_string(point.id) + ": " + problem);
@@ -283,8 +287,11 @@ std::string formatColmapImagesText(const std::vector<ColmapImage>& images) {
     const Vec3d& t = image.tvec;
     appendFields(out, {std::to_string(image.id), exact(q.w), exact(q.x), exact(q.y), exact(q.z), exact(t.x),
                        exact(t.y), exact(t.z), std::to_string(image.cameraId), image.name});
-    // The 2D points are not kept: their line is written empty, as COLMAP does for none.
-    out += "\n\n";
+    out += '\n';
+    for (const ColmapPoint2D& p : image.points2D)
+      appendFields(out, {exact(p.xy.x), exact(p.xy.y),
+                         p.point3DId == kColmapNoPoint3D ? std::string("-1") : std::to_string(p.point3DId)});
+    out += '\n';
   }
   return out;
 }
@@ -300,6 +307,8 @@ std::string formatColmapPointsText(const std::vector<ColmapPoint>& points) {
     appendFields(out, {std::to_string(point.id), exact(point.xyz.x), exact(point.xyz.y), exact(point.xyz.z),
                        std::to_string(int(point.rgb[0])), std::to_string(int(point.rgb[1])),
                        std::to_string(int(point.rgb[2])), exact(point.error)});
+    for (const ColmapTrackElement& e : point.track)
+      appendFields(out, {std::to_string(e.imageId), std::to_string(e.point2DIndex)});
     out += '\n';
   }
   return out;

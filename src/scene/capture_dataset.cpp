@@ -64,10 +64,26 @@ void appendSparsePoints(const PointCloud& cloud, CaptureSource* source) {
   }
 }
 
-// The sparse points of a COLMAP model, with linear colours, and its cameras.
-void readSparsePoints(const fs::path& folder, CaptureSource* source, CaptureScene* scene) {
+// The sparse points of a COLMAP model, with linear colours, and its cameras. When observed
+// is given, it receives the indices into source->points that each image's tracks name, by
+// image name (nothing for a model without tracks).
+void readSparsePoints(const fs::path& folder, CaptureSource* source, CaptureScene* scene,
+                      std::unordered_map<std::string, std::vector<uint32_t>>* observed = nullptr) {
   ColmapModel colmap = readColmapModel(folder);
   *scene = captureFromColmap(colmap);
+  if (observed) {
+    std::unordered_map<uint32_t, const std::string*> names;
+    for (const ColmapImage& image : colmap.images) names[image.id] = &image.name;
+    const size_t first = source->points.size();
+    for (size_t i = 0; i < colmap.points.size(); ++i)
+      for (const ColmapTrackElement& e : colmap.points[i].track) {
+        auto name = names.find(e.imageId);
+        if (name == names.end()) continue;  // an image the model does not hold: nothing to pair with
+        std::vector<uint32_t>& points = (*observed)[*name->second];
+        // A track may name an image twice (two keypoints on one point): pair it once.
+        if (points.empty() || points.back() != uint32_t(first + i)) points.push_back(uint32_t(first + i));
+      }
+  }
   appendSparsePoints(scene->points, source);
   source->description = "COLMAP " + std::string(colmap.format == ColmapFormat::Binary ? "binary" : "text") + " model " +
                         (folder.filename() == "0" ? "sparse/0" : "sparse") + ", " +
@@ -126,17 +142,27 @@ Enum readChoice(const nlohmann::json& j, const char* key, std::initializer_list<
 }
 
 // The predicted depth of a view aligned to its sparse points: z = a d + b (or 1/z) fitted
-// robustly to the z-depths of the points that land in the view, nearest per pixel, hidden
-// points dropped; all 0 (no depth) when no fit holds.
+// robustly to the z-depths of the points the view observed (its COLMAP tracks), or, for a
+// model without tracks, of those that land in the view, nearest per pixel, hidden points
+// dropped; all 0 (no depth) when no fit holds.
 Image alignedZDepth(const Image& predicted, const CaptureSource& source, const DatasetView& view,
                     const fs::path& file) {
   const Camera& camera = view.camera;
   const Mat4 worldToCamera = camera.cameraToWorld.inverse();
   std::vector<Vec3d> cameraPoints;
-  cameraPoints.reserve(source.points.size());
-  for (const Vec3d& p : source.points) cameraPoints.push_back(worldToCamera.transformPoint(p));
+  auto observed = source.observedPoints.find(view.files[int(Buffer::Render)]);
+  const bool tracked = observed != source.observedPoints.end();
+  if (tracked) {
+    cameraPoints.reserve(observed->second.size());
+    for (uint32_t i : observed->second) cameraPoints.push_back(worldToCamera.transformPoint(source.points[i]));
+  } else {
+    cameraPoints.reserve(source.points.size());
+    for (const Vec3d& p : source.points) cameraPoints.push_back(worldToCamera.transformPoint(p));
+  }
   const RayIntrinsics k{camera.fx, camera.fy, camera.cx, camera.cy};
-  std::vector<DepthPair> pairs = depthPairsFromPoints(predicted, cameraPoints, k);
+  // A tracked point was seen by this view: no point behind it is to be guessed at.
+  std::vector<DepthPair> pairs =
+      depthPairsFromPoints(predicted, cameraPoints, k, tracked ? HiddenPoints::Keep : HiddenPoints::Drop);
   DepthFitOptions options;
   options.space = source.decoding.depth == CaptureDecoding::Depth::RelativeDisparity ? DepthFitSpace::Disparity
                                                                                      : DepthFitSpace::Depth;
@@ -331,10 +357,15 @@ void openCapture(const fs::path& root, int holdout, DatasetSplit* train, Dataset
   std::vector<DatasetView> views;
   if (std::optional<fs::path> model = colmapModelFolder(root)) {
     CaptureScene scene;
-    readSparsePoints(*model, source, &scene);
+    std::unordered_map<std::string, std::vector<uint32_t>> observed;
+    readSparsePoints(*model, source, &scene, &observed);
     if (scene.cameras.empty()) throw Error(model->string(), "the model has no images");
-    for (const CaptureCamera& c : scene.cameras)
+    for (const CaptureCamera& c : scene.cameras) {
       views.push_back(captureView(root, c, fs::path("images") / c.imageName));
+      auto seen = observed.find(c.imageName);
+      if (seen != observed.end())
+        source->observedPoints[views.back().files[int(Buffer::Render)]] = std::move(seen->second);
+    }
   } else {
     const fs::path file = root / "transforms.json";
     NerfstudioTransforms transforms = readNerfstudioTransforms(file);

@@ -9,6 +9,7 @@
 #include <set>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "io/image.h"
@@ -47,6 +48,9 @@ struct CaptureSource {
   CaptureDecoding decoding;
   std::vector<Vec3d> points;      // world space (the cameras' world)
   std::vector<Rgb> pointColours;  // linear, one per point
+  // By a view's render file (DatasetView::files[Buffer::Render]): the indices into points of
+  // those its COLMAP model's tracks say it observed. Empty for a model without tracks.
+  std::unordered_map<std::string, std::vector<uint32_t>> observedPoints;
   std::string description;        // "COLMAP binary model sparse/0, 120 images, 8000 points"
   // The paper's layout for synthetic scenes with predicted buffers (transforms files and
   // SPLIT/<buffer>/<buffer>_ID.png beside a COLMAP model): its render images are priors too.

@@ -41,8 +41,10 @@ Image relativeDepth(const Image& distance, const Camera& camera) {
 }  // namespace
 
 void writeCapture(const fs::path& root, const std::vector<CaptureWriteView>& views, const std::vector<Vec3d>& points,
-                  const std::vector<Rgb>& pointColours, const CaptureWriteSettings& settings) {
+                  const std::vector<Rgb>& pointColours, const CaptureWriteSettings& settings,
+                  const std::vector<std::vector<PointSighting>>& sightings) {
   GLINT_CHECK(points.size() == pointColours.size(), "one colour per point");
+  GLINT_CHECK(sightings.empty() || sightings.size() == points.size(), "one list of sightings per point");
   ColmapModel model;
   model.format = ColmapFormat::Text;
   const ImageWriteOptions sixteenBits{16};
@@ -77,6 +79,13 @@ void writeCapture(const fs::path& root, const std::vector<CaptureWriteView>& vie
     for (int k = 0; k < 3; ++k)
       p.rgb[size_t(k)] = uint8_t(std::lround(std::clamp(toDisplay(Transfer::Srgb, c[k]), 0.0f, 1.0f) * 255.0f));
     p.error = 0.5;
+    if (!sightings.empty())
+      for (const PointSighting& seen : sightings[i]) {
+        GLINT_CHECK(seen.view < views.size(), "a sighting names a view that is written");
+        ColmapImage& image = model.images[seen.view];
+        p.track.push_back({image.id, uint32_t(image.points2D.size())});
+        image.points2D.push_back({seen.pixel, p.id});
+      }
     model.points.push_back(p);
   }
   fs::create_directories(root / "sparse" / "0");

@@ -31,12 +31,23 @@ struct CaptureWriteSettings {
   bool predictedPriors = false;
 };
 
+// One view's sighting of a sparse point: the view (an index into the views written) and
+// where the point lands in it, in pixels (Camera::project's: the top-left corner is (0, 0),
+// as in COLMAP).
+struct PointSighting {
+  uint32_t view = 0;
+  Vec2d pixel;
+};
+
 // Writes images/, priors/ (paper encodings: 8-bit filmic radiance, 8-bit normals in the
 // paper's camera axes, 16-bit depth, roughness, 8-bit linear F0), sparse/0/ (COLMAP text:
 // PINHOLE cameras, the poses, the points with their colours) and capture.json naming the
-// encodings. Every file is written atomically. Throws Error naming the file.
+// encodings. sightings, when given, holds one list per point: the model's tracks and each
+// image's 2D points, as COLMAP writes the observations it triangulated from. Every file is
+// written atomically. Throws Error naming the file.
 void writeCapture(const std::filesystem::path& root, const std::vector<CaptureWriteView>& views,
                   const std::vector<Vec3d>& points, const std::vector<Rgb>& pointColours,
-                  const CaptureWriteSettings& settings = {});
+                  const CaptureWriteSettings& settings = {},
+                  const std::vector<std::vector<PointSighting>>& sightings = {});
 
 }  // namespace glint

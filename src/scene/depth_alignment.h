@@ -73,18 +73,21 @@ DepthFit fitDepthAffine(std::span<const DepthPair> pairs, const DepthFitOptions&
 // Pairs from camera-space points (OpenGL camera axes, the camera looks down -z): each point
 // in front of the camera is projected with k to the pixel containing it, and paired with
 // the predicted value there. Where several points land in one pixel the nearest is kept,
-// and a point is dropped as hidden when a point nearer by more than kOccluderGap of its
-// depth lands within occlusionRadius pixels (the points hold every view's surfaces, not only
-// this one's). Pixels with a non-finite prediction are skipped (0 is kept: relative depth
-// maps use it).
+// and, with HiddenPoints::Drop, a point is dropped as hidden when a point nearer by more
+// than kOccluderGap of its depth lands within occlusionRadius pixels (the points hold every
+// view's surfaces, not only this one's). HiddenPoints::Keep is for points the view is known
+// to have observed (a COLMAP track): a surface without points of its own (a mirror, a
+// textureless sphere) hides the points behind it from that guess, not from a track. Pixels
+// with a non-finite prediction are skipped (0 is kept: relative depth maps use it).
 constexpr double kOccluderGap = 0.25;
 constexpr int kMaxOcclusionRadius = 8;
 // The neighbourhood, in pixels, searched for a nearer point: the mean spacing of the points
 // in the image (sqrt of pixels per pixel that holds a point), in [1, kMaxOcclusionRadius].
 int occlusionRadius(size_t pixels, size_t pixelsWithPoints);
 
+enum class HiddenPoints { Drop, Keep };
 std::vector<DepthPair> depthPairsFromPoints(const Image& predicted, std::span<const Vec3d> cameraPoints,
-                                            const RayIntrinsics& k);
+                                            const RayIntrinsics& k, HiddenPoints hidden = HiddenPoints::Drop);
 
 // The aligned z-depth image of a one-channel prediction (0 where there is no depth).
 Image alignDepth(const Image& predicted, const DepthFit& fit);

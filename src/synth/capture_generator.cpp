@@ -33,6 +33,30 @@ bool degrades(const CaptureSynthSettings& capture, Buffer b) {
   return b != Buffer::Render && (only.empty() || std::find(only.begin(), only.end(), b) != only.end());
 }
 
+// The views in which each point is in the image and nothing of the scene lies between it
+// and the camera (kSightingTolerance): what COLMAP's tracks would say had it matched the point in every view
+// that shows it.
+std::vector<std::vector<PointSighting>> sightingsOf(const std::vector<Vec3d>& points,
+                                                    const std::vector<Camera>& cameras, const RayCaster& caster) {
+  std::vector<std::vector<PointSighting>> sightings(points.size());
+  for (size_t v = 0; v < cameras.size(); ++v) {
+    const Camera& camera = cameras[v];
+    const Mat4 worldToCamera = camera.cameraToWorld.inverse();
+    const Vec3d eye = camera.position();
+    for (size_t i = 0; i < points.size(); ++i) {
+      Vec2d pixel;
+      if (!camera.project(worldToCamera, points[i], &pixel)) continue;
+      const Vec3d toPoint = points[i] - eye;
+      const double distance = length(toPoint);
+      // Stop short of the point, so that its own surface does not hide it.
+      const double shortOf = kSightingTolerance * distance;
+      if (!caster.occluded(Vec3f(eye), Vec3f(toPoint / distance), 0.0f, float(distance - shortOf)))
+        sightings[i].push_back({uint32_t(v), pixel});
+    }
+  }
+  return sightings;
+}
+
 }  // namespace
 
 void generateCapture(const MeshScene& scene, const SynthSettings& settings, const CaptureSynthSettings& capture,
@@ -95,7 +119,7 @@ void generateCapture(const MeshScene& scene, const SynthSettings& settings, cons
   CaptureWriteSettings write;
   write.metalnessInsteadOfF0 = capture.priorErrors == PriorErrors::Monocular && degrades(capture, Buffer::F0);
   write.predictedPriors = capture.priorErrors != PriorErrors::None;
-  writeCapture(outDir, views, points, colours, write);
+  writeCapture(outDir, views, points, colours, write, sightingsOf(points, cameras, caster));
 }
 
 }  // namespace glint

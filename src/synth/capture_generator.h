@@ -31,6 +31,12 @@ struct CaptureSynthSettings {
   int sparsePoints = 4000;         // points3D: sampled from the training views' exact depth
 };
 
+// A view sees a sparse point (it joins the point's COLMAP track) when nothing of the scene
+// lies between the camera and the point nearer than this fraction of its distance short of
+// it: a point sampled within a pixel from that pixel's depth sits off its surface by up to
+// the surface's slope across the pixel (up to about a millimetre per metre here).
+constexpr double kSightingTolerance = 0.005;
+
 // Renders SynthSettings::trainViews views along the scene's training camera path (the test
 // path is not used: a capture's test views are held out of the same path) and writes the
 // capture folder with writeCapture: images/view_####.jpg, priors/, sparse/0 (text, true

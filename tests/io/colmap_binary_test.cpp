@@ -123,8 +123,9 @@ TEST(ColmapBinary, RecordProblemsNameTheRecord) {
   message = errorOf(parseColmapImagesBinary, images, "images.bin");
   EXPECT_NE(message.find("record 0 at byte 8: image 3: the quaternion"), std::string::npos) << message;
 
-  // The last record cut inside its name: 8 bytes of 2D point count and the NUL go.
-  images = files.images.substr(0, files.images.size() - 9);
+  // The last record cut inside its name: its one 2D point (24 bytes), 8 bytes of 2D point
+  // count and the NUL go.
+  images = files.images.substr(0, files.images.size() - 24 - 9);
   message = errorOf(parseColmapImagesBinary, images, "images.bin");
   EXPECT_NE(message.find("NAME has no terminating NUL byte"), std::string::npos) << message;
 

@@ -57,6 +57,12 @@ inline void expectSameModel(const ColmapModel& a, const ColmapModel& b) {
     EXPECT_EQ(x.tvec, y.tvec);
     EXPECT_EQ(x.cameraId, y.cameraId);
     EXPECT_EQ(x.name, y.name);
+    ASSERT_EQ(x.points2D.size(), y.points2D.size()) << x.name;
+    for (size_t k = 0; k < x.points2D.size(); ++k) {
+      EXPECT_EQ(x.points2D[k].xy.x, y.points2D[k].xy.x);
+      EXPECT_EQ(x.points2D[k].xy.y, y.points2D[k].xy.y);
+      EXPECT_EQ(x.points2D[k].point3DId, y.points2D[k].point3DId);
+    }
   }
   ASSERT_EQ(a.points.size(), b.points.size());
   for (size_t i = 0; i < a.points.size(); ++i) {
@@ -64,6 +70,11 @@ inline void expectSameModel(const ColmapModel& a, const ColmapModel& b) {
     EXPECT_EQ(a.points[i].xyz, b.points[i].xyz);
     EXPECT_EQ(a.points[i].rgb, b.points[i].rgb);
     EXPECT_EQ(a.points[i].error, b.points[i].error);
+    ASSERT_EQ(a.points[i].track.size(), b.points[i].track.size()) << a.points[i].id;
+    for (size_t k = 0; k < a.points[i].track.size(); ++k) {
+      EXPECT_EQ(a.points[i].track[k].imageId, b.points[i].track[k].imageId);
+      EXPECT_EQ(a.points[i].track[k].point2DIndex, b.points[i].track[k].point2DIndex);
+    }
   }
 }
 

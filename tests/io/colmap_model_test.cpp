@@ -14,8 +14,7 @@
 namespace glint {
 namespace {
 
-// Little-endian bytes of hand-made binary files (including 2D points and tracks, which
-// our writer leaves out).
+// Little-endian bytes of hand-made binary files.
 struct Bytes {
   std::string data;
   template <typename T>
@@ -90,12 +89,28 @@ TEST(ColmapModel, ParsesHandWrittenText) {
   EXPECT_EQ(model.images[1].name, "frames/a.png");
   EXPECT_EQ(model.images[1].cameraId, 2u);
   EXPECT_EQ(model.images[2].name, "frames/c d.png");
+  // 2D points, "-1" (no 3D point) and an id beyond int64 kept as written.
+  ASSERT_EQ(model.images[0].points2D.size(), 2u);
+  EXPECT_EQ(model.images[0].points2D[0].xy.x, 10.5);
+  EXPECT_EQ(model.images[0].points2D[0].xy.y, 20.25);
+  EXPECT_EQ(model.images[0].points2D[0].point3DId, 4u);
+  EXPECT_EQ(model.images[0].points2D[1].point3DId, kColmapNoPoint3D);
+  EXPECT_TRUE(model.images[1].points2D.empty());
+  ASSERT_EQ(model.images[2].points2D.size(), 1u);
+  EXPECT_EQ(model.images[2].points2D[0].point3DId, 18446744073709551614u);
 
   ASSERT_EQ(model.points.size(), 4u);
   EXPECT_EQ(model.points[0].id, 4u);
   EXPECT_EQ(model.points[0].xyz, Vec3d(1, 2, 3));
   EXPECT_EQ(model.points[0].rgb, (std::array<uint8_t, 3>{255, 128, 0}));
   EXPECT_EQ(model.points[0].error, 0.5);
+  // The track: (image 3, its 2D point 0) and (image 1, its 2D point 1).
+  ASSERT_EQ(model.points[0].track.size(), 2u);
+  EXPECT_EQ(model.points[0].track[0].imageId, 3u);
+  EXPECT_EQ(model.points[0].track[0].point2DIndex, 0u);
+  EXPECT_EQ(model.points[0].track[1].imageId, 1u);
+  EXPECT_EQ(model.points[0].track[1].point2DIndex, 1u);
+  EXPECT_TRUE(model.points[1].track.empty());
   EXPECT_EQ(model.points[1].id, ~uint64_t(0));
   EXPECT_EQ(model.points[1].error, -1.0);
   EXPECT_EQ(model.points[3].xyz, Vec3d(1e-3, -450, 7));
@@ -115,11 +130,24 @@ TEST(ColmapModel, ParsesHandWrittenBinaryWithPointsAndTracks) {
   EXPECT_EQ(model.images[0].tvec, Vec3d(0.5, 0.25, -3));
   EXPECT_EQ(model.images[0].name, "img_12.jpg");
   EXPECT_EQ(model.images[1].name, "img_11.jpg");
+  ASSERT_EQ(model.images[0].points2D.size(), 2u);
+  EXPECT_EQ(model.images[0].points2D[0].xy.x, 1.5);
+  EXPECT_EQ(model.images[0].points2D[0].xy.y, 2.5);
+  EXPECT_EQ(model.images[0].points2D[0].point3DId, 77u);
+  EXPECT_EQ(model.images[0].points2D[1].xy.x, 3.5);
+  EXPECT_EQ(model.images[0].points2D[1].xy.y, 4.5);
+  EXPECT_EQ(model.images[0].points2D[1].point3DId, kColmapNoPoint3D);
+  EXPECT_TRUE(model.images[1].points2D.empty());
   ASSERT_EQ(model.points.size(), 1u);
   EXPECT_EQ(model.points[0].id, 77u);
   EXPECT_EQ(model.points[0].xyz, Vec3d(1, -2, 3));
   EXPECT_EQ(model.points[0].rgb, (std::array<uint8_t, 3>{9, 8, 7}));
   EXPECT_EQ(model.points[0].error, 0.75);
+  ASSERT_EQ(model.points[0].track.size(), 2u);
+  EXPECT_EQ(model.points[0].track[0].imageId, 12u);
+  EXPECT_EQ(model.points[0].track[0].point2DIndex, 0u);
+  EXPECT_EQ(model.points[0].track[1].imageId, 11u);
+  EXPECT_EQ(model.points[0].track[1].point2DIndex, 5u);
 }
 
 TEST(ColmapModel, RoundTripsTextToBinaryToTextExactly) {

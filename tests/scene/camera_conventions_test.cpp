@@ -192,7 +192,7 @@ TEST(CameraConventions, NsProcessDataPosesAreOursInTheAppliedTransformsWorld) {
     frame.transformMatrix = nsProcessDataPose(im);
     Vec3d world = quatToRotation(q).transposeTimes(Vec3d(0.2, -0.3, 3.0) - im.tvec);
     Vec2d pixel = colmapProject(camera, im, world);
-    PointCloud cloud = colmapPointCloud({ColmapPoint{1, world, {0, 0, 0}, 0}}, applied);
+    PointCloud cloud = colmapPointCloud({ColmapPoint{1, world, {0, 0, 0}, 0, {}}}, applied);
     double along = 0;
     EXPECT_LT(distanceToRay(fromNerfstudio(frame), pixel, applied.transformPoint(world), &along), 1e-9);
     EXPECT_GT(along, 0.0);
@@ -205,7 +205,7 @@ TEST(CameraConventions, CaptureFromColmapSortsByNameAndKeepsPoints) {
   model.cameras = {pinhole(2), ColmapCamera{9, "SIMPLE_PINHOLE", 10, 10, {8, 5, 5}}};
   model.images = {image({1, 0, 0, 0}, {1, 2, 3}, 9, "z.png"), image({0, 1, 0, 0}, {0, 0, 1}, 2, "a.png"),
                   image({0, 0, 1, 0}, {0, 0, 2}, 2, "m/b.png")};
-  model.points = {ColmapPoint{4, {1, 2, 3}, {255, 0, 51}, 0.5}};
+  model.points = {ColmapPoint{4, {1, 2, 3}, {255, 0, 51}, 0.5, {}}};
   CaptureScene scene = captureFromColmap(model);
   ASSERT_EQ(scene.cameras.size(), 3u);
   EXPECT_EQ(scene.cameras[0].imageName, "a.png");

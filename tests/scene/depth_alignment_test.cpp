@@ -226,6 +226,8 @@ TEST(DepthPairs, PointsHiddenBehindANearerSurfaceAreDropped) {
   const std::vector<DepthPair> pairs = depthPairsFromPoints(predicted, points, k);
   ASSERT_EQ(pairs.size(), 100u);
   for (const DepthPair& p : pairs) EXPECT_DOUBLE_EQ(p.zDepth, 2.0);
+  // Points a view is known to have observed (its COLMAP tracks) are all kept.
+  EXPECT_EQ(depthPairsFromPoints(predicted, points, k, HiddenPoints::Keep).size(), 200u);
   // A lone far point with nothing near it in the image is kept.
   points = {{0.0, 0.0, -5.0}};
   EXPECT_EQ(depthPairsFromPoints(predicted, points, k).size(), 1u);

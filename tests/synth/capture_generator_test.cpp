@@ -10,10 +10,12 @@
 #include <numbers>
 #include <vector>
 
+#include "io/colmap_model.h"
 #include "io/temp_folder.h"
 #include "scene/dataset.h"
 #include "synth/builtin_scenes.h"
 #include "synth/camera_paths.h"
+#include "synth/ray_caster.h"
 
 namespace glint {
 namespace {
@@ -65,6 +67,59 @@ TEST(CaptureGenerator, GalleryCaptureOpensWithHoldoutAndTrueCameras) {
     EXPECT_TRUE(fit.ok) << name << ": " << fit.problem;
     EXPECT_LT(fit.medianAbsResidualAfter, 0.05) << name;
   }
+}
+
+// The model's tracks name, for each point, the views that see it, as a closest-hit ray
+// through the point says: its first hit is the point itself in every view of its track, and
+// something nearer in every other view the point projects into. The chrome spheres here
+// hide much of the room from views near them.
+TEST(CaptureGenerator, TracksHoldTheViewsThatSeeEachPoint) {
+  test::TempFolder temp;
+  const fs::path root = temp / "capture";
+  MeshScene scene = makeBuiltinScene("spheres");
+  SynthSettings settings = tinySettings();
+  settings.trainViews = 12;
+  CaptureSynthSettings capture;
+  capture.sparsePoints = 400;
+  capture.holdout = 6;
+  generateCapture(scene, settings, capture, root);
+  const ColmapModel model = readColmapModel(root / "sparse" / "0");
+  ASSERT_EQ(model.images.size(), 12u);
+  const std::vector<Mat4> poses = orbitCameras(scene.cameras.train, 12);
+  RayCaster caster(scene);
+  size_t seen = 0, hidden = 0, tracked = 0;
+  for (const ColmapPoint& point : model.points) {
+    tracked += !point.track.empty();
+    std::vector<bool> inTrack(model.images.size(), false);
+    for (const ColmapTrackElement& e : point.track) {
+      ASSERT_GE(e.imageId, 1u);
+      ASSERT_LE(e.imageId, model.images.size());
+      const ColmapImage& image = model.images[e.imageId - 1];
+      ASSERT_LT(e.point2DIndex, image.points2D.size());
+      EXPECT_EQ(image.points2D[e.point2DIndex].point3DId, point.id);
+      inTrack[e.imageId - 1] = true;
+    }
+    for (size_t v = 0; v < model.images.size(); ++v) {
+      const Camera camera = Camera::fromFieldOfView(poses[v], scene.cameras.fovX, settings.width, settings.height);
+      Vec2d pixel;
+      if (!camera.project(camera.cameraToWorld.inverse(), point.xyz, &pixel)) {
+        EXPECT_FALSE(inTrack[v]) << "point " << point.id << " is tracked in view " << v << " but not in its image";
+        continue;
+      }
+      const Vec3d toPoint = point.xyz - camera.position();
+      const double distance = length(toPoint);
+      SurfaceHit hit;
+      ASSERT_TRUE(caster.intersect(Vec3f(camera.position()), Vec3f(toPoint / distance), 0.0f, 1e30f, &hit));
+      const bool firstHitIsThePoint = std::abs(double(hit.t) - distance) < kSightingTolerance * distance;
+      EXPECT_EQ(inTrack[v], firstHitIsThePoint) << "point " << point.id << ", view " << v << ": first hit at "
+                                                << hit.t << ", the point at " << distance;
+      (inTrack[v] ? seen : hidden)++;
+    }
+  }
+  // Every point was taken from a training view's depth, so some view sees it; and the scene
+  // hides a good share of the points that land in a view's image.
+  EXPECT_EQ(tracked, model.points.size());
+  EXPECT_GT(hidden, seen / 10) << seen << " seen, " << hidden << " hidden";
 }
 
 // Three views of the gallery (two training views) with exact priors, and the same views
