@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # Issue 44's experiments: how much of a capture's quality its predicted buffers cost, and
-# which training levers win it back. A scene (builtin:room unless SCENE says) rendered as three captures of the same
-# photographs and true cameras (exact priors, --degrade network, --degrade monocular),
-# each prior set scored against the exact one (bench/prior_accuracy), then Glint trained
-# on each with the levers below and scored by `glint eval --breakdown` on the held-out
-# views against the exact buffers (8-bit tonemapped PSNR of diffuse, specular, final).
+# which training levers win it back. A scene (builtin:room unless SCENE says) rendered as
+# three captures of the same photographs and true cameras (exact priors, --degrade network,
+# --degrade monocular), each prior set scored against the exact one (bench/prior_accuracy),
+# then Glint trained on each with the levers below and scored by `glint eval --breakdown` on
+# the held-out views against the exact buffers (8-bit tonemapped PSNR of diffuse, specular,
+# final).
 #
 # Usage: scripts/prior-experiments.sh [OUT]   (default out/prior-experiments)
-# Environment: GLINT (build/glint), BENCH (build/bench), SCENE (builtin:room), ITERS (8000), RES (160x120),
-# VIEWS (120, every 6th held out), SPP (32), TEST_SPP (64), EVAL_SPP (16), RUNS (which runs,
-# default all: see `runs` below).
+# Environment: GLINT (build/glint), BENCH (build/bench), SCENE (builtin:room), ITERS (8000),
+# RES (160x120), VIEWS (120, every 6th held out), SPP (32), TEST_SPP (64), EVAL_SPP (16),
+# RUNS (which runs, default all: see `runs` below).
 set -euo pipefail
 
 glint="${GLINT:-build/glint}"

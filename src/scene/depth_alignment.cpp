@@ -241,17 +241,18 @@ std::vector<DepthPair> depthPairsFromPoints(const Image& predicted, std::span<co
   // a small capture those can be the majority. So a point is dropped when a nearer one lies
   // within about the cloud's own spacing in the image.
   const int radius = occlusionRadius(size_t(width) * size_t(height), pixelsWithPoints);
-  const bool dropHidden = hiddenPoints == HiddenPoints::Drop;
+  auto hiddenBehindNearer = [&](int i, int j, double z) {
+    for (int y = std::max(0, j - radius); y <= std::min(height - 1, j + radius); ++y)
+      for (int x = std::max(0, i - radius); x <= std::min(width - 1, i + radius); ++x)
+        if (nearest[size_t(y) * size_t(width) + size_t(x)] < z * (1.0 - kOccluderGap)) return true;
+    return false;
+  };
   std::vector<DepthPair> pairs;
   for (size_t h = 0; h < hits.size(); ++h) {
     if (h > 0 && hits[h].first == hits[h - 1].first) continue;
     const double z = hits[h].second;
     const int i = int(hits[h].first % size_t(width)), j = int(hits[h].first / size_t(width));
-    bool hidden = false;
-    for (int y = std::max(0, j - radius); dropHidden && y <= std::min(height - 1, j + radius) && !hidden; ++y)
-      for (int x = std::max(0, i - radius); x <= std::min(width - 1, i + radius) && !hidden; ++x)
-        hidden = nearest[size_t(y) * size_t(width) + size_t(x)] < z * (1.0 - kOccluderGap);
-    if (hidden) continue;
+    if (hiddenPoints == HiddenPoints::Drop && hiddenBehindNearer(i, j, z)) continue;
     float d = predicted.pixels[hits[h].first];
     if (std::isfinite(d)) pairs.push_back({d, z});
   }

@@ -34,8 +34,8 @@ bool degrades(const CaptureSynthSettings& capture, Buffer b) {
 }
 
 // The views in which each point is in the image and nothing of the scene lies between it
-// and the camera (kSightingTolerance): what COLMAP's tracks would say had it matched the point in every view
-// that shows it.
+// and the camera (kSightingTolerance): what COLMAP's tracks would say had it matched the
+// point in every view that shows it.
 std::vector<std::vector<PointSighting>> sightingsOf(const std::vector<Vec3d>& points,
                                                     const std::vector<Camera>& cameras, const RayCaster& caster) {
   std::vector<std::vector<PointSighting>> sightings(points.size());
