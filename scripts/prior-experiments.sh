@@ -10,7 +10,8 @@
 # Usage: scripts/prior-experiments.sh [OUT]   (default out/prior-experiments)
 # Environment: GLINT (build/glint), BENCH (build/bench), SCENE (builtin:room), ITERS (8000),
 # RES (160x120), VIEWS (120, every 6th held out), SPP (32), TEST_SPP (64), EVAL_SPP (16),
-# RUNS (which runs, default all: see `runs` below).
+# RUNS (which runs, default all: see `runs` below), TRUTH2 (1: also score against a second
+# render of the held-out views, below).
 set -euo pipefail
 
 glint="${GLINT:-build/glint}"
@@ -41,6 +42,18 @@ for kind in exact network monocular; do make_capture "$kind"; done
 for kind in network monocular; do
   "$bench/prior_accuracy" "$out/$kind" "$out/exact" --holdout 6 --json "$out/priors_$kind.json"
 done
+# With TRUTH2=1, a second truth: the held-out views rendered again with another seed (the
+# training views at 1 spp, unused). The priors are made from the exact capture's render and
+# share its Monte Carlo noise, so their PSNR against it counts that noise as signal; against
+# truth2 neither the priors nor a run shares it. Each run is then also scored against it
+# (RUN/eval/metrics_truth2.json).
+if [ "${TRUTH2:-0}" = 1 ]; then
+  [ -f "$out/truth2/capture.json" ] || "$glint" synth "${SCENE:-builtin:room}" -o "$out/truth2" --layout capture \
+    --res "$res" --train "$views" --holdout 6 --spp 1 --test-spp "${TEST_SPP:-64}" --seed 7 --degrade none --force
+  for kind in exact network monocular; do
+    "$bench/prior_accuracy" "$out/$kind" "$out/truth2" --holdout 6 --json "$out/priors_${kind}_truth2.json"
+  done
+fi
 
 # 2. The levers, as config files (each a complete setting; none means Glint's defaults).
 echo '{}' > "$out/configs/defaults.json"
@@ -129,6 +142,24 @@ echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": 2.5, \"normal
   > "$out/configs/n25_band_shift_nlr100_consistent_huber.json"
 echo "{\"roughness_shift_invariant\": true, \"init\": {\"consistent_depth_only\": true}, \"loss\": {\"normal\": 2.5, \"normal_huber\": 0.2, \"depth_band\": 0.1, \"depth_consistency\": 0.02}, $(nlr 0.000025)}" \
   > "$out/configs/n25_band_shift_nlr100_consistent_init_huber.json"
+# The monocular kind's best setting with F0's tint learnt from the reflections, on the second
+# scene (builtin:spheres), whose tinted chrome spheres read grey through metalness.
+echo "{\"roughness_shift_invariant\": true, \"f0_tint_from_reflections\": true, \"init\": {\"consistent_depth_only\": true}, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1, \"depth_consistency\": 0.02, \"f0_from_specular\": 1.0}, $(nlr 0.000025)}" \
+  > "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint.json"
+# Two oracles on the monocular capture, each with one prior taken from the exact capture: its
+# F0 (monof0: the metals' tint given) and its depth (monoexactdepth): how much of the monocular
+# kind's loss each of those priors' errors makes.
+oracle_capture() {  # oracle_capture NAME PRIOR (the exact capture's PRIOR in the monocular one's place)
+  [ -d "$out/$1" ] && return
+  mkdir -p "$out/$1/priors"
+  cp -al "$out/monocular/images" "$out/monocular/sparse" "$out/monocular/capture.json" "$out/$1/"
+  for kind in diffuse specular normal roughness metalness depth; do
+    [ "$kind" = "$2" ] || [ "$2.$kind" = "f0.metalness" ] || cp -al "$out/monocular/priors/$kind" "$out/$1/priors/"
+  done
+  cp -al "$out/exact/priors/$2" "$out/$1/priors/"
+}
+oracle_capture monof0 f0
+oracle_capture monoexactdepth depth
 # The monocular capture without its depth: initialised from the sparse points instead.
 if [ ! -d "$out/monodepthless" ]; then
   mkdir -p "$out/monodepthless/priors"
@@ -142,6 +173,9 @@ train_and_eval() {  # train_and_eval RUN CAPTURE CONFIG
     make_capture "$2"
     "$glint" train "$out/$2" -o "$run" --holdout 6 --iters "$iters" --config "$out/configs/$3.json" --force
     "$glint" eval "$run" --dataset "$out/exact" --spp "${EVAL_SPP:-16}" --bounces 4 --breakdown
+  fi
+  if [ "${TRUTH2:-0}" = 1 ] && [ ! -f "$run/eval/metrics_truth2.json" ]; then
+    "$glint" eval "$run" --dataset "$out/truth2" --spp "${EVAL_SPP:-16}" --bounces 4 -o "$run/eval/metrics_truth2.json"
   fi
 }
 runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_preset network_defaults
@@ -159,7 +193,9 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   network_n25_band_shift_nlr100_consistent monocular_n25_band_shift_nlr100_consistent_init
   network_n25_band_shift_nlr100_consistent_init monocular_n25_band_shift_nlr100_consistent_init_seed1
   network_n25_band_shift_nlr100_consistent_seed1 network_n25_band_shift_nlr100_consistent1
-  network_n25_band_shift_nlr100_consistent_huber monocular_n25_band_shift_nlr100_consistent_init_huber}"
+  network_n25_band_shift_nlr100_consistent_huber monocular_n25_band_shift_nlr100_consistent_init_huber
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint monof0_n25_band_shift_nlr100_consistent_init
+  monoexactdepth_n25_band_shift_nlr100_consistent_init}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"

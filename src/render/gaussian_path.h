@@ -18,6 +18,7 @@
 #include "raytrace/gaussian_tracer.h"
 #include "raytrace/ray_backward.h"
 #include "render/path_step.h"
+#include "scene/predicted_buffers.h"
 
 namespace glint {
 
@@ -117,6 +118,10 @@ struct PathGradientSettings {
   // paper's choice: the throughputs are detached and nothing flows into those materials.
   float roughnessFromSpecular = 0;
   float f0FromSpecular = 0;
+  // F0's gradient from L_r only where the surface left is a metal (its blended F0 reaches
+  // greyF0IsMetal's 0.52): a dielectric's F0 is achromatic and set by its prior, and there
+  // d log w / d F0 = 1 / F (about 25) makes L_r's noisy light loudest (docs/captures.md).
+  bool f0FromSpecularMetalsOnly = false;
   PathSettings path;  // the settings the paths were traced with (continuePath's)
 };
 
@@ -140,7 +145,8 @@ inline RayResultAdjoint segmentAdjoint(std::span<const PathSegment> segments, si
   const StepMaterialDerivatives d =
       stepMaterialDerivatives(segments[k].ray, segments[k].result, settings.path, segments[k + 1].ray.direction);
   v.v_roughness += settings.roughnessFromSpecular * (later.x + later.y + later.z) * d.dLogWeightDRoughness;
-  v.v_f0 += settings.f0FromSpecular * later * d.dLogWeightDF0;
+  if (!settings.f0FromSpecularMetalsOnly || greyF0IsMetal(segments[k].result.f0))
+    v.v_f0 += settings.f0FromSpecular * later * d.dLogWeightDF0;
   return v;
 }
 

@@ -115,6 +115,11 @@ Image f0FromMetalness(const Image& baseColour, const Image& metalness, float spe
   return f0;
 }
 
+bool greyF0IsMetal(const Rgb& f0) {
+  constexpr float kHalfMetal = 0.04f + 0.96f * 0.5f;  // the grey rule's F0 at metalness 0.5
+  return std::max({f0.x, f0.y, f0.z}) >= kHalfMetal;
+}
+
 Image metalnessFromF0(const Image& f0) {
   GLINT_CHECK(f0.channels == 3, "F0 has three channels");
   constexpr float kDielectric = 0.04f;  // f0FromMetalness's dielectric at specular level 0.5

@@ -72,6 +72,10 @@ Image f0FromMetalness(const Image& baseColour, const Image& metalness, float spe
 // brightest channel, m = (max(F0) - 0.04) / 0.96 clamped to [0, 1], so a tinted metal
 // (gold's F0 of about (1, 0.78, 0.34)) reads fully metallic and loses its tint.
 Image metalnessFromF0(const Image& f0);
+// Whether a grey F0 made from a metalness by the white-base rule stands for a metal
+// (metalness >= 0.5, so F0 >= 0.52). Only a metal's F0 can be tinted: a dielectric's is the
+// Fresnel reflectance of a real refractive index at normal incidence, achromatic (0.02-0.08).
+bool greyF0IsMetal(const Rgb& f0);
 // glTF's diffuse albedo baseColour (1 - metallic). Glint's diffuse buffer is radiance, not
 // albedo: this serves predictors that give albedo, e.g. to initialise Gaussian colours.
 Rgb diffuseAlbedoFromMetalness(const Rgb& baseColour, float metalness);

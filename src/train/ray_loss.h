@@ -26,8 +26,8 @@ struct PixelTarget {
   // `diffuse` holds the final image (the render buffer): the first segment's diffuse plus
   // the path's specular is fitted to it.
   bool finalColour = false;
-  // F0 came from a predicted metalness (grey by the white-base rule): only its brightest
-  // channel is compared, so a metal's tint is left to the reflection loss L_r to learn.
+  // F0 came from a predicted metalness (grey by the white-base rule) of a metal: only its
+  // brightest channel is compared, so the metal's tint is left to the reflection loss L_r.
   bool f0BrightnessOnly = false;
 };
 

@@ -144,9 +144,11 @@ struct TrainConfig {
   Baseline baseline = Baseline::None;
   int reflectionWarmup = 750;  // steps of first-segment training before reflections start
   // When true, a capture whose F0 is a predicted metalness (grey: a tinted metal's colour
-  // is lost) trains only F0's brightest channel against it and leaves its tint to L_r,
-  // which needs loss.f0_from_specular > 0 to reach F0. An option beyond the paper, off
-  // (docs/captures.md).
+  // is lost) trains only the brightest channel of its metals' F0 (metalness >= 0.5;
+  // greyF0IsMetal) against it and leaves their tint to L_r, which needs
+  // loss.f0_from_specular > 0 to reach F0 and then reaches metals only
+  // (PathGradientSettings::f0FromSpecularMetalsOnly); dielectrics keep every channel of
+  // their prior. An option beyond the paper, off (docs/captures.md).
   bool f0TintFromReflections = false;
   // When true, the roughness term ignores a constant offset between the priors and the
   // model: it compares r + b with the prior p, b the median of p - r over the previous

@@ -115,6 +115,7 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   PathGradientSettings gradients;
   gradients.roughnessFromSpecular = config_.loss.roughnessFromSpecular;
   gradients.f0FromSpecular = config_.loss.f0FromSpecular;
+  gradients.f0FromSpecularMetalsOnly = config_.f0TintFromReflections;  // the tint is a metal's
   gradients.path = pathSettings;
   const bool scoring = backward && scoringSplits();
   const bool shiftInvariant = config_.roughnessShiftInvariant;

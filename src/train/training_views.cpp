@@ -10,6 +10,7 @@
 #include "math/rng.h"
 #include "scene/buffer_codec.h"
 #include "scene/capture_dataset.h"
+#include "scene/predicted_buffers.h"
 
 namespace glint {
 
@@ -126,7 +127,9 @@ PixelTarget TrainingViews::target(size_t view, size_t pixel) const {
   t.hasRoughness = supervised_.roughness;
   t.hasF0 = supervised_.f0;
   t.finalColour = supervised_.finalColour;
-  t.f0BrightnessOnly = supervised_.f0BrightnessOnly;
+  // A metal's tint is left to L_r; a dielectric's F0 is achromatic, so every channel of it
+  // is kept (left free, L_r's noisy gradient tinted the walls' reflections).
+  t.f0BrightnessOnly = supervised_.f0BrightnessOnly && greyF0IsMetal(t.f0);
   return t;
 }
 

@@ -34,7 +34,7 @@ struct SupervisedBuffers {
   bool specular = false, depth = false, normal = false, roughness = false, f0 = false;
   bool finalColour = false;  // the colour target is the render buffer (ColourTarget::Render or no diffuse)
   // F0 is a capture's predicted metalness (priors/metalness), grey by the white-base rule,
-  // and only its brightness is trained (PixelTarget::f0BrightnessOnly).
+  // and only its metals' brightness is trained (PixelTarget::f0BrightnessOnly).
   bool f0BrightnessOnly = false;
   // The names ("specular, depth, ...") of the buffer kinds present, or of those missing.
   std::string list(bool present) const;

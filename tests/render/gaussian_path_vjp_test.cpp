@@ -446,6 +446,29 @@ TEST(TracePathVjp, OverflowedSegmentsAreSkippedAndCounted) {
   EXPECT_EQ(reached, hitIds(c.segments[kept]));
 }
 
+// With f0FromSpecularMetalsOnly, L_r's F0 gradient reaches the surface a step leaves only
+// where its blended F0 is a metal's (greyF0IsMetal); the roughness gradient is unchanged.
+TEST(TracePathVjp, F0FromSpecularMetalsOnlyLeavesDielectricsToTheirPrior) {
+  PathCase c = makePathCase();
+  ASSERT_EQ(c.segments.size(), 3u);
+  PathGradientSettings all;
+  all.roughnessFromSpecular = 1;
+  all.f0FromSpecular = 1;
+  all.path = c.settings;
+  PathGradientSettings metals = all;
+  metals.f0FromSpecularMetalsOnly = true;
+  const Rgb g(0.3f, -0.2f, 0.5f);
+  std::vector<PathSegment> segments = c.segments;
+  for (const Rgb& f0 : {Rgb(0.04f), Rgb(0.9f, 0.6f, 0.5f)}) {
+    segments[0].result.f0 = f0;  // the surface the first reflection leaves
+    const RayResultAdjoint a = segmentAdjoint(segments, 0, RayResultAdjoint{}, g, all);
+    const RayResultAdjoint m = segmentAdjoint(segments, 0, RayResultAdjoint{}, g, metals);
+    ASSERT_FALSE(a.v_f0 == Rgb(0.0f));
+    EXPECT_EQ(m.v_f0, greyF0IsMetal(f0) ? a.v_f0 : Rgb(0.0f));
+    EXPECT_EQ(m.v_roughness, a.v_roughness);
+  }
+}
+
 // The first segment's adjoint flows through its own hits exactly as backwardRay hands it
 // out, added to the reflected segments' gradient.
 TEST(TracePathVjp, FirstSegmentAdjointAddsTheFirstSegmentsBackwardRay) {

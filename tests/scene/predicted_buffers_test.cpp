@@ -183,5 +183,15 @@ TEST(MetalnessFromF0, InvertsTheGreyRuleAndCallsTintedMetalsMetallic) {
   EXPECT_NEAR(back.at(2, 0, 1), 0.52f, 1e-6f);
 }
 
+// Metals are where the grey rule's metalness reaches one half; tinted metals count by their
+// brightest channel, as metalnessFromF0 reads them.
+TEST(MetalnessFromF0, GreyF0IsAMetalFromHalfMetalness) {
+  EXPECT_FALSE(greyF0IsMetal(Rgb(0.04f)));
+  EXPECT_FALSE(greyF0IsMetal(Rgb(0.51f)));
+  EXPECT_TRUE(greyF0IsMetal(Rgb(0.52f)));
+  EXPECT_TRUE(greyF0IsMetal(Rgb(1.0f)));
+  EXPECT_TRUE(greyF0IsMetal(Rgb(0.2f, 0.3f, 0.9f)));
+}
+
 }  // namespace
 }  // namespace glint

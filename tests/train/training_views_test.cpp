@@ -1,0 +1,40 @@
+// TrainingViews' F0 targets from a metalness prior: with f0_tint_from_reflections only the
+// metals' brightness is trained, so L_r can tint them; the dielectrics keep every channel.
+#include "train/training_views.h"
+
+#include <gtest/gtest.h>
+
+#include "io/temp_folder.h"
+#include "scene/dataset.h"
+#include "scene/predicted_buffers.h"
+#include "train/room_capture.h"
+
+namespace glint {
+namespace {
+
+TEST(TrainingViews, MetalnessTrainsTheBrightnessOfMetalsOnly) {
+  test::TempFolder temp;
+  test::writeRoomCapture(temp / "capture", PriorErrors::Monocular);  // metalness, no F0 file
+  const Dataset dataset = Dataset::open(temp / "capture", true, 8);
+  const TrainingViews tinted = TrainingViews::load(dataset, dataset.train(), ColourTarget::Diffuse, true);
+  const TrainingViews plain = TrainingViews::load(dataset, dataset.train());
+  ASSERT_TRUE(tinted.supervised().f0BrightnessOnly);
+  EXPECT_FALSE(plain.supervised().f0BrightnessOnly);
+  size_t metals = 0, dielectrics = 0;
+  for (size_t view = 0; view < tinted.viewCount(); ++view)
+    for (size_t pixel = 0; pixel < tinted.pixelCount(view); ++pixel) {
+      if (!tinted.surfaceAt(view, pixel)) continue;
+      const PixelTarget t = tinted.target(view, pixel);
+      ASSERT_EQ(t.f0.x, t.f0.y);  // grey, by the white-base rule
+      ASSERT_EQ(t.f0.x, t.f0.z);
+      EXPECT_EQ(t.f0BrightnessOnly, greyF0IsMetal(t.f0));
+      EXPECT_FALSE(plain.target(view, pixel).f0BrightnessOnly);
+      ++(t.f0BrightnessOnly ? metals : dielectrics);
+    }
+  // The room's mirror, pot and lid are metals; its walls, floor and table are not.
+  EXPECT_GT(metals, 0u);
+  EXPECT_GT(dielectrics, metals);
+}
+
+}  // namespace
+}  // namespace glint
