@@ -115,20 +115,22 @@ Image f0FromMetalness(const Image& baseColour, const Image& metalness, float spe
   return f0;
 }
 
+// f0FromMetalness's dielectric at specular level 0.5, the grey rule's F0 at metalness 0.
+constexpr float kDielectricF0 = 0.04f;
+
 bool greyF0IsMetal(const Rgb& f0) {
-  constexpr float kHalfMetal = 0.04f + 0.96f * 0.5f;  // the grey rule's F0 at metalness 0.5
+  constexpr float kHalfMetal = kDielectricF0 + (1.0f - kDielectricF0) * 0.5f;  // metalness 0.5: 0.52
   return std::max({f0.x, f0.y, f0.z}) >= kHalfMetal;
 }
 
 Image metalnessFromF0(const Image& f0) {
   GLINT_CHECK(f0.channels == 3, "F0 has three channels");
-  constexpr float kDielectric = 0.04f;  // f0FromMetalness's dielectric at specular level 0.5
   Image metalness(f0.width, f0.height, 1);
   for (int j = 0; j < f0.height; ++j)
     for (int i = 0; i < f0.width; ++i) {
       const Rgb c = f0.rgb(i, j);
       const float brightest = std::max({c.x, c.y, c.z});
-      metalness.at(i, j) = std::clamp((brightest - kDielectric) / (1.0f - kDielectric), 0.0f, 1.0f);
+      metalness.at(i, j) = std::clamp((brightest - kDielectricF0) / (1.0f - kDielectricF0), 0.0f, 1.0f);
     }
   return metalness;
 }
