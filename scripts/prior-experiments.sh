@@ -144,8 +144,19 @@ echo "{\"roughness_shift_invariant\": true, \"init\": {\"consistent_depth_only\"
   > "$out/configs/n25_band_shift_nlr100_consistent_init_huber.json"
 # The monocular kind's best setting with F0's tint learnt from the reflections, on the second
 # scene (builtin:spheres), whose tinted chrome spheres read grey through metalness.
-echo "{\"roughness_shift_invariant\": true, \"f0_tint_from_reflections\": true, \"init\": {\"consistent_depth_only\": true}, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1, \"depth_consistency\": 0.02, \"f0_from_specular\": 1.0}, $(nlr 0.000025)}" \
+# (k = 0, as measured before loss.f0_tint_prior's default became 0.1.)
+echo "{\"roughness_shift_invariant\": true, \"f0_tint_from_reflections\": true, \"init\": {\"consistent_depth_only\": true}, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1, \"depth_consistency\": 0.02, \"f0_from_specular\": 1.0, \"f0_tint_prior\": 0}, $(nlr 0.000025)}" \
   > "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint.json"
+# The same with a weak pull of the metals' F0 toward their grey prior (loss.f0_tint_prior):
+# on builtin:room the tint drifted (its flat mirror went pink), the light it reflects being
+# seen by the training views only in it, so F0's tint and that light's colour trade freely.
+for pair in 01:0.1 03:0.3 10:1; do  # name:k (k = 1 is the plain F0 term, L_r's gate alone)
+  kappa="${pair%%:*}"
+  echo "{\"roughness_shift_invariant\": true, \"f0_tint_from_reflections\": true, \"init\": {\"consistent_depth_only\": true}, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1, \"depth_consistency\": 0.02, \"f0_from_specular\": 1.0, \"f0_tint_prior\": ${pair#*:}}, $(nlr 0.000025)}" \
+    > "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior$kappa.json"
+done
+sed 's/^{/{"seed": 1, /' "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01.json" \
+  > "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01_seed1.json"
 # Two oracles on the monocular capture, each with one prior taken from the exact capture: its
 # F0 (monof0: the metals' tint given) and its depth (monoexactdepth): how much of the monocular
 # kind's loss each of those priors' errors makes.
@@ -195,7 +206,11 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   network_n25_band_shift_nlr100_consistent_seed1 network_n25_band_shift_nlr100_consistent1
   network_n25_band_shift_nlr100_consistent_huber monocular_n25_band_shift_nlr100_consistent_init_huber
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint monof0_n25_band_shift_nlr100_consistent_init
-  monoexactdepth_n25_band_shift_nlr100_consistent_init}"
+  monoexactdepth_n25_band_shift_nlr100_consistent_init
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior03
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_seed1
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior10}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"

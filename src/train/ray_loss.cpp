@@ -15,19 +15,24 @@ double absSum(const Vec3f& v) { return double(std::abs(v.x)) + std::abs(v.y) + s
 // The channel holding the largest value (the first of equals).
 int brightestChannel(const Rgb& c) { return c.y > c.x ? (c.z > c.y ? 2 : 1) : (c.z > c.x ? 2 : 0); }
 
-// The F0 term of one ray: the mean absolute error of its channels, or of the brightest
-// channels alone with target.f0BrightnessOnly (one value, so not divided by 3: a grey
-// error scores the same either way).
+// The F0 term of one ray: the mean absolute error of its channels, or with
+// target.f0BrightnessOnly that of the brightest channels alone (one value, so not divided
+// by 3: a grey error scores the same either way), blended with the mean over every channel
+// by target.f0TintPrior (kappa):
+//   (1 - kappa) |F0_b - t_b| + kappa sum_c |F0_c - t_c| / 3.
 double f0Error(const Rgb& f0, const PixelTarget& t) {
-  if (!t.f0BrightnessOnly) return absSum(f0 - t.f0) / 3;
-  return std::abs(double(f0[brightestChannel(f0)]) - t.f0[brightestChannel(t.f0)]);
+  const double all = absSum(f0 - t.f0) / 3;
+  if (!t.f0BrightnessOnly) return all;
+  const double brightness = std::abs(double(f0[brightestChannel(f0)]) - t.f0[brightestChannel(t.f0)]);
+  return (1.0 - t.f0TintPrior) * brightness + t.f0TintPrior * all;
 }
 
 Rgb f0Error_vjp(const Rgb& f0, const PixelTarget& t) {
-  if (!t.f0BrightnessOnly) return sign(f0 - t.f0) * (1.0f / 3.0f);
-  Rgb v(0.0f);
+  const Rgb all = sign(f0 - t.f0) * (1.0f / 3.0f);
+  if (!t.f0BrightnessOnly) return all;
+  Rgb v = all * t.f0TintPrior;
   const int c = brightestChannel(f0);
-  v[c] = sign(f0[c] - t.f0[brightestChannel(t.f0)]);
+  v[c] += (1.0f - t.f0TintPrior) * sign(f0[c] - t.f0[brightestChannel(t.f0)]);
   return v;
 }
 

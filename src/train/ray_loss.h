@@ -29,6 +29,9 @@ struct PixelTarget {
   // F0 came from a predicted metalness (grey by the white-base rule) of a metal: only its
   // brightest channel is compared, so the metal's tint is left to the reflection loss L_r.
   bool f0BrightnessOnly = false;
+  // With f0BrightnessOnly, the share of the F0 term that still compares every channel
+  // (LossWeights::f0TintPrior): 0 leaves the tint to L_r alone, 1 is the plain term.
+  float f0TintPrior = 0;
 };
 
 // Each term is the mean absolute error over the batch (and the term's channels); the

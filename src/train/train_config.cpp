@@ -89,6 +89,7 @@ void forEachField(Config& c, F&& f) {
   f("loss", "normal_huber", c.loss.normalHuber);
   f("loss", "roughness_from_specular", c.loss.roughnessFromSpecular);
   f("loss", "f0_from_specular", c.loss.f0FromSpecular);
+  f("loss", "f0_tint_prior", c.loss.f0TintPrior);
   // The learning rates, named by the parameter table.
   forEachParameter([&](const auto& p) {
     f("lr", p.rate.key, c.lr.*p.rate.initial);
@@ -318,6 +319,7 @@ void TrainConfig::validate(const std::string& source) const {
             "loss.roughness_from_specular and loss.f0_from_specular must be in [0, 1e6] (0 = off)");
   require(!f0TintFromReflections || loss.f0FromSpecular > 0, source,
           "f0_tint_from_reflections leaves F0's tint to L_r, which reaches F0 only with loss.f0_from_specular > 0");
+  require(loss.f0TintPrior >= 0 && loss.f0TintPrior <= 1, source, "loss.f0_tint_prior must be in [0, 1]");
   require(invalidNormalLength >= 0 && invalidNormalLength <= 1, source, "invalid_normal_length must be in [0, 1]");
   require(backfaceSkip >= 0, source, "backface_skip must be non-negative");
   require(scaleDecay > 0 && scaleDecay <= 1, source, "scale_decay must be in (0, 1]");

@@ -59,6 +59,13 @@ struct LossWeights {
   // -0.15); F0 from L_r lost 1.1 (docs/captures.md).
   float roughnessFromSpecular = 0.0f;
   float f0FromSpecular = 0.0f;
+  // With TrainConfig::f0TintFromReflections, the share of the F0 term that still compares
+  // every channel of a metal's F0 with its grey prior (PixelTarget::f0TintPrior), in [0, 1]:
+  // a weak pull toward grey that L_r's evidence for a tint must overcome. Where a mirror
+  // reflects what the training views see only in it, F0's tint and that light's colour
+  // trade freely, and without the pull F0 drifts (builtin:room's mirror went pink). 0.1
+  // measured best of 0, 0.1 and 0.3 on two scenes (docs/captures.md).
+  float f0TintPrior = 0.1f;
 };
 
 struct AdamSettings {

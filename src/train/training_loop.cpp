@@ -242,7 +242,7 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
   TrainingViews views = TrainingViews::load(dataset, dataset.split("train"),  // split(): names a missing file
                                             config.baseline == Baseline::Rgb ? ColourTarget::Render
                                                                              : ColourTarget::Diffuse,
-                                            config.f0TintFromReflections);
+                                            config.f0TintFromReflections, config.loss.f0TintPrior);
   if (config.loss.depthConsistency > 0 && views.supervised().depth) {
     activity.describe("checking each training view's depth against its neighbours'");
     keepConsistentDepthAndSay(config, run, &views, observer);

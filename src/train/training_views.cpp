@@ -30,7 +30,7 @@ std::string SupervisedBuffers::list(bool present) const {
 }
 
 TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& split, ColourTarget colour,
-                                  bool metalnessTrainsBrightness) {
+                                  bool metalnessTrainsBrightness, float tintPrior) {
   if (split.views.empty()) throw Error(dataset.root().string(), "has no " + split.name + " views to train on");
   TrainingViews tv;
   // The first view decides which buffer kinds are trained; every other view must have them.
@@ -50,6 +50,7 @@ TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& sp
   s.roughness = present(Buffer::Roughness);
   s.f0 = present(Buffer::F0);
   s.f0BrightnessOnly = s.f0 && metalnessTrainsBrightness && isMetalnessPrior(*dataset.findBufferFile(first, Buffer::F0));
+  s.f0TintPrior = s.f0BrightnessOnly ? tintPrior : 0;
 
   // Sizes come from each view's camera; a view's buffers must match it.
   tv.cameras_.resize(split.views.size());
@@ -130,6 +131,7 @@ PixelTarget TrainingViews::target(size_t view, size_t pixel) const {
   // A metal's tint is left to L_r; a dielectric's F0 is achromatic, so every channel of it
   // is kept (left free, L_r's noisy gradient tinted the walls' reflections).
   t.f0BrightnessOnly = supervised_.f0BrightnessOnly && greyF0IsMetal(t.f0);
+  t.f0TintPrior = supervised_.f0TintPrior;
   return t;
 }
 

@@ -36,6 +36,7 @@ struct SupervisedBuffers {
   // F0 is a capture's predicted metalness (priors/metalness), grey by the white-base rule,
   // and only its metals' brightness is trained (PixelTarget::f0BrightnessOnly).
   bool f0BrightnessOnly = false;
+  float f0TintPrior = 0;  // PixelTarget::f0TintPrior of those metals
   // The names ("specular, depth, ...") of the buffer kinds present, or of those missing.
   std::string list(bool present) const;
 };
@@ -50,9 +51,11 @@ class TrainingViews {
   // for missing buffers of a kind the first view has, sizes that differ from the view's
   // camera, or non-finite values (Dataset::loadBuffer's checks).
   // metalnessTrainsBrightness: a capture's F0 given as metalness trains its brightness only
-  // (TrainConfig::f0TintFromReflections).
+  // (TrainConfig::f0TintFromReflections), and every channel with the share tintPrior
+  // (LossWeights::f0TintPrior).
   static TrainingViews load(const Dataset& dataset, const DatasetSplit& split,
-                            ColourTarget colour = ColourTarget::Diffuse, bool metalnessTrainsBrightness = false);
+                            ColourTarget colour = ColourTarget::Diffuse, bool metalnessTrainsBrightness = false,
+                            float tintPrior = 0);
 
   size_t viewCount() const { return cameras_.size(); }
   const Camera& camera(size_t view) const { return cameras_[view]; }

@@ -91,6 +91,35 @@ TEST(RayLoss, F0FromMetalnessComparesTheBrightestChannels) {
   EXPECT_NEAR(rayLoss(r, t, n).f0, (0.5 + 0.2 + 0.8) / 3 / 2, 1e-7);
 }
 
+// The tint prior (PixelTarget::f0TintPrior) blends the brightest channel's error with every
+// channel's: kappa = 0 is the brightness alone, 1 the plain term, so a grey error scores the
+// same whatever kappa, and a tint is pulled toward grey with a slope of kappa / 3.
+TEST(RayLoss, F0TintPriorBlendsTheBrightnessWithEveryChannel) {
+  PixelTarget t = surfaceTarget();
+  t.f0 = Rgb(1.0f);
+  t.f0BrightnessOnly = true;
+  t.f0TintPrior = 0.25f;
+  RayResult r;
+  r.f0 = Rgb(0.5f, 0.8f, 0.2f);
+  const LossNormalisation n{4, 2};
+  EXPECT_NEAR(rayLoss(r, t, n).f0, (0.75 * 0.2 + 0.25 * (0.5 + 0.2 + 0.8) / 3) / 2, 1e-7);
+  const Rgb v = rayLoss_vjp(r, t, n, LossWeights()).v_f0;
+  EXPECT_FLOAT_EQ(v.x, -0.25f / 3 / 2);
+  EXPECT_FLOAT_EQ(v.y, (-0.75f - 0.25f / 3) / 2);
+  EXPECT_FLOAT_EQ(v.z, -0.25f / 3 / 2);
+  r.f0 = Rgb(0.9f);  // grey: 0.1 off whatever kappa
+  for (float kappa : {0.0f, 0.25f, 1.0f}) {
+    t.f0TintPrior = kappa;
+    EXPECT_NEAR(rayLoss(r, t, n).f0, 0.1 / 2, 1e-7) << kappa;
+  }
+  r.f0 = Rgb(1.0f, 0.78f, 0.34f);  // gold against a full metalness: costs only through kappa
+  t.f0TintPrior = 1.0f;
+  PixelTarget plain = t;
+  plain.f0BrightnessOnly = false;
+  EXPECT_NEAR(rayLoss(r, t, n).f0, rayLoss(r, plain, n).f0, 1e-7);
+  EXPECT_EQ(rayLoss_vjp(r, t, n, LossWeights()).v_f0, rayLoss_vjp(r, plain, n, LossWeights()).v_f0);
+}
+
 class RayLossVjp : public ::testing::TestWithParam<bool> {};
 
 TEST_P(RayLossVjp, MatchesFiniteDifferences) {
@@ -101,6 +130,7 @@ TEST_P(RayLossVjp, MatchesFiniteDifferences) {
   target.f0BrightnessOnly = GetParam();
   if (GetParam()) target.f0 = Rgb(0.6f);
   for (int trial = 0; trial < 20; ++trial) {
+    target.f0TintPrior = GetParam() && trial % 2 ? 0.3f : 0.0f;  // brightness alone, and blended
     std::vector<double> x(11);
     for (double& v : x) v = rng.uniformDouble() * 4 - 1;
     auto unpack = [](const std::vector<double>& p) {

@@ -16,10 +16,12 @@ TEST(TrainingViews, MetalnessTrainsTheBrightnessOfMetalsOnly) {
   test::TempFolder temp;
   test::writeRoomCapture(temp / "capture", PriorErrors::Monocular);  // metalness, no F0 file
   const Dataset dataset = Dataset::open(temp / "capture", true, 8);
-  const TrainingViews tinted = TrainingViews::load(dataset, dataset.train(), ColourTarget::Diffuse, true);
+  const TrainingViews tinted = TrainingViews::load(dataset, dataset.train(), ColourTarget::Diffuse, true, 0.3f);
   const TrainingViews plain = TrainingViews::load(dataset, dataset.train());
   ASSERT_TRUE(tinted.supervised().f0BrightnessOnly);
   EXPECT_FALSE(plain.supervised().f0BrightnessOnly);
+  EXPECT_EQ(tinted.supervised().f0TintPrior, 0.3f);
+  EXPECT_EQ(plain.supervised().f0TintPrior, 0.0f);
   size_t metals = 0, dielectrics = 0;
   for (size_t view = 0; view < tinted.viewCount(); ++view)
     for (size_t pixel = 0; pixel < tinted.pixelCount(view); ++pixel) {
@@ -28,6 +30,9 @@ TEST(TrainingViews, MetalnessTrainsTheBrightnessOfMetalsOnly) {
       ASSERT_EQ(t.f0.x, t.f0.y);  // grey, by the white-base rule
       ASSERT_EQ(t.f0.x, t.f0.z);
       EXPECT_EQ(t.f0BrightnessOnly, greyF0IsMetal(t.f0));
+      if (t.f0BrightnessOnly) {
+        EXPECT_EQ(t.f0TintPrior, 0.3f);  // the share of the grey prior kept
+      }
       EXPECT_FALSE(plain.target(view, pixel).f0BrightnessOnly);
       ++(t.f0BrightnessOnly ? metals : dielectrics);
     }
