@@ -64,7 +64,7 @@ struct LossWeights {
   // a weak pull toward grey that L_r's evidence for a tint must overcome. Where a mirror
   // reflects what the training views see only in it, F0's tint and that light's colour
   // trade freely, and without the pull F0 drifts (builtin:room's mirror went pink). 0.1
-  // measured best of 0, 0.1 and 0.3 on two scenes (docs/captures.md).
+  // measured best of 0, 0.1, 0.3 and 1 on two scenes (docs/captures.md).
   float f0TintPrior = 0.1f;
 };
 
@@ -151,11 +151,12 @@ struct TrainConfig {
   Baseline baseline = Baseline::None;
   int reflectionWarmup = 750;  // steps of first-segment training before reflections start
   // When true, a capture whose F0 is a predicted metalness (grey: a tinted metal's colour
-  // is lost) trains only the brightest channel of its metals' F0 (metalness >= 0.5;
-  // greyF0IsMetal) against it and leaves their tint to L_r, which needs
-  // loss.f0_from_specular > 0 to reach F0 and then reaches metals only
-  // (PathGradientSettings::f0FromSpecularMetalsOnly); dielectrics keep every channel of
-  // their prior. An option beyond the paper, off (docs/captures.md).
+  // is lost) trains mostly the brightest channel of its metals' F0 (metalness >= 0.5;
+  // greyF0IsMetal; the rest of the term is loss.f0_tint_prior's pull toward grey) and
+  // leaves their tint to L_r, which needs loss.f0_from_specular > 0 to reach F0 and then
+  // reaches metals only (PathGradientSettings::f0FromSpecularMetalsOnly); dielectrics keep
+  // every channel of their prior. An option beyond the paper, off: +0.72 dB of specular on
+  // one scene's tinted chrome, -0.86 on another's rough walls (docs/captures.md).
   bool f0TintFromReflections = false;
   // When true, the roughness term ignores a constant offset between the priors and the
   // model: it compares r + b with the prior p, b the median of p - r over the previous
