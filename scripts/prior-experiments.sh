@@ -157,6 +157,9 @@ for pair in 01:0.1 03:0.3 10:1; do  # name:k (k = 1 is the plain F0 term, L_r's 
 done
 sed 's/^{/{"seed": 1, /' "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01.json" \
   > "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01_seed1.json"
+# ... and with L_r's F0 gradient at a tenth of its weight: does the room's loss scale with it?
+sed 's/"f0_from_specular": 1.0/"f0_from_specular": 0.1/' "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01.json" \
+  > "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01_ffs01.json"
 # Two oracles on the monocular capture, each with one prior taken from the exact capture: its
 # F0 (monof0: the metals' tint given) and its depth (monoexactdepth): how much of the monocular
 # kind's loss each of those priors' errors makes.
@@ -210,7 +213,8 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior03
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_seed1
-  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior10}"
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior10
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_ffs01}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"
