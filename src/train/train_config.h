@@ -63,8 +63,9 @@ struct LossWeights {
   // every channel of a metal's F0 with its grey prior (PixelTarget::f0TintPrior), in [0, 1]:
   // a weak pull toward grey that L_r's evidence for a tint must overcome. Where a mirror
   // reflects what the training views see only in it, F0's tint and that light's colour
-  // trade freely, and without the pull F0 drifts (builtin:room's mirror went pink). 0.1
-  // measured best of 0, 0.1, 0.3 and 1 on two scenes (docs/captures.md).
+  // trade freely, and without the pull F0 drifts (builtin:room's mirror went pink). 0.1:
+  // on builtin:spheres +0.31 dB of specular over 0 (0.3 and 1 not run there); on
+  // builtin:room the same as 0 and 1, 0.26 dB above 0.3 (docs/captures.md).
   float f0TintPrior = 0.1f;
 };
 

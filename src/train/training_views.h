@@ -55,7 +55,7 @@ class TrainingViews {
   // (LossWeights::f0TintPrior).
   static TrainingViews load(const Dataset& dataset, const DatasetSplit& split,
                             ColourTarget colour = ColourTarget::Diffuse, bool metalnessTrainsBrightness = false,
-                            float tintPrior = 0);
+                            float tintPrior = LossWeights{}.f0TintPrior);
 
   size_t viewCount() const { return cameras_.size(); }
   const Camera& camera(size_t view) const { return cameras_[view]; }
