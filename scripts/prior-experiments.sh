@@ -160,6 +160,22 @@ sed 's/^{/{"seed": 1, /' "$out/configs/n25_band_shift_nlr100_consistent_init_f0_
 # ... and with L_r's F0 gradient at a tenth of its weight: does the room's loss scale with it?
 sed 's/"f0_from_specular": 1.0/"f0_from_specular": 0.1/' "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01.json" \
   > "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01_ffs01.json"
+# Since L_r's material gradient holds the compositing weights (docs/derivations.md D15), the
+# k = 0.1 config names the runs made with it: the "_held" config is the same file (the runs
+# of the name without it were made with the gradient moving the geometry).
+cp "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01.json" \
+  "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01_held.json"
+# The network kind's best setting with the option (its F0 prior is an F0 image: since the
+# option withholds L_r's F0 gradient there, this run is the run without it).
+echo "{\"roughness_shift_invariant\": true, \"f0_tint_from_reflections\": true, \"loss\": {\"normal\": 2.5, \"normal_huber\": 0.2, \"depth_band\": 0.1, \"depth_consistency\": 0.02, \"f0_from_specular\": 1.0, \"f0_tint_prior\": 0.1}, $(nlr 0.000025)}" \
+  > "$out/configs/n25_band_shift_nlr100_consistent_huber_f0_tint_prior01_held.json"
+# The photograph term (loss.photograph): diffuse + specular fitted to the exact photographs
+# beside the predicted priors, at weights 1 and 3.
+for w in 1 3; do
+  sed "s/\"f0_tint_prior\": 0.1}/\"f0_tint_prior\": 0.1, \"photograph\": $w}/" \
+    "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01.json" \
+    > "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01_photo$w.json"
+done
 # Two oracles on the monocular capture, each with one prior taken from the exact capture: its
 # F0 (monof0: the metals' tint given) and its depth (monoexactdepth): how much of the monocular
 # kind's loss each of those priors' errors makes.
@@ -214,7 +230,11 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior03
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_seed1
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior10
-  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_ffs01}"
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_ffs01
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_held
+  network_n25_band_shift_nlr100_consistent_huber_f0_tint_prior01_held
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_photo1
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_photo3}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"

@@ -223,6 +223,11 @@ class TrainPrinter : public TrainingObserver {
     if (s.finalColour)
       std::fprintf(stderr, "glint train: colours fitted to the final (render) images%s\n",
                    config_.bounces > 0 ? " as diffuse plus the paths' specular" : "");
+    if (s.photograph)
+      std::fprintf(stderr,
+                   "glint train: diffuse plus specular also fitted to the photographs (loss.photograph %g) once "
+                   "reflections train\n",
+                   double(config_.loss.photograph));
     if (!s.list(false).empty())
       std::fprintf(stderr, "glint train: the dataset has no %s buffers: training without their losses\n",
                    s.list(false).c_str());

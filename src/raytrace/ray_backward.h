@@ -24,10 +24,16 @@ struct RayResultAdjoint {
   Vec3f v_normal;
   float v_roughness = 0;
   Rgb v_f0;
+  // dL/d the blended roughness and F0 with the compositing weights held fixed: each hit's
+  // own roughness and F0 receive their share w_i, its opacity, position and shape nothing.
+  // How L_r's material gradient (D15) reaches a surface: it is to set the material of the
+  // surface a path leaves, not to move or fade it (docs/derivations.md D15).
+  float v_roughnessWeightsHeld = 0;
+  Rgb v_f0WeightsHeld;
 
   GLINT_CPU_GPU bool isZero() const {
     return v_diffuse == Rgb(0.0f) && v_depth == 0.0f && v_normal == Vec3f(0.0f) && v_roughness == 0.0f &&
-           v_f0 == Rgb(0.0f);
+           v_f0 == Rgb(0.0f) && v_roughnessWeightsHeld == 0.0f && v_f0WeightsHeld == Rgb(0.0f);
   }
 };
 
@@ -152,8 +158,8 @@ GLINT_CPU_GPU void backwardHits(const BackwardScene& scene, const TraceSettings&
     g.v_opacityLogit = kg.v_opacityLogit;
     g.v_diffuse = Vec3<T>(v.v_diffuse) * w;
     g.v_normal = Vec3<T>(v.v_normal) * w;
-    g.v_roughness = T(v.v_roughness) * w;
-    g.v_f0 = Vec3<T>(v.v_f0) * w;
+    g.v_roughness = (T(v.v_roughness) + T(v.v_roughnessWeightsHeld)) * w;
+    g.v_f0 = (Vec3<T>(v.v_f0) + Vec3<T>(v.v_f0WeightsHeld)) * w;
     g.weight = w;
     sink(h.id, g);
   }

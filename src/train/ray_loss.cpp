@@ -97,4 +97,13 @@ Rgb specularLoss_vjp(const Rgb& specular, const PixelTarget& t, const LossNormal
   return sign(specular - t.specular) * float(w.specular / (3 * n.diffuseRays));
 }
 
+double photographLoss(const Rgb& diffusePlusSpecular, const PixelTarget& t, const LossNormalisation& n) {
+  return absSum(diffusePlusSpecular - t.photograph) / (3 * n.diffuseRays);
+}
+
+Rgb photographLoss_vjp(const Rgb& diffusePlusSpecular, const PixelTarget& t, const LossNormalisation& n,
+                       const LossWeights& w) {
+  return sign(diffusePlusSpecular - t.photograph) * float(w.photograph / (3 * n.diffuseRays));
+}
+
 }  // namespace glint

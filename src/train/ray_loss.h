@@ -32,6 +32,10 @@ struct PixelTarget {
   // With f0BrightnessOnly, the share of the F0 term that still compares every channel
   // (LossWeights::f0TintPrior): 0 leaves the tint to L_r alone, 1 is the plain term.
   float f0TintPrior = 0;
+  // The view's photograph (its render buffer), fitted by diffuse + specular beside the
+  // priors when LossWeights::photograph > 0 (photographLoss).
+  Rgb photograph;
+  bool hasPhotograph = false;
 };
 
 // Each term is the mean absolute error over the batch (and the term's channels); the
@@ -45,15 +49,16 @@ struct LossNormalisation {
 // summing them over a batch gives the batch's mean errors.
 struct LossTerms {
   double diffuse = 0, depth = 0, normal = 0, roughness = 0, f0 = 0;
-  double specular = 0;  // L_r, once reflections are trained
+  double specular = 0;    // L_r, once reflections are trained
+  double photograph = 0;  // photographLoss, once reflections are trained (LossWeights::photograph)
 
   double weighted(const LossWeights& w) const {
     return w.diffuse * diffuse + w.depth * depth + w.normal * normal + w.roughness * roughness + w.f0 * f0 +
-           w.specular * specular;
+           w.specular * specular + w.photograph * photograph;
   }
   LossTerms& operator+=(const LossTerms& o) {
     diffuse += o.diffuse, depth += o.depth, normal += o.normal, roughness += o.roughness, f0 += o.f0;
-    specular += o.specular;
+    specular += o.specular, photograph += o.photograph;
     return *this;
   }
 };
@@ -81,6 +86,14 @@ LossTerms rayLoss(const RayResult& r, const PixelTarget& target, const LossNorma
 double specularLoss(const Rgb& specular, const PixelTarget& target, const LossNormalisation& n);
 Rgb specularLoss_vjp(const Rgb& specular, const PixelTarget& target, const LossNormalisation& n,
                      const LossWeights& weights);
+
+// The photograph term = mean |diffuse + specular - photograph| over the batch's rays and
+// channels (diffuse the first segment's, specular the path's sum), and its gradient with
+// respect to that sum (weights.photograph included), which is both dL/d diffuse and dL/d
+// specular. Meant for target.hasPhotograph only.
+double photographLoss(const Rgb& diffusePlusSpecular, const PixelTarget& target, const LossNormalisation& n);
+Rgb photographLoss_vjp(const Rgb& diffusePlusSpecular, const PixelTarget& target, const LossNormalisation& n,
+                       const LossWeights& weights);
 
 // dL/d result for L = rayLoss(...).weighted(weights); d|x|/dx = sign(x), 0 at 0. With
 // target.finalColour the colour term's gradient with respect to the path's specular sum

@@ -90,6 +90,7 @@ void forEachField(Config& c, F&& f) {
   f("loss", "roughness_from_specular", c.loss.roughnessFromSpecular);
   f("loss", "f0_from_specular", c.loss.f0FromSpecular);
   f("loss", "f0_tint_prior", c.loss.f0TintPrior);
+  f("loss", "photograph", c.loss.photograph);
   // The learning rates, named by the parameter table.
   forEachParameter([&](const auto& p) {
     f("lr", p.rate.key, c.lr.*p.rate.initial);
@@ -325,7 +326,7 @@ void TrainConfig::validate(const std::string& source) const {
   require(scaleDecay > 0 && scaleDecay <= 1, source, "scale_decay must be in (0, 1]");
   require(reflectionWarmup <= kItersRange.max, source,
           "reflection_warmup must be at most " + std::to_string(kItersRange.max));
-  for (float w : {loss.diffuse, loss.depth, loss.normal, loss.roughness, loss.f0, loss.specular})
+  for (float w : {loss.diffuse, loss.depth, loss.normal, loss.roughness, loss.f0, loss.specular, loss.photograph})
     require(w >= 0 && w <= kMaxLossWeight, source, "loss weights must be in [0, 1e6]");
   forEachParameter([&](const auto& p) {
     for (float LearningRates::*rate : {p.rate.initial, p.rate.final})

@@ -56,7 +56,8 @@ struct LossWeights {
   // detached throughputs: only the priors then set roughness and F0. Options beyond the
   // paper, off: at 2000 steps a roughness weight of 1 gained 1.1 dB of final on one
   // predicted capture and lost 1.3 on another and 0.6 on exact buffers (0.1: +0.6 and
-  // -0.15); F0 from L_r lost 1.1 (docs/captures.md).
+  // -0.15); F0 from L_r lost 1.1 (docs/captures.md). Those runs let the gradient move the
+  // geometry too, which it no longer does (PathGradientSettings::materialsMoveGeometry).
   float roughnessFromSpecular = 0.0f;
   float f0FromSpecular = 0.0f;
   // With TrainConfig::f0TintFromReflections, the share of the F0 term that still compares
@@ -67,6 +68,12 @@ struct LossWeights {
   // on builtin:spheres +0.31 dB of specular over 0 (0.3 and 1 not run there); on
   // builtin:room the same as 0 and 1, 0.26 dB above 0.3 (docs/captures.md).
   float f0TintPrior = 0.1f;
+  // Beyond the paper: the weight of a term fitting the first diffuse plus the path's
+  // specular to each view's photograph (its render buffer), beside the diffuse and specular
+  // priors, once reflections train (train/ray_loss.h, photographLoss). A capture's priors
+  // are a predictor's guesses, blurred and noisy, but its photographs are exact: the term
+  // lets them correct the sum while the priors still split it. 0, off (docs/captures.md).
+  float photograph = 0.0f;
 };
 
 struct AdamSettings {
@@ -156,8 +163,10 @@ struct TrainConfig {
   // greyF0IsMetal; the rest of the term is loss.f0_tint_prior's pull toward grey) and
   // leaves their tint to L_r, which needs loss.f0_from_specular > 0 to reach F0 and then
   // reaches metals only (PathGradientSettings::f0FromSpecularMetalsOnly); dielectrics keep
-  // every channel of their prior. An option beyond the paper, off: +0.72 dB of specular on
-  // one scene's tinted chrome, -0.86 on another's rough walls (docs/captures.md).
+  // every channel of their prior. With an F0 prior (tinted already) L_r's F0 gradient is
+  // withheld and the option does nothing. An option beyond the paper, off: under the
+  // monocular kind's best setting +1.08 dB of specular on one scene's tinted chrome, +0.07
+  // on another (docs/captures.md); not measured under the paper's preset.
   bool f0TintFromReflections = false;
   // When true, the roughness term ignores a constant offset between the priors and the
   // model: it compares r + b with the prior p, b the median of p - r over the previous

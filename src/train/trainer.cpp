@@ -114,7 +114,11 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
   pathSettings.primaryCoherence = RayCoherence::Scattered;
   PathGradientSettings gradients;
   gradients.roughnessFromSpecular = config_.loss.roughnessFromSpecular;
-  gradients.f0FromSpecular = config_.loss.f0FromSpecular;
+  // With the tint option L_r's F0 gradient is there to learn the tint a metalness prior
+  // lacks; an F0 prior has its tint already, and L_r's noisy light only disturbs it
+  // (builtin:spheres' network kind: -0.42 dB of specular, docs/captures.md).
+  const bool tintToLearn = !config_.f0TintFromReflections || views_.supervised().f0BrightnessOnly;
+  gradients.f0FromSpecular = tintToLearn ? config_.loss.f0FromSpecular : 0.0f;
   gradients.f0FromSpecularMetalsOnly = config_.f0TintFromReflections;  // the tint is a metal's
   gradients.path = pathSettings;
   const bool scoring = backward && scoringSplits();
@@ -212,18 +216,26 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
         const Rgb specular = reflections ? paths_[size_t(r)].specular : Rgb(0.0f);
         slot.terms += rayLoss(result, target, norm, specular, config_.loss.normalHuber);
         slot.hitCount += int64_t(path[0].hits.hits.size());
-        Rgb v_specular(0.0f);
+        Rgb v_specular(0.0f), v_photograph(0.0f);
         if (reflections) {
           slot.reflected += int64_t(path.size()) - 1;
           if (target.hasSpecular) {
             slot.terms.specular += specularLoss(specular, target, norm);
             v_specular = specularLoss_vjp(specular, target, norm, config_.loss);
           }
+          // Before reflections train the sum would be the diffuse alone, and the photograph's
+          // highlights would be baked into it.
+          if (target.hasPhotograph) {
+            slot.terms.photograph += photographLoss(result.diffuse + specular, target, norm);
+            v_photograph = photographLoss_vjp(result.diffuse + specular, target, norm, config_.loss);
+          }
         }
         if (!backward) continue;
         RayResultAdjoint v_first = rayLoss_vjp(result, target, norm, config_.loss, specular);
         // Fitting diffuse + specular to the final image sends the colour's gradient down the path too.
         if (reflections && target.finalColour) v_specular += v_first.v_diffuse;
+        v_first.v_diffuse += v_photograph;
+        v_specular += v_photograph;
         if (device)
           slot.overflowed += appendBackwardJobs(path, v_first, v_specular, gradients, &slot.jobs, &slot.jobHits);
         else
@@ -269,9 +281,10 @@ void Trainer::forwardBackward(std::span<const BatchRay> batch, bool backward, St
     report->waitSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - waitStart).count();
     const ExchangeStats exchange =
         sumOverRanks(total, scoring ? std::span<float>(score) : std::span<float>(), exchangeMode_);
-    double t[6] = {terms.diffuse, terms.depth, terms.normal, terms.roughness, terms.f0, terms.specular};
-    cluster::sumInRankOrder(std::span<double>(t, 6));
-    terms = {t[0], t[1], t[2], t[3], t[4], t[5]};
+    double t[7] = {terms.diffuse, terms.depth,    terms.normal,    terms.roughness,
+                   terms.f0,      terms.specular, terms.photograph};
+    cluster::sumInRankOrder(std::span<double>(t, 7));
+    terms = {t[0], t[1], t[2], t[3], t[4], t[5], t[6]};
     cluster::sumInRankOrder(std::span<int64_t>(counters, 3));
     cluster::sumInRankOrder(residuals.counts());
     report->exchangeSeconds += exchange.seconds;

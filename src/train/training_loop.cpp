@@ -73,6 +73,7 @@ void writeScalars(TensorBoardWriter& board, const StepReport& r, const std::opti
   board.scalar("loss/roughness_l1", r.step, r.terms.roughness);
   board.scalar("loss/f0_l1", r.step, r.terms.f0);
   board.scalar("loss/specular_l1", r.step, r.terms.specular);
+  if (r.terms.photograph != 0) board.scalar("loss/photograph_l1", r.step, r.terms.photograph);
   // How far the roughness priors sit from the model's (train/roughness_shift.h): a
   // predictor's bias shows here.
   board.scalar("roughness_prior_offset", r.step, r.roughnessOffset);
@@ -242,7 +243,8 @@ TrainingOutcome trainRun(const RunFolder& run, const TrainConfig& config, const 
   TrainingViews views = TrainingViews::load(dataset, dataset.split("train"),  // split(): names a missing file
                                             config.baseline == Baseline::Rgb ? ColourTarget::Render
                                                                              : ColourTarget::Diffuse,
-                                            config.f0TintFromReflections, config.loss.f0TintPrior);
+                                            config.f0TintFromReflections, config.loss.f0TintPrior,
+                                            config.loss.photograph > 0);
   if (config.loss.depthConsistency > 0 && views.supervised().depth) {
     activity.describe("checking each training view's depth against its neighbours'");
     keepConsistentDepthAndSay(config, run, &views, observer);

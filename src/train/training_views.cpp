@@ -30,7 +30,7 @@ std::string SupervisedBuffers::list(bool present) const {
 }
 
 TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& split, ColourTarget colour,
-                                  bool metalnessTrainsBrightness, float tintPrior) {
+                                  bool metalnessTrainsBrightness, float tintPrior, bool photograph) {
   if (split.views.empty()) throw Error(dataset.root().string(), "has no " + split.name + " views to train on");
   TrainingViews tv;
   // The first view decides which buffer kinds are trained; every other view must have them.
@@ -51,6 +51,9 @@ TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& sp
   s.f0 = present(Buffer::F0);
   s.f0BrightnessOnly = s.f0 && metalnessTrainsBrightness && isMetalnessPrior(*dataset.findBufferFile(first, Buffer::F0));
   s.f0TintPrior = s.f0BrightnessOnly ? tintPrior : 0;
+  // Every layout Glint trains on has its photographs (a view's size comes from them), so a
+  // missing one is Dataset::loadBuffer's error, naming the file.
+  s.photograph = photograph && !s.finalColour;
 
   // Sizes come from each view's camera; a view's buffers must match it.
   tv.cameras_.resize(split.views.size());
@@ -63,6 +66,7 @@ TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& sp
     tv.firstPixel_[v + 1] = tv.firstPixel_[v] + size_t(c.width) * size_t(c.height);
   }
   tv.targets_.resize(tv.firstPixel_.back());
+  if (s.photograph) tv.photographs_.resize(tv.firstPixel_.back());
 
   ProgressBar progress("load " + split.name + " views", int64_t(split.views.size()), "views");
   // Views load in parallel: decoding dominates and is independent per file.
@@ -76,9 +80,12 @@ TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& sp
     // Training does not read the render buffer beside the diffuse one, but it refuses every
     // view `glint info` refuses: a broken file is a broken dataset, and a run trained on one
     // would be scored against it.
-    if (colourBuffer != Buffer::Render && present(Buffer::Render)) load(true, Buffer::Render);
+    Image photographImage;
+    if (colourBuffer != Buffer::Render && (s.photograph || present(Buffer::Render)))
+      photographImage = load(true, Buffer::Render);
+    if (!s.photograph) photographImage = Image();
     const std::string& name = split.views[size_t(v)].filePath;
-    for (const Image* image : {&colourImage, &specular, &depth, &normal, &roughness, &f0})
+    for (const Image* image : {&colourImage, &specular, &depth, &normal, &roughness, &f0, &photographImage})
       if (!image->empty() && (image->width != camera.width || image->height != camera.height))
         throw Error(dataset.root().string(), "view " + name + " has buffers of size " + std::to_string(image->width) +
                                                  "x" + std::to_string(image->height) + ", expected " +
@@ -92,8 +99,10 @@ TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& sp
       }
     }
     PackedTarget* out = tv.targets_.data() + tv.firstPixel_[size_t(v)];
+    uint32_t* photographOut = s.photograph ? tv.photographs_.data() + tv.firstPixel_[size_t(v)] : nullptr;
     for (int y = 0; y < camera.height; ++y)
       for (int x = 0; x < camera.width; ++x) {
+        if (photographOut) *photographOut++ = packSharedExponent(photographImage.rgb(x, y));
         PackedTarget& t = *out++;
         t.diffuse = packSharedExponent(colourImage.rgb(x, y));
         if (s.specular) t.specular = packSharedExponent(specular.rgb(x, y));
@@ -132,6 +141,10 @@ PixelTarget TrainingViews::target(size_t view, size_t pixel) const {
   // is kept (left free, L_r's noisy gradient tinted the walls' reflections).
   t.f0BrightnessOnly = supervised_.f0BrightnessOnly && greyF0IsMetal(t.f0);
   t.f0TintPrior = supervised_.f0TintPrior;
+  if (!photographs_.empty()) {
+    t.photograph = unpackSharedExponent(photographs_[firstPixel_[view] + pixel]);
+    t.hasPhotograph = true;
+  }
   return t;
 }
 
@@ -147,7 +160,8 @@ void TrainingViews::setCamera(size_t view, const Camera& camera, bool normalsFro
 }
 
 size_t TrainingViews::memoryBytes() const {
-  return targets_.capacity() * sizeof(PackedTarget) + cameras_.capacity() * sizeof(Camera) +
+  return targets_.capacity() * sizeof(PackedTarget) + photographs_.capacity() * sizeof(uint32_t) +
+         cameras_.capacity() * sizeof(Camera) +
          firstPixel_.capacity() * sizeof(size_t) + depthTrusted_.capacity() +
          loadedCameras_.capacity() * sizeof(Camera) + normalTurn_.capacity() * sizeof(Mat3f);
 }

@@ -37,6 +37,9 @@ struct SupervisedBuffers {
   // and only its metals' brightness is trained (PixelTarget::f0BrightnessOnly).
   bool f0BrightnessOnly = false;
   float f0TintPrior = 0;  // PixelTarget::f0TintPrior of those metals
+  // Each view's photograph (render buffer) is held beside the diffuse prior for the
+  // photograph term (LossWeights::photograph; PixelTarget::hasPhotograph).
+  bool photograph = false;
   // The names ("specular, depth, ...") of the buffer kinds present, or of those missing.
   std::string list(bool present) const;
 };
@@ -52,10 +55,12 @@ class TrainingViews {
   // camera, or non-finite values (Dataset::loadBuffer's checks).
   // metalnessTrainsBrightness: a capture's F0 given as metalness trains its brightness only
   // (TrainConfig::f0TintFromReflections), and every channel with the share tintPrior
-  // (LossWeights::f0TintPrior).
+  // (LossWeights::f0TintPrior). photograph: hold each view's render buffer too, as
+  // PixelTarget::photograph (4 more bytes per pixel), where the colour target is the diffuse
+  // buffer.
   static TrainingViews load(const Dataset& dataset, const DatasetSplit& split,
                             ColourTarget colour = ColourTarget::Diffuse, bool metalnessTrainsBrightness = false,
-                            float tintPrior = LossWeights{}.f0TintPrior);
+                            float tintPrior = LossWeights{}.f0TintPrior, bool photograph = false);
 
   size_t viewCount() const { return cameras_.size(); }
   const Camera& camera(size_t view) const { return cameras_[view]; }
@@ -111,6 +116,7 @@ class TrainingViews {
   std::vector<Camera> cameras_;
   std::vector<size_t> firstPixel_;     // view v's targets are [firstPixel_[v], firstPixel_[v + 1])
   std::vector<PackedTarget> targets_;  // view-major, then row-major pixels
+  std::vector<uint32_t> photographs_;  // per target, shared-exponent RGB (empty without the photograph term)
   SupervisedBuffers supervised_;
   std::vector<uint8_t> depthTrusted_;  // per target: 0 = out of the depth term (empty: all in)
   std::vector<Camera> loadedCameras_;   // the cameras as loaded, once setCamera moved one (else empty)

@@ -159,6 +159,39 @@ TEST(RayBackward, MatchesFiniteDifferencesTruncatedPowerThree) { expectBackwardM
 TEST(RayBackward, MatchesFiniteDifferencesTruncatedOpaqueTail) { expectBackwardMatches(3.0, true, false, 17, false); }
 TEST(RayBackward, MatchesFiniteDifferencesStartingInside) { expectBackwardMatches(3.0, false, true, 15); }
 
+// An adjoint on the blended roughness and F0 with the weights held (L_r's material gradient,
+// D15) reaches each hit's own roughness and F0 as the plain adjoint does, and nothing else:
+// no opacity, position, shape, diffuse or normal gradient.
+TEST(RayBackward, WeightsHeldAdjointReachesOnlyRoughnessAndF0) {
+  Rng rng(18);
+  TraceSettings s;
+  s.alphaMin = 0.01f;
+  s.minTransmittance = 1e-4f;
+  Case c = drawCase(rng, s, 3, false, false);
+  RayResultAdjoint plain;
+  plain.v_roughness = -0.7f;
+  plain.v_f0 = Rgb(0.4f, -0.3f, 0.9f);
+  RayResultAdjoint held;
+  held.v_roughnessWeightsHeld = plain.v_roughness;
+  held.v_f0WeightsHeld = plain.v_f0;
+  EXPECT_FALSE(held.isZero());
+  const std::vector<double> gPlain = analyticGradient(c.x, c.ray, s, c.forward, plain);
+  const std::vector<double> gHeld = analyticGradient(c.x, c.ray, s, c.forward, held);
+  constexpr int kRoughnessParam = test::kNormalParam + 3;  // then F0's three
+  double plainGeometry = 0, heldMaterials = 0;
+  for (size_t i = 0; i < gPlain.size(); ++i) {
+    if (int(i % kParams) >= kRoughnessParam) {
+      EXPECT_NEAR(gHeld[i], gPlain[i], 1e-12) << "parameter " << i;
+      heldMaterials += std::abs(gHeld[i]);
+    } else {
+      EXPECT_EQ(gHeld[i], 0.0) << "parameter " << i;
+      plainGeometry += std::abs(gPlain[i]);
+    }
+  }
+  EXPECT_GT(heldMaterials, 1e-3);
+  EXPECT_GT(plainGeometry, 1e-3);  // the plain adjoint does move the hits' opacity and shape
+}
+
 // In float, from the records a fast trace leaves, the gradient agrees with the double one.
 TEST(RayBackward, FloatRecordsAgreeWithDouble) {
   Rng rng(16);

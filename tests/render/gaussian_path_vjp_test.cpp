@@ -342,6 +342,7 @@ TEST(TracePathVjp, MaterialGradientsMatchFiniteDifferencesOfTheDetachedWeights) 
   settings.weightReflections = false;
   settings.roughnessFromSpecular = 1;
   settings.f0FromSpecular = 1;
+  settings.materialsMoveGeometry = true;  // the whole derivative
   settings.path = c.settings;
   // The local directions of steps 1 and 2, in the frame continuePath used.
   std::vector<Vec3d> wo(3), wi(3);
@@ -427,6 +428,48 @@ TEST(TracePathVjp, MaterialGradientsMatchFiniteDifferencesOfTheDetachedWeights) 
   for (uint32_t id : hits[0]) EXPECT_FALSE(reached.count(id)) << id;
 }
 
+// By default L_r's material gradients hold the compositing weights: each Gaussian's own
+// roughness and F0 get what the whole derivative gives them, and its opacity, position,
+// shape, diffuse and normal get exactly what they get with the material gradients off.
+TEST(TracePathVjp, MaterialGradientsWithHeldWeightsReachOnlyRoughnessAndF0) {
+  PathCase c = makePathCase();
+  ASSERT_EQ(c.segments.size(), 3u);
+  LossSetup loss(c.path.specular);
+  PathGradientSettings off;
+  off.path = c.settings;
+  PathGradientSettings held = off;
+  held.roughnessFromSpecular = 1;
+  held.f0FromSpecular = 1;
+  PathGradientSettings whole = held;
+  whole.materialsMoveGeometry = true;
+  auto gradientOf = [&](const PathGradientSettings& settings) {
+    std::vector<double> gradient(c.x.size(), 0.0);
+    RayBackwardScratch<double> scratch;
+    tracePath_vjp<double>(c.scene, c.trace, c.segments, RayResultAdjoint{}, loss.g, settings, scratch,
+                          [&](uint32_t id, const HitGradient<double>& hg) { test::accumulate(&gradient, id, hg); });
+    return gradient;
+  };
+  const std::vector<double> gOff = gradientOf(off), gHeld = gradientOf(held), gWhole = gradientOf(whole);
+  constexpr int kRoughnessParam = test::kNormalParam + 3, kF0Param = test::kNormalParam + 4;
+  double geometryMoved = 0, materials = 0;
+  for (size_t i = 0; i < c.scene.size(); ++i)
+    for (int p = 0; p < kParams; ++p) {
+      const size_t at = i * kParams + p;
+      const bool material = p >= kRoughnessParam && p < kF0Param + 3;
+      if (material) {
+        EXPECT_NEAR(gHeld[at], gWhole[at], 1e-12) << "Gaussian " << i << ", parameter " << p;
+        materials += std::abs(gHeld[at]);
+      } else {
+        EXPECT_NEAR(gHeld[at], gOff[at], 1e-12) << "Gaussian " << i << ", parameter " << p;
+        geometryMoved += std::abs(gWhole[at] - gOff[at]);
+      }
+    }
+  // The check has teeth: the materials get a gradient, and the whole derivative does move
+  // the geometry.
+  EXPECT_GT(materials, 1e-4);
+  EXPECT_GT(geometryMoved, 1e-4);
+}
+
 // A segment whose hit list overflowed gives no gradient and is counted.
 TEST(TracePathVjp, OverflowedSegmentsAreSkippedAndCounted) {
   PathCase full = makePathCase();
@@ -463,9 +506,9 @@ TEST(TracePathVjp, F0FromSpecularMetalsOnlyLeavesDielectricsToTheirPrior) {
     segments[0].result.f0 = f0;  // the surface the first reflection leaves
     const RayResultAdjoint a = segmentAdjoint(segments, 0, RayResultAdjoint{}, g, all);
     const RayResultAdjoint m = segmentAdjoint(segments, 0, RayResultAdjoint{}, g, metals);
-    ASSERT_FALSE(a.v_f0 == Rgb(0.0f));
-    EXPECT_EQ(m.v_f0, greyF0IsMetal(f0) ? a.v_f0 : Rgb(0.0f));
-    EXPECT_EQ(m.v_roughness, a.v_roughness);
+    ASSERT_FALSE(a.v_f0WeightsHeld == Rgb(0.0f));
+    EXPECT_EQ(m.v_f0WeightsHeld, greyF0IsMetal(f0) ? a.v_f0WeightsHeld : Rgb(0.0f));
+    EXPECT_EQ(m.v_roughnessWeightsHeld, a.v_roughnessWeightsHeld);
   }
 }
 

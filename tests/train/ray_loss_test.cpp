@@ -152,6 +152,38 @@ TEST_P(RayLossVjp, MatchesFiniteDifferences) {
   }
 }
 
+// The photograph term (LossWeights::photograph) is the mean absolute error of diffuse +
+// specular against the photograph, weighted into the loss; its gradient with respect to
+// that sum is the same for the diffuse and for the specular (checked by central
+// differences in each, away from |x|'s kinks).
+TEST(RayLoss, PhotographTermFitsDiffusePlusSpecular) {
+  PixelTarget t = surfaceTarget();
+  t.photograph = Rgb(0.9f, 0.5f, 0.2f);
+  t.hasPhotograph = true;
+  const LossNormalisation n{4, 2};
+  const Rgb diffuse(0.5f, 0.25f, 0.125f), specular(0.3f, 0.35f, 0.025f);
+  EXPECT_NEAR(photographLoss(diffuse + specular, t, n), (0.1 + 0.1 + 0.05) / 3 / 4, 1e-7);
+  LossWeights w;
+  w.photograph = 2.0f;
+  EXPECT_EQ(photographLoss_vjp(diffuse + specular, t, n, w), Rgb(-2.0f, 2.0f, -2.0f) / 12.0f);
+  LossTerms terms;
+  terms.photograph = 0.5;
+  EXPECT_NEAR(terms.weighted(w), 1.0, 1e-12);
+  EXPECT_EQ(terms.weighted(LossWeights{}), 0.0);  // off by default
+  Rng rng(43);
+  for (int trial = 0; trial < 10; ++trial) {
+    std::vector<double> x(6);  // diffuse, then specular
+    for (double& v : x) v = rng.uniformDouble();
+    auto sum = [](const std::vector<double>& p) {
+      return Rgb(float(p[0] + p[3]), float(p[1] + p[4]), float(p[2] + p[5]));
+    };
+    auto loss = [&](const std::vector<double>& p) { return w.photograph * photographLoss(sum(p), t, n); };
+    const Rgb v = photographLoss_vjp(sum(x), t, n, w);
+    const std::vector<double> analytic = {v.x, v.y, v.z, v.x, v.y, v.z};
+    test::expectGradientNear(analytic, test::centralGradient(loss, x, 1e-3), 1e-3, "photograph term");
+  }
+}
+
 // The Huber normal term (LossWeights::normalHuber): quadratic within its width, L1's slope
 // and offset beyond, continuous at the width; L1 itself with width 0.
 TEST(RayLoss, HuberNormalPenaltyIsQuadraticWithinItsWidthAndL1Beyond) {

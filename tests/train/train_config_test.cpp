@@ -26,6 +26,7 @@ TEST(TrainConfig, RoundTripsEveryField) {
   c.loss.depthConsistencyViews = 3;
   c.loss.normalHuber = 0.2f;
   c.loss.f0TintPrior = 0.3f;
+  c.loss.photograph = 0.7f;
   c.initConsistentDepthOnly = true;
   c.cameras.every = 500;
   c.cameras.until = 4500;
@@ -48,6 +49,7 @@ TEST(TrainConfig, RoundTripsEveryField) {
   EXPECT_EQ(back.loss.depthConsistencyViews, 3);
   EXPECT_EQ(back.loss.normalHuber, 0.2f);
   EXPECT_EQ(back.loss.f0TintPrior, 0.3f);
+  EXPECT_EQ(back.loss.photograph, 0.7f);
   EXPECT_TRUE(back.initConsistentDepthOnly);
   EXPECT_EQ(back.cameras.every, 500);
   EXPECT_EQ(back.cameras.until, 4500);
@@ -79,6 +81,7 @@ TEST(TrainConfig, DefaultsAreThePapers) {
   EXPECT_EQ(c.loss.f0FromSpecular, 0.0f);
   EXPECT_EQ(c.loss.normalHuber, 0.0f);  // the paper's L1 normal term
   EXPECT_EQ(c.loss.f0TintPrior, 0.1f);  // the tint option's pull toward grey (off with the option)
+  EXPECT_EQ(c.loss.photograph, 0.0f);   // the photograph term, beyond the paper
   EXPECT_EQ(c.farField.count, 75000);
   EXPECT_EQ(c.farField.sigmaFactor, 4.0f);
   EXPECT_EQ(c.farField.truncation, 3.0f);
@@ -188,6 +191,7 @@ TEST(TrainConfig, RejectsBadSettingsNamingTheFile) {
   // Leaving F0's tint to L_r needs L_r's gradient into F0.
   expectRejected("{\"f0_tint_from_reflections\": true}", "loss.f0_from_specular > 0");
   expectRejected("{\"loss\": {\"f0_tint_prior\": 1.5}}", "loss.f0_tint_prior must be in [0, 1]");
+  expectRejected("{\"loss\": {\"photograph\": -1}}", "loss weights must be in [0, 1e6]");
 }
 
 // The choices are enums in memory and keep their words in config.json, so runs written
