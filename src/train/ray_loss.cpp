@@ -36,6 +36,15 @@ Rgb f0Error_vjp(const Rgb& f0, const PixelTarget& t) {
   return v;
 }
 
+// The mean absolute error of one ray's colour against a target, per batch ray and channel
+// (the colour, reflection and photograph terms), and its gradient times the term's weight.
+double colourError(const Rgb& colour, const Rgb& target, const LossNormalisation& n) {
+  return absSum(colour - target) / (3 * n.diffuseRays);
+}
+Rgb colourError_vjp(const Rgb& colour, const Rgb& target, const LossNormalisation& n, float weight) {
+  return sign(colour - target) * float(weight / (3 * n.diffuseRays));
+}
+
 // The colour the colour term compares with its target: the first diffuse, or the final image.
 Rgb fittedColour(const RayResult& r, const PixelTarget& t, const Rgb& pathSpecular) {
   return t.finalColour ? r.diffuse + pathSpecular : r.diffuse;
@@ -61,7 +70,7 @@ float normalPenalty_vjp(float x, float width) {
 LossTerms rayLoss(const RayResult& r, const PixelTarget& t, const LossNormalisation& n, const Rgb& pathSpecular,
                   float normalHuber) {
   LossTerms terms;
-  terms.diffuse = absSum(fittedColour(r, t, pathSpecular) - t.diffuse) / (3 * n.diffuseRays);
+  terms.diffuse = colourError(fittedColour(r, t, pathSpecular), t.diffuse, n);
   if (t.surface) {
     if (t.hasDepth) terms.depth = std::abs(double(r.depth) - t.depth) / n.surfaceRays;
     if (t.hasNormal) terms.normal = normalError(r.normal - t.normal, normalHuber) / (3 * n.surfaceRays);
@@ -74,7 +83,7 @@ LossTerms rayLoss(const RayResult& r, const PixelTarget& t, const LossNormalisat
 RayResultAdjoint rayLoss_vjp(const RayResult& r, const PixelTarget& t, const LossNormalisation& n,
                              const LossWeights& w, const Rgb& pathSpecular) {
   RayResultAdjoint v;
-  v.v_diffuse = sign(fittedColour(r, t, pathSpecular) - t.diffuse) * float(w.diffuse / (3 * n.diffuseRays));
+  v.v_diffuse = colourError_vjp(fittedColour(r, t, pathSpecular), t.diffuse, n, w.diffuse);
   if (t.surface) {
     if (t.hasDepth) v.v_depth = sign(r.depth - t.depth) * float(w.depth / n.surfaceRays);
     if (t.hasNormal) {
@@ -90,20 +99,20 @@ RayResultAdjoint rayLoss_vjp(const RayResult& r, const PixelTarget& t, const Los
 }
 
 double specularLoss(const Rgb& specular, const PixelTarget& t, const LossNormalisation& n) {
-  return absSum(specular - t.specular) / (3 * n.diffuseRays);
+  return colourError(specular, t.specular, n);
 }
 
 Rgb specularLoss_vjp(const Rgb& specular, const PixelTarget& t, const LossNormalisation& n, const LossWeights& w) {
-  return sign(specular - t.specular) * float(w.specular / (3 * n.diffuseRays));
+  return colourError_vjp(specular, t.specular, n, w.specular);
 }
 
 double photographLoss(const Rgb& diffusePlusSpecular, const PixelTarget& t, const LossNormalisation& n) {
-  return absSum(diffusePlusSpecular - t.photograph) / (3 * n.diffuseRays);
+  return colourError(diffusePlusSpecular, t.photograph, n);
 }
 
 Rgb photographLoss_vjp(const Rgb& diffusePlusSpecular, const PixelTarget& t, const LossNormalisation& n,
                        const LossWeights& w) {
-  return sign(diffusePlusSpecular - t.photograph) * float(w.photograph / (3 * n.diffuseRays));
+  return colourError_vjp(diffusePlusSpecular, t.photograph, n, w.photograph);
 }
 
 }  // namespace glint

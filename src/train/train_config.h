@@ -66,7 +66,8 @@ struct LossWeights {
   // reflects what the training views see only in it, F0's tint and that light's colour
   // trade freely, and without the pull F0 drifts (builtin:room's mirror went pink). 0.1:
   // on builtin:spheres +0.31 dB of specular over 0 (0.3 and 1 not run there); on
-  // builtin:room the same as 0 and 1, 0.26 dB above 0.3 (docs/captures.md).
+  // builtin:room the same as 0 and 1, 0.26 dB above 0.3 (docs/captures.md; measured while
+  // L_r's material gradient still moved the geometry).
   float f0TintPrior = 0.1f;
   // Beyond the paper: the weight of a term fitting the first diffuse plus the path's
   // specular to each view's photograph (its render buffer), beside the diffuse and specular

@@ -77,13 +77,14 @@ TrainingViews TrainingViews::load(const Dataset& dataset, const DatasetSplit& sp
     Image specular = load(s.specular, Buffer::Specular), depth = load(s.depth, Buffer::Depth);
     Image normal = load(s.normal, Buffer::Normal), roughness = load(s.roughness, Buffer::Roughness);
     Image f0 = load(s.f0, Buffer::F0);
-    // Training does not read the render buffer beside the diffuse one, but it refuses every
-    // view `glint info` refuses: a broken file is a broken dataset, and a run trained on one
+    // The render buffer beside the diffuse one is held only for the photograph term (whose
+    // load names a missing file), but it is read either way: training refuses every view
+    // `glint info` refuses, since a broken file is a broken dataset and a run trained on one
     // would be scored against it.
     Image photographImage;
     if (colourBuffer != Buffer::Render && (s.photograph || present(Buffer::Render)))
       photographImage = load(true, Buffer::Render);
-    if (!s.photograph) photographImage = Image();
+    if (!s.photograph) photographImage = Image();  // checked, not held
     const std::string& name = split.views[size_t(v)].filePath;
     for (const Image* image : {&colourImage, &specular, &depth, &normal, &roughness, &f0, &photographImage})
       if (!image->empty() && (image->width != camera.width || image->height != camera.height))
