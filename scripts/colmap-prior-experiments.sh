@@ -58,6 +58,11 @@ echo "{\"bounces\": 2, \"loss\": {\"depth\": 0, \"specular\": 0.01}, \"cameras\"
   > "$out/configs/preset_refine.json"
 echo "{\"bounces\": 2, \"loss\": {\"depth_band\": 0.1, \"specular\": 0.01, \"depth_consistency\": 0.02}, \"cameras\": {\"refine_every\": $((iters / 8))}}" \
   > "$out/configs/preset_band_consistent_refine.json"
+# The preset with the camera-independent levers of the true-camera runs: the photograph term
+# at 3 and, on the monocular kind (a metalness prior), the tint option.
+echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 0.01, "photograph": 3.0}}' > "$out/configs/preset_photo3.json"
+echo '{"bounces": 2, "f0_tint_from_reflections": true, "loss": {"depth": 0.0, "specular": 0.01, "f0_from_specular": 1.0, "f0_tint_prior": 0.1, "photograph": 3.0}}' \
+  > "$out/configs/preset_tint_photo3.json"
 echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1}, \"lr\": {\"normal_final\": 0.000025, \"normal_decay_steps\": $iters}}" \
   > "$out/configs/best.json"
 
@@ -72,7 +77,8 @@ runs="${RUNS:-monocular_colmap_preset monocular_colmap_best monocular_colmap_pre
   monocular_true_preset monocular_true_preset_band network_colmap_preset network_colmap_preset_band
   monocular_colmap_preset_band_consistent network_colmap_preset_band_consistent monocular_true_preset_band_consistent
   monocular_colmap_preset_band_consistent_init monocular_colmap_preset_refine
-  monocular_colmap_preset_band_consistent_refine}"
+  monocular_colmap_preset_band_consistent_refine monocular_colmap_preset_tint_photo3
+  network_colmap_preset_photo3}"
 for name in $runs; do
   kind="${name%%_*}"
   rest="${name#*_}"

@@ -176,6 +176,11 @@ for w in 1 3; do
     "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01.json" \
     > "$out/configs/n25_band_shift_nlr100_consistent_init_f0_tint_prior01_photo$w.json"
 done
+# The preset with the camera-independent levers: the photograph term at 3 (and, where the F0
+# prior is a metalness, the tint option), measured as candidates for the automatic preset.
+echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 0.01, "photograph": 3.0}}' > "$out/configs/preset_photo3.json"
+echo '{"bounces": 2, "f0_tint_from_reflections": true, "loss": {"depth": 0.0, "specular": 0.01, "f0_from_specular": 1.0, "f0_tint_prior": 0.1, "photograph": 3.0}}' \
+  > "$out/configs/preset_tint_photo3.json"
 # Two oracles on the monocular capture, each with one prior taken from the exact capture: its
 # F0 (monof0: the metals' tint given) and its depth (monoexactdepth): how much of the monocular
 # kind's loss each of those priors' errors makes.
@@ -234,7 +239,8 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_held
   network_n25_band_shift_nlr100_consistent_huber_f0_tint_prior01_held
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_photo1
-  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_photo3}"
+  monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_photo3
+  monocular_preset_tint_photo3 network_preset_photo3}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"

@@ -75,7 +75,10 @@ struct LossWeights {
   // are a predictor's guesses, blurred and noisy, but its photographs are exact: the term
   // lets them correct the sum while the priors still split it. 0, off: on a monocular-kind
   // capture 3 gained 0.33 dB of specular and 0.51 of final on builtin:spheres, 0.34 and
-  // 0.63 on builtin:room (docs/captures.md); not measured on exact buffers.
+  // 0.63 on builtin:room (docs/captures.md); with the tint option under the paper's preset
+  // (no depth loss) +0.68 dB of specular and +0.86 of final under COLMAP's cameras
+  // (builtin:gallery), +1.54 and +1.66 on builtin:room, the depth drifting further there;
+  // not measured on exact buffers.
   float photograph = 0.0f;
 };
 
@@ -169,7 +172,8 @@ struct TrainConfig {
   // every channel of their prior. With an F0 prior (tinted already) L_r's F0 gradient is
   // withheld and the option does nothing. An option beyond the paper, off: under the
   // monocular kind's best setting +1.08 dB of specular on one scene's tinted chrome, +0.07
-  // on another (docs/captures.md); not measured under the paper's preset.
+  // on another (docs/captures.md); under the paper's preset measured only together with
+  // loss.photograph (above).
   bool f0TintFromReflections = false;
   // When true, the roughness term ignores a constant offset between the priors and the
   // model: it compares r + b with the prior p, b the median of p - r over the previous
