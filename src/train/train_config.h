@@ -78,7 +78,7 @@ struct LossWeights {
   // 0.63 on builtin:room (docs/captures.md); with the tint option under the paper's preset
   // (no depth loss) +0.68 dB of specular and +0.86 of final under COLMAP's cameras
   // (builtin:gallery), +1.54 and +1.66 on builtin:room, the depth drifting further there;
-  // not measured on exact buffers.
+  // on the network kind under the preset -1.73 and -1.89 (room); not measured on exact buffers.
   float photograph = 0.0f;
 };
 
