@@ -63,6 +63,9 @@ echo "{\"bounces\": 2, \"loss\": {\"depth_band\": 0.1, \"specular\": 0.01, \"dep
 echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 0.01, "photograph": 3.0}}' > "$out/configs/preset_photo3.json"
 echo '{"bounces": 2, "f0_tint_from_reflections": true, "loss": {"depth": 0.0, "specular": 0.01, "f0_from_specular": 1.0, "f0_tint_prior": 0.1, "photograph": 3.0}}' \
   > "$out/configs/preset_tint_photo3.json"
+# The tint option alone (a no-op where the F0 prior is not a metalness), to tell its share.
+echo '{"bounces": 2, "f0_tint_from_reflections": true, "loss": {"depth": 0.0, "specular": 0.01, "f0_from_specular": 1.0, "f0_tint_prior": 0.1}}' \
+  > "$out/configs/preset_tint.json"
 echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1}, \"lr\": {\"normal_final\": 0.000025, \"normal_decay_steps\": $iters}}" \
   > "$out/configs/best.json"
 
@@ -78,7 +81,7 @@ runs="${RUNS:-monocular_colmap_preset monocular_colmap_best monocular_colmap_pre
   monocular_colmap_preset_band_consistent network_colmap_preset_band_consistent monocular_true_preset_band_consistent
   monocular_colmap_preset_band_consistent_init monocular_colmap_preset_refine
   monocular_colmap_preset_band_consistent_refine monocular_colmap_preset_tint_photo3
-  network_colmap_preset_photo3}"
+  network_colmap_preset_photo3 monocular_colmap_preset_tint monocular_colmap_preset_photo3}"
 for name in $runs; do
   kind="${name%%_*}"
   rest="${name#*_}"

@@ -181,6 +181,9 @@ done
 echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 0.01, "photograph": 3.0}}' > "$out/configs/preset_photo3.json"
 echo '{"bounces": 2, "f0_tint_from_reflections": true, "loss": {"depth": 0.0, "specular": 0.01, "f0_from_specular": 1.0, "f0_tint_prior": 0.1, "photograph": 3.0}}' \
   > "$out/configs/preset_tint_photo3.json"
+# The tint option alone (a no-op where the F0 prior is not a metalness), to tell its share.
+echo '{"bounces": 2, "f0_tint_from_reflections": true, "loss": {"depth": 0.0, "specular": 0.01, "f0_from_specular": 1.0, "f0_tint_prior": 0.1}}' \
+  > "$out/configs/preset_tint.json"
 # Two oracles on the monocular capture, each with one prior taken from the exact capture: its
 # F0 (monof0: the metals' tint given) and its depth (monoexactdepth): how much of the monocular
 # kind's loss each of those priors' errors makes.
@@ -240,7 +243,7 @@ runs="${RUNS:-exact_defaults exact_preset network_preset_fine_voxels network_pre
   network_n25_band_shift_nlr100_consistent_huber_f0_tint_prior01_held
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_photo1
   monocular_n25_band_shift_nlr100_consistent_init_f0_tint_prior01_photo3
-  monocular_preset_tint_photo3 network_preset_photo3}"
+  monocular_preset_tint_photo3 network_preset_photo3 monocular_preset_tint monocular_preset_photo3}"
 for name in $runs; do
   capture="${name%%_*}"
   train_and_eval "$name" "$capture" "${name#*_}"

@@ -75,9 +75,9 @@ struct LossWeights {
   // are a predictor's guesses, blurred and noisy, but its photographs are exact: the term
   // lets them correct the sum while the priors still split it. 0, off: on a monocular-kind
   // capture 3 gained 0.33 dB of specular and 0.51 of final on builtin:spheres, 0.34 and
-  // 0.63 on builtin:room (docs/captures.md); with the tint option under the paper's preset
-  // (no depth loss) +0.68 dB of specular and +0.86 of final under COLMAP's cameras
-  // (builtin:gallery), +1.54 and +1.66 on builtin:room, the depth drifting further there;
+  // 0.63 on builtin:room (docs/captures.md); under the paper's preset (no depth loss), on
+  // the monocular kind +0.87 dB of specular and +1.01 of final under COLMAP's cameras
+  // (builtin:gallery) but -0.97 and -0.74 on builtin:room, the depth drifting 2-7x further;
   // on the network kind under the preset -1.73 and -1.89 (room); not measured on exact buffers.
   float photograph = 0.0f;
 };
@@ -172,8 +172,9 @@ struct TrainConfig {
   // every channel of their prior. With an F0 prior (tinted already) L_r's F0 gradient is
   // withheld and the option does nothing. An option beyond the paper, off: under the
   // monocular kind's best setting +1.08 dB of specular on one scene's tinted chrome, +0.07
-  // on another (docs/captures.md); under the paper's preset measured only together with
-  // loss.photograph (above).
+  // on another (docs/captures.md); under the paper's preset (no depth loss) -2.30 dB on
+  // builtin:room (its flat mirror -4.1; cause not separated) and +0.17 dB of specular on
+  // builtin:gallery under COLMAP's cameras, so the preset leaves it off.
   bool f0TintFromReflections = false;
   // When true, the roughness term ignores a constant offset between the priors and the
   // model: it compares r + b with the prior p, b the median of p - r over the previous
