@@ -59,13 +59,12 @@ echo "{\"bounces\": 2, \"loss\": {\"depth\": 0, \"specular\": 0.01}, \"cameras\"
 echo "{\"bounces\": 2, \"loss\": {\"depth_band\": 0.1, \"specular\": 0.01, \"depth_consistency\": 0.02}, \"cameras\": {\"refine_every\": $((iters / 8))}}" \
   > "$out/configs/preset_band_consistent_refine.json"
 # The preset with the camera-independent levers of the true-camera runs: the photograph term
-# at 3 and, on the monocular kind (a metalness prior), the tint option.
+# at 3 and, on the monocular kind (a metalness prior), the tint option, alone and together.
 echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 0.01, "photograph": 3.0}}' > "$out/configs/preset_photo3.json"
-echo '{"bounces": 2, "f0_tint_from_reflections": true, "loss": {"depth": 0.0, "specular": 0.01, "f0_from_specular": 1.0, "f0_tint_prior": 0.1, "photograph": 3.0}}' \
-  > "$out/configs/preset_tint_photo3.json"
-# The tint option alone (a no-op where the F0 prior is not a metalness), to tell its share.
 echo '{"bounces": 2, "f0_tint_from_reflections": true, "loss": {"depth": 0.0, "specular": 0.01, "f0_from_specular": 1.0, "f0_tint_prior": 0.1}}' \
   > "$out/configs/preset_tint.json"
+sed 's/"f0_tint_prior": 0.1}/"f0_tint_prior": 0.1, "photograph": 3.0}/' "$out/configs/preset_tint.json" \
+  > "$out/configs/preset_tint_photo3.json"
 echo "{\"roughness_shift_invariant\": true, \"loss\": {\"normal\": 2.5, \"depth_band\": 0.1}, \"lr\": {\"normal_final\": 0.000025, \"normal_decay_steps\": $iters}}" \
   > "$out/configs/best.json"
 

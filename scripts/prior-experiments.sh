@@ -179,11 +179,10 @@ done
 # The preset with the camera-independent levers: the photograph term at 3 (and, where the F0
 # prior is a metalness, the tint option), measured as candidates for the automatic preset.
 echo '{"bounces": 2, "loss": {"depth": 0.0, "specular": 0.01, "photograph": 3.0}}' > "$out/configs/preset_photo3.json"
-echo '{"bounces": 2, "f0_tint_from_reflections": true, "loss": {"depth": 0.0, "specular": 0.01, "f0_from_specular": 1.0, "f0_tint_prior": 0.1, "photograph": 3.0}}' \
-  > "$out/configs/preset_tint_photo3.json"
-# The tint option alone (a no-op where the F0 prior is not a metalness), to tell its share.
 echo '{"bounces": 2, "f0_tint_from_reflections": true, "loss": {"depth": 0.0, "specular": 0.01, "f0_from_specular": 1.0, "f0_tint_prior": 0.1}}' \
   > "$out/configs/preset_tint.json"
+sed 's/"f0_tint_prior": 0.1}/"f0_tint_prior": 0.1, "photograph": 3.0}/' "$out/configs/preset_tint.json" \
+  > "$out/configs/preset_tint_photo3.json"
 # Two oracles on the monocular capture, each with one prior taken from the exact capture: its
 # F0 (monof0: the metals' tint given) and its depth (monoexactdepth): how much of the monocular
 # kind's loss each of those priors' errors makes.

@@ -172,8 +172,8 @@ struct TrainConfig {
   // every channel of their prior. With an F0 prior (tinted already) L_r's F0 gradient is
   // withheld and the option does nothing. An option beyond the paper, off: under the
   // monocular kind's best setting +1.08 dB of specular on one scene's tinted chrome, +0.07
-  // on another (docs/captures.md); under the paper's preset (no depth loss) -2.30 dB on
-  // builtin:room (its flat mirror -4.1; cause not separated) and +0.17 dB of specular on
+  // on another (docs/captures.md); under the paper's preset (no depth loss) -2.30 dB of
+  // specular on builtin:room (its flat mirror -4.1; cause not separated) and +0.17 on
   // builtin:gallery under COLMAP's cameras, so the preset leaves it off.
   bool f0TintFromReflections = false;
   // When true, the roughness term ignores a constant offset between the priors and the
